@@ -1,0 +1,18 @@
+// The verbs of the `bounce` program. Each add*Verb registers its subcommand and options on
+// `app` and, when the subcommand is chosen, stores in `action` the function that runs it and
+// returns the exit code. Errors are thrown as bounce::Error and reported by main().
+#pragma once
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace bounce::app {
+
+using VerbAction = std::function<int()>;
+
+void addInfoVerb(CLI::App& app, VerbAction& action);
+void addRenderVerb(CLI::App& app, VerbAction& action);
+void addBenchRaysVerb(CLI::App& app, VerbAction& action);
+void addCompareVerb(CLI::App& app, VerbAction& action);
+
+}  // namespace bounce::app

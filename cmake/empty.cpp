@@ -1,0 +1,1 @@
+// Placeholder for a library area that has no sources yet.

@@ -1,0 +1,135 @@
+// The scene as shaders see it: buffer_reference views of the arrays in GpuSceneRefs (set 0,
+// binding 0) and the texture arrays (set 0, bindings 1..). Include once per shader.
+#ifndef BOUNCE_RT_SCENE_GLSL
+#define BOUNCE_RT_SCENE_GLSL
+#include "shared/scene_layout.h"
+
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer BvhNodeArray {
+  GpuBvhNode v[];
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer TriangleArray {
+  GpuTriangle v[];
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer InstanceArray {
+  GpuInstance v[];
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer GeometryArray {
+  GpuGeometry v[];
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer MaterialArray {
+  GpuMaterial v[];
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer UintArray {
+  uint v[];
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Vec2Array {
+  vec2 v[];
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Vec3Array {
+  vec3 v[];
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Vec4Array {
+  vec4 v[];
+};
+
+layout(set = 0, binding = 0, scalar) uniform SceneBlock { GpuSceneRefs scene; };
+
+// One binding per (encoding, size class); see the texture-reference layout in scene_layout.h.
+layout(set = 0, binding = 1) uniform sampler2DArray textureLinear64;
+layout(set = 0, binding = 2) uniform sampler2DArray textureLinear128;
+layout(set = 0, binding = 3) uniform sampler2DArray textureLinear256;
+layout(set = 0, binding = 4) uniform sampler2DArray textureLinear512;
+layout(set = 0, binding = 5) uniform sampler2DArray textureLinear1024;
+layout(set = 0, binding = 6) uniform sampler2DArray textureLinear2048;
+layout(set = 0, binding = 7) uniform sampler2DArray textureSrgb64;
+layout(set = 0, binding = 8) uniform sampler2DArray textureSrgb128;
+layout(set = 0, binding = 9) uniform sampler2DArray textureSrgb256;
+layout(set = 0, binding = 10) uniform sampler2DArray textureSrgb512;
+layout(set = 0, binding = 11) uniform sampler2DArray textureSrgb1024;
+layout(set = 0, binding = 12) uniform sampler2DArray textureSrgb2048;
+
+uint textureBindingSlot(uint ref) {
+  uint sizeClass = (ref >> 16) & 0xFu;
+  return sizeClass + (((ref & TEXTURE_SRGB_BIT) != 0u) ? TEXTURE_SIZE_CLASSES : 0u);
+}
+
+// Filtered lookup at an explicit mip level. Without descriptor indexing, a switch over constant
+// bindings is how a dynamic texture choice is written.
+vec4 sampleSceneTexture(uint ref, vec2 uv, float lod) {
+  vec3 c = vec3(uv, float(ref & 0xFFFFu));
+  switch (textureBindingSlot(ref)) {
+    case 0u: return textureLod(textureLinear64, c, lod);
+    case 1u: return textureLod(textureLinear128, c, lod);
+    case 2u: return textureLod(textureLinear256, c, lod);
+    case 3u: return textureLod(textureLinear512, c, lod);
+    case 4u: return textureLod(textureLinear1024, c, lod);
+    case 5u: return textureLod(textureLinear2048, c, lod);
+    case 6u: return textureLod(textureSrgb64, c, lod);
+    case 7u: return textureLod(textureSrgb128, c, lod);
+    case 8u: return textureLod(textureSrgb256, c, lod);
+    case 9u: return textureLod(textureSrgb512, c, lod);
+    case 10u: return textureLod(textureSrgb1024, c, lod);
+    default: return textureLod(textureSrgb2048, c, lod);
+  }
+}
+
+// Unfiltered mip-0 texel with repeat wrapping: what the tracer's alpha test reads, so that the
+// CPU reference (src/scene/texture_pack.h, sampleAlphaNearest) can reproduce it exactly.
+vec4 fetchSceneTexelNearest(uint ref, vec2 uv) {
+  uint side = TEXTURE_MIN_SIZE << ((ref >> 16) & 0xFu);
+  ivec2 texel = clamp(ivec2(floor(fract(uv) * float(side))), ivec2(0), ivec2(int(side) - 1));
+  ivec3 c = ivec3(texel, int(ref & 0xFFFFu));
+  switch (textureBindingSlot(ref)) {
+    case 0u: return texelFetch(textureLinear64, c, 0);
+    case 1u: return texelFetch(textureLinear128, c, 0);
+    case 2u: return texelFetch(textureLinear256, c, 0);
+    case 3u: return texelFetch(textureLinear512, c, 0);
+    case 4u: return texelFetch(textureLinear1024, c, 0);
+    case 5u: return texelFetch(textureLinear2048, c, 0);
+    case 6u: return texelFetch(textureSrgb64, c, 0);
+    case 7u: return texelFetch(textureSrgb128, c, 0);
+    case 8u: return texelFetch(textureSrgb256, c, 0);
+    case 9u: return texelFetch(textureSrgb512, c, 0);
+    case 10u: return texelFetch(textureSrgb1024, c, 0);
+    default: return texelFetch(textureSrgb2048, c, 0);
+  }
+}
+
+GpuInstance sceneInstance(uint i) { return InstanceArray(scene.instances).v[i]; }
+GpuGeometry sceneGeometry(uint i) { return GeometryArray(scene.geometries).v[i]; }
+GpuMaterial sceneMaterial(uint i) { return MaterialArray(scene.materials).v[i]; }
+
+// The three vertex indices (into the shared streams) of a triangle of a geometry.
+uvec3 triangleVertices(GpuGeometry g, uint primitive) {
+  UintArray indices = UintArray(scene.indices);
+  uint base = g.firstIndex + 3u * primitive;
+  return uvec3(indices.v[base], indices.v[base + 1u], indices.v[base + 2u]) + g.vertexOffset;
+}
+
+vec2 interpolateUv(uvec3 tri, vec2 bary) {
+  Vec2Array uvs = Vec2Array(scene.uvs);
+  return uvs.v[tri.x] * (1.0 - bary.x - bary.y) + uvs.v[tri.y] * bary.x + uvs.v[tri.z] * bary.y;
+}
+
+vec3 interpolateNormal(uvec3 tri, vec2 bary) {
+  Vec3Array normals = Vec3Array(scene.normals);
+  return normals.v[tri.x] * (1.0 - bary.x - bary.y) + normals.v[tri.y] * bary.x +
+         normals.v[tri.z] * bary.y;
+}
+
+vec3 transformPoint(vec4 rows[3], vec3 p) {
+  return vec3(dot(rows[0].xyz, p) + rows[0].w, dot(rows[1].xyz, p) + rows[1].w,
+              dot(rows[2].xyz, p) + rows[2].w);
+}
+
+vec3 transformVector(vec4 rows[3], vec3 v) {
+  return vec3(dot(rows[0].xyz, v), dot(rows[1].xyz, v), dot(rows[2].xyz, v));
+}
+
+// Normals transform with the inverse transpose: n_world = transpose(worldToObject) * n_object.
+vec3 transformNormal(GpuInstance inst, vec3 n) {
+  return inst.worldToObject[0].xyz * n.x + inst.worldToObject[1].xyz * n.y +
+         inst.worldToObject[2].xyz * n.z;
+}
+
+#endif

@@ -1,0 +1,217 @@
+// Software ray tracing over the two-level BVH (shaders/shared/scene_layout.h): one tracing
+// interface for every consumer (STYLE.md "What we take" 8):
+//   TraceHit traceClosest(origin, direction, tMin, tMax, alphaTest)
+//   bool     traceVisibility(origin, direction, tMin, tMax, alphaTest)  // true = unoccluded
+// The node layout and the traversal contract are written down in src/rt/scene_bvh.h; in short,
+// one stack serves the TLAS and the BLAS: entering an instance transforms the ray into object
+// space and remembers the stack height, and the world ray comes back when the stack drops to
+// that height. src/rt/cpu_trace.cpp mirrors this loop step by step.
+#ifndef BOUNCE_RT_TRACE_GLSL
+#define BOUNCE_RT_TRACE_GLSL
+#include "rt/scene.glsl"
+#include "shared/ray_triangle.h"
+
+struct TraceHit {
+  float t;
+  uint instance;  // BVH_INVALID on a miss
+  uint geometry;  // global geometry index
+  uint primitive;
+  vec2 barycentrics;
+  bool frontFacing;
+};
+
+bool traceHitFound(TraceHit h) { return h.instance != BVH_INVALID; }
+
+// Stack entries: an interior node index of the current level, or, at the TLAS level, an
+// instance index with STACK_INSTANCE_BIT set (src/rt/scene_bvh.h, "traversal contract").
+const uint STACK_INSTANCE_BIT = 0x80000000u;
+const uint NO_ENTRY = 0xFFFFFFFFu;
+
+// Reciprocal with components below 1e-20 in magnitude replaced by +-1e-20 (sign of the
+// component, -0 counting as +), so the slab test never computes 0 * inf.
+vec3 safeReciprocal(vec3 d) {
+  const float tiny = 1e-20;
+  return 1.0 / vec3(abs(d.x) < tiny ? (d.x < 0.0 ? -tiny : tiny) : d.x,
+                    abs(d.y) < tiny ? (d.y < 0.0 ? -tiny : tiny) : d.y,
+                    abs(d.z) < tiny ? (d.z < 0.0 ? -tiny : tiny) : d.z);
+}
+
+// Per-ray slab set-up: near/far planes are picked by the sign of the reciprocal direction,
+// which makes the inverted box of an empty child miss without a special case.
+struct BoxRay {
+  vec3 invDir;
+  vec3 originTimesInv;
+  bvec3 negative;
+};
+
+BoxRay makeBoxRay(vec3 origin, vec3 dir) {
+  BoxRay r;
+  r.invDir = safeReciprocal(dir);
+  r.originTimesInv = origin * r.invDir;
+  r.negative = lessThan(r.invDir, vec3(0.0));
+  return r;
+}
+
+// Entry distance of the ray into the box, or +inf when it misses (tMin, tMax). The exit
+// distance is widened by 1 + 2 gamma(3) so a hit the watertight triangle test finds is never
+// culled by rounding (Ize 2013, "Robust BVH Ray Traversal").
+float intersectBox(vec3 boxMin, vec3 boxMax, BoxRay r, float tMin, float tMax) {
+  vec3 nearPlane = mix(boxMin, boxMax, r.negative);
+  vec3 farPlane = mix(boxMax, boxMin, r.negative);
+  vec3 tNear = nearPlane * r.invDir - r.originTimesInv;
+  vec3 tFar = farPlane * r.invDir - r.originTimesInv;
+  float enter = max(max(tNear.x, tNear.y), max(tNear.z, tMin));
+  float exit = min(min(tFar.x, tFar.y), min(tFar.z, tMax)) * 1.0000004;
+  return enter <= exit ? enter : 1.0 / 0.0;
+}
+
+// Alpha test of a candidate hit on a MASK/BLEND material: base-colour alpha (factor x texel,
+// nearest, mip 0) against the cutoff; BLEND counts as a mask at 0.5.
+bool alphaAccepts(uint globalGeometry, uint primitive, vec2 bary) {
+  GpuGeometry g = sceneGeometry(globalGeometry);
+  GpuMaterial m = sceneMaterial(g.material);
+  float alpha = m.baseColor.a;
+  if (m.baseColorTexture != NO_TEXTURE) {
+    vec2 uv = interpolateUv(triangleVertices(g, primitive), bary);
+    alpha *= fetchSceneTexelNearest(m.baseColorTexture, uv).a;
+  }
+  float cutoff = (m.flags & MATERIAL_ALPHA_BLEND) != 0u ? 0.5 : m.alphaCutoff;
+  return alpha >= cutoff;
+}
+
+// State of the traversal at one level (world space for the TLAS, object space in a BLAS).
+struct LevelRay {
+  vec3 origin;
+  vec3 dir;
+  BoxRay box;
+  RayShear shear;
+};
+
+LevelRay makeLevelRay(vec3 origin, vec3 dir) {
+  LevelRay r;
+  r.origin = origin;
+  r.dir = dir;
+  r.box = makeBoxRay(origin, dir);
+  r.shear = makeRayShear(dir);
+  return r;
+}
+
+// The shared traversal (src/rt/cpu_trace.cpp mirrors it). anyHit: stop at the first accepted
+// hit.
+TraceHit traceScene(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax, bool alphaTest,
+                    bool anyHit) {
+  TraceHit best;
+  best.t = tMax;
+  best.instance = BVH_INVALID;
+  best.geometry = BVH_INVALID;
+  best.primitive = BVH_INVALID;
+  best.barycentrics = vec2(0.0);
+  best.frontFacing = false;
+  if (scene.instanceCount == 0u) return best;
+
+  uint stack[BVH_STACK_SIZE];
+  int sp = 0;
+  LevelRay ray = makeLevelRay(worldOrigin, worldDir);
+  BvhNodeArray nodes = BvhNodeArray(scene.tlasNodes);
+  TriangleArray triangles = TriangleArray(scene.triangles);
+  bool inBlas = false;
+  int blasStackBase = 0;
+  uint instance = 0u;
+  uint geometryBase = 0u;
+  bool mirrored = false;
+  uint next = 0u;  // the TLAS root
+
+  while (true) {
+    if (next == NO_ENTRY) {
+      if (inBlas && sp == blasStackBase) {  // the instance is done: back to the world ray
+        inBlas = false;
+        ray = makeLevelRay(worldOrigin, worldDir);
+        nodes = BvhNodeArray(scene.tlasNodes);
+      }
+      if (sp == 0) break;
+      next = stack[--sp];
+    }
+    if (!inBlas && (next & STACK_INSTANCE_BIT) != 0u) {
+      // Enter an instance: continue in its BLAS with the object-space ray (not renormalised,
+      // so t means the same in both spaces).
+      instance = next & ~STACK_INSTANCE_BIT;
+      GpuInstance inst = sceneInstance(instance);
+      geometryBase = inst.geometryBase;
+      mirrored = dot(inst.worldToObject[0].xyz,
+                     cross(inst.worldToObject[1].xyz, inst.worldToObject[2].xyz)) < 0.0;
+      ray = makeLevelRay(transformPoint(inst.worldToObject, worldOrigin),
+                         transformVector(inst.worldToObject, worldDir));
+      nodes = BvhNodeArray(scene.blasNodes);
+      blasStackBase = sp;
+      inBlas = true;
+      next = inst.blasRoot;
+      continue;
+    }
+
+    GpuBvhNode node = nodes.v[next];
+    float tLeft = intersectBox(node.leftMin, node.leftMax, ray.box, tMin, best.t);
+    float tRight = intersectBox(node.rightMin, node.rightMax, ray.box, tMin, best.t);
+    bool hitLeft = tLeft <= best.t;
+    bool hitRight = tRight <= best.t;
+
+    if (inBlas) {
+      // Leaves are intersected at once, nearer first; only interior children go on.
+      bool leftLeaf = node.leftCount > 0u;
+      bool rightLeaf = node.rightCount > 0u;
+      bool rightFirst = hitRight && rightLeaf && (!hitLeft || !leftLeaf || tRight < tLeft);
+      for (int k = 0; k < 2; ++k) {
+        bool right = (k == 0) == rightFirst;
+        bool hitThis = right ? hitRight : hitLeft;
+        uint count = right ? node.rightCount : node.leftCount;
+        if (!hitThis || count == 0u) continue;
+        uint first = right ? node.rightIndex : node.leftIndex;
+        for (uint i = first; i < first + count; ++i) {
+          GpuTriangle tri = triangles.v[i];
+          TriangleHit h = intersectTriangle(ray.origin, ray.shear, tri.v0, tri.v1, tri.v2, tMin,
+                                            best.t);
+          if (!h.hit) continue;
+          uint geometry = geometryBase + (tri.geometry & ~GPU_TRIANGLE_ALPHA_TESTED);
+          if (alphaTest && (tri.geometry & GPU_TRIANGLE_ALPHA_TESTED) != 0u &&
+              !alphaAccepts(geometry, tri.primitive, vec2(h.b1, h.b2)))
+            continue;
+          best.t = h.t;
+          best.instance = instance;
+          best.geometry = geometry;
+          best.primitive = tri.primitive;
+          best.barycentrics = vec2(h.b1, h.b2);
+          best.frontFacing = h.frontFacing != mirrored;
+          if (anyHit) return best;
+        }
+      }
+      hitLeft = hitLeft && !leftLeaf && tLeft <= best.t;
+      hitRight = hitRight && !rightLeaf && tRight <= best.t;
+    }
+
+    // Interior children (and, in the TLAS, instance leaves) in order of entry distance.
+    uint leftEntry = node.leftCount > 0u ? (node.leftIndex | STACK_INSTANCE_BIT) : node.leftIndex;
+    uint rightEntry = node.rightCount > 0u ? (node.rightIndex | STACK_INSTANCE_BIT) : node.rightIndex;
+    if (hitLeft && hitRight) {
+      bool leftNear = tLeft <= tRight;
+      stack[sp++] = leftNear ? rightEntry : leftEntry;
+      next = leftNear ? leftEntry : rightEntry;
+    } else if (hitLeft) {
+      next = leftEntry;
+    } else if (hitRight) {
+      next = rightEntry;
+    } else {
+      next = NO_ENTRY;
+    }
+  }
+  return best;
+}
+
+TraceHit traceClosest(vec3 origin, vec3 dir, float tMin, float tMax, bool alphaTest) {
+  return traceScene(origin, dir, tMin, tMax, alphaTest, false);
+}
+
+// True when nothing blocks the segment (tMin, tMax) of the ray.
+bool traceVisibility(vec3 origin, vec3 dir, float tMin, float tMax, bool alphaTest) {
+  return !traceHitFound(traceScene(origin, dir, tMin, tMax, alphaTest, true));
+}
+
+#endif

@@ -1,0 +1,130 @@
+// GPU layout of a scene: instances, geometries, materials, vertex streams, and the two-level
+// BVH (one BLAS per mesh, a TLAS over instances). Shared by C++ (src/rt/scene_gpu.cpp writes it)
+// and GLSL (shaders/rt/ reads it through buffer device addresses).
+#ifndef BOUNCE_SHARED_SCENE_LAYOUT_H
+#define BOUNCE_SHARED_SCENE_LAYOUT_H
+#include "shared/compat.h"
+
+BOUNCE_BEGIN_SHARED
+
+// ---- BVH nodes --------------------------------------------------------------------------------
+// A 2-wide node holds the boxes of both children, so one 64-byte fetch decides which children a
+// ray enters (Aila & Laine 2009 layout). A child is either an interior node (count == 0, index =
+// node index in the same node array) or a leaf (count > 0, index = first triangle in the
+// triangle array for a BLAS, or the instance index for a TLAS, whose leaves hold one instance).
+// An empty child has count == 0 and index == BVH_INVALID; its box is inverted so no ray hits it.
+// Node 0 of each tree is its root; child indices are absolute in the array (a BLAS's nodes sit
+// in one shared array at an offset given by its instances' blasRoot).
+// The wide compressed layout planned for later (8-wide, quantised boxes) replaces this struct
+// and the traversal loop only; the triangle and instance layouts stay.
+BOUNCE_CONST uint BVH_INVALID = 0xFFFFFFFFu;
+BOUNCE_CONST uint BVH_MAX_LEAF_TRIANGLES = 8u;
+BOUNCE_CONST uint BVH_STACK_SIZE = 64u;
+
+struct GpuBvhNode {
+  vec3 leftMin;
+  uint leftIndex;
+  vec3 leftMax;
+  uint leftCount;
+  vec3 rightMin;
+  uint rightIndex;
+  vec3 rightMax;
+  uint rightCount;
+};
+BOUNCE_CHECK_SIZE(GpuBvhNode, 64);
+
+// Triangles in BVH leaf order with their positions copied in (object space), so the
+// intersection loop touches one array. `geometry` holds the geometry index local to the mesh
+// in its low 31 bits and GPU_TRIANGLE_ALPHA_TESTED in the top bit.
+BOUNCE_CONST uint GPU_TRIANGLE_ALPHA_TESTED = 0x80000000u;
+struct GpuTriangle {
+  vec3 v0;
+  vec3 v1;
+  vec3 v2;
+  uint primitive;  // triangle index within its geometry (glTF primitive)
+  uint geometry;
+};
+BOUNCE_CHECK_SIZE(GpuTriangle, 44);
+
+// One placed mesh. Transforms are affine, stored as the three rows of a 3x4 matrix.
+struct GpuInstance {
+  vec4 objectToWorld[3];
+  vec4 worldToObject[3];
+  uint blasRoot;      // index of the mesh's BLAS root in the BLAS node array
+  uint geometryBase;  // global index of the mesh's geometry 0 in the geometry array
+  uint mesh;
+  uint flags;
+};
+BOUNCE_CHECK_SIZE(GpuInstance, 112);
+
+// One glTF primitive: a triangle list with its material. Indices are relative to vertexOffset
+// in the scene's shared vertex streams.
+struct GpuGeometry {
+  uint firstIndex;
+  uint vertexOffset;
+  uint triangleCount;
+  uint material;
+};
+BOUNCE_CHECK_SIZE(GpuGeometry, 16);
+
+// ---- materials and textures ---------------------------------------------------------------------
+// Textures live in 2D array images, one per (size class, encoding), because lavapipe 22.3 has
+// no descriptor indexing (DESIGN.md §1). A texture reference packs the layer (bits 0-15), the
+// size class (bits 16-19: side 64 << class) and the encoding (bit 20: sRGB). NO_TEXTURE = none.
+BOUNCE_CONST uint NO_TEXTURE = 0xFFFFFFFFu;
+BOUNCE_CONST uint TEXTURE_SIZE_CLASSES = 6u;  // 64, 128, 256, 512, 1024, 2048
+BOUNCE_CONST uint TEXTURE_MIN_SIZE = 64u;
+BOUNCE_CONST uint TEXTURE_SRGB_BIT = 0x100000u;
+
+BOUNCE_CONST uint MATERIAL_DOUBLE_SIDED = 1u;
+BOUNCE_CONST uint MATERIAL_ALPHA_MASK = 2u;
+BOUNCE_CONST uint MATERIAL_ALPHA_BLEND = 4u;  // treated as mask at cutoff 0.5 by the tracer
+
+struct GpuMaterial {
+  vec4 baseColor;  // linear RGBA factor
+  vec3 emissive;   // linear radiance factor, emissive_strength folded in
+  float metallic;
+  float roughness;
+  float alphaCutoff;
+  float normalScale;
+  uint flags;
+  uint baseColorTexture;
+  uint metallicRoughnessTexture;
+  uint normalTexture;
+  uint emissiveTexture;
+};
+BOUNCE_CHECK_SIZE(GpuMaterial, 64);
+
+// ---- the scene as the shaders see it ---------------------------------------------------------
+// Addresses of every scene array; bound as a uniform buffer at (set 0, binding 0).
+struct GpuSceneRefs {
+  DeviceAddress blasNodes;   // GpuBvhNode[]
+  DeviceAddress triangles;   // GpuTriangle[]
+  DeviceAddress tlasNodes;   // GpuBvhNode[]
+  DeviceAddress instances;   // GpuInstance[]
+  DeviceAddress geometries;  // GpuGeometry[]
+  DeviceAddress materials;   // GpuMaterial[]
+  DeviceAddress indices;     // uint[]
+  DeviceAddress positions;   // vec3[]
+  DeviceAddress normals;     // vec3[]
+  DeviceAddress uvs;         // vec2[]
+  DeviceAddress tangents;    // vec4[] (xyz tangent, w handedness)
+  uint instanceCount;
+  uint geometryCount;
+  uint materialCount;
+  uint triangleCount;
+  vec3 boundsMin;
+  float pad0;
+  vec3 boundsMax;
+  float pad1;
+};
+BOUNCE_CHECK_SIZE(GpuSceneRefs, 136);
+
+BOUNCE_CONST uint SCENE_SET = 0u;
+BOUNCE_CONST uint SCENE_BINDING_REFS = 0u;
+// Bindings 1 .. 2*TEXTURE_SIZE_CLASSES: sampler2DArray per (encoding, class); binding
+// 1 + class for linear, 1 + TEXTURE_SIZE_CLASSES + class for sRGB.
+BOUNCE_CONST uint SCENE_BINDING_TEXTURES = 1u;
+
+BOUNCE_END_SHARED
+#endif

@@ -1,0 +1,161 @@
+#include "render/gpu_scene.h"
+
+#include <chrono>
+
+#include "vk/check.h"
+
+namespace bounce {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+template <typename T>
+size_t bytesOf(const std::vector<T>& v) {
+  return v.size() * sizeof(T);
+}
+
+constexpr uint32_t kTextureSlots = 2 * gpu::TEXTURE_SIZE_CLASSES;
+
+// Binding slot of (class, encoding), as in shaders/rt/scene.glsl.
+uint32_t textureSlot(uint32_t sizeClass, bool srgb) {
+  return sizeClass + (srgb ? gpu::TEXTURE_SIZE_CLASSES : 0u);
+}
+
+}  // namespace
+
+GpuScene::GpuScene(vk::Context& context, const Scene& scene) : context_(context) {
+  auto start = Clock::now();
+  bvh_ = rt::buildSceneBvh(scene);
+  stats_.bvhBuildSeconds = secondsSince(start);
+  textures_ = packSceneTextures(scene);
+  bounds_ = scene.bounds();
+  stats_.triangles = scene.triangleCount();
+  stats_.uniqueTriangles = scene.uniqueTriangleCount();
+
+  auto uploadStart = Clock::now();
+  uploadArrays();
+  uploadTextures();
+  writeDescriptors();
+  stats_.uploadSeconds = secondsSince(uploadStart);
+  stats_.totalBytes = context.liveAllocationBytes();
+}
+
+GpuScene::~GpuScene() {
+  if (sampler_) vkDestroySampler(context_.device(), sampler_, nullptr);
+}
+
+void GpuScene::uploadArrays() {
+  // Storage buffers are limited to 128 MiB per binding on lavapipe (DESIGN.md §1); buffer
+  // device addresses have no such per-binding limit but keep each array under it anyway.
+  const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  auto upload = [&](const auto& vec, const char* name) {
+    buffers_.push_back(vk::uploadVector(context_, std::span(vec), usage, std::string("scene.") + name));
+    return buffers_.back().address();
+  };
+  gpu::GpuSceneRefs refs{};
+  refs.blasNodes = upload(bvh_.blasNodes, "blas-nodes");
+  refs.triangles = upload(bvh_.triangles, "triangles");
+  refs.tlasNodes = upload(bvh_.tlasNodes, "tlas-nodes");
+  refs.instances = upload(bvh_.instances, "instances");
+  refs.geometries = upload(bvh_.geometries, "geometries");
+  refs.materials = upload(textures_.materials, "materials");
+  refs.indices = upload(bvh_.indices, "indices");
+  refs.positions = upload(bvh_.positions, "positions");
+  refs.normals = upload(bvh_.normals, "normals");
+  refs.uvs = upload(bvh_.uvs, "uvs");
+  refs.tangents = upload(bvh_.tangents, "tangents");
+  refs.instanceCount = uint32_t(bvh_.instances.size());
+  refs.geometryCount = uint32_t(bvh_.geometries.size());
+  refs.materialCount = uint32_t(textures_.materials.size());
+  refs.triangleCount = uint32_t(bvh_.triangles.size());
+  refs.boundsMin = bounds_.empty() ? glm::vec3(0.0f) : bounds_.min;
+  refs.boundsMax = bounds_.empty() ? glm::vec3(0.0f) : bounds_.max;
+  refs_ = vk::uploadBuffer(context_, std::as_bytes(std::span(&refs, 1)),
+                           VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "scene.refs");
+  stats_.bvhBytes = bytesOf(bvh_.blasNodes) + bytesOf(bvh_.tlasNodes) + bytesOf(bvh_.triangles);
+}
+
+void GpuScene::uploadTextures() {
+  textureImages_.resize(kTextureSlots);
+  const VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+  for (const PackedTextureArray& a : textures_.arrays) {
+    VkFormat format = a.srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    vk::Image image(context_, format, a.side, a.side, a.layers, a.mipCount, usage,
+                    fmt::format("scene.textures.{}.{}", a.srgb ? "srgb" : "linear", a.side));
+    vk::uploadImage(context_, image, a.texels, 4);
+    stats_.textureBytes += a.texels.size();
+    textureImages_[textureSlot(a.sizeClass, a.srgb)] = std::move(image);
+  }
+  // Unused slots still need a valid image: a 1x1 white placeholder.
+  const uint8_t white[4] = {255, 255, 255, 255};
+  for (uint32_t slot = 0; slot < kTextureSlots; ++slot) {
+    if (textureImages_[slot].handle()) continue;
+    bool srgb = slot >= gpu::TEXTURE_SIZE_CLASSES;
+    vk::Image image(context_, srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1,
+                    1, usage, "scene.textures.placeholder");
+    vk::uploadImage(context_, image, white, 4);
+    textureImages_[slot] = std::move(image);
+  }
+
+  VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  si.magFilter = VK_FILTER_LINEAR;
+  si.minFilter = VK_FILTER_LINEAR;
+  si.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  si.addressModeU = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  si.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  si.maxLod = VK_LOD_CLAMP_NONE;
+  VK_CHECK(vkCreateSampler(context_.device(), &si, nullptr, &sampler_));
+}
+
+void GpuScene::writeDescriptors() {
+  std::vector<vk::Binding> bindings = {
+      {gpu::SCENE_BINDING_REFS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
+  for (uint32_t slot = 0; slot < kTextureSlots; ++slot)
+    bindings.push_back({gpu::SCENE_BINDING_TEXTURES + slot, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+  setLayout_ = vk::DescriptorSetLayout(context_, bindings);
+  pool_ = std::make_unique<vk::DescriptorPool>(context_, 1, kTextureSlots + 1);
+  set_ = pool_->allocate(setLayout_);
+
+  VkDescriptorBufferInfo refsInfo{refs_.handle(), 0, VK_WHOLE_SIZE};
+  std::vector<VkDescriptorImageInfo> imageInfos(kTextureSlots);
+  std::vector<VkWriteDescriptorSet> writes;
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set_;
+  w.dstBinding = gpu::SCENE_BINDING_REFS;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  w.pBufferInfo = &refsInfo;
+  writes.push_back(w);
+  for (uint32_t slot = 0; slot < kTextureSlots; ++slot) {
+    imageInfos[slot] = {sampler_, textureImages_[slot].view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet t{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    t.dstSet = set_;
+    t.dstBinding = gpu::SCENE_BINDING_TEXTURES + slot;
+    t.descriptorCount = 1;
+    t.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    t.pImageInfo = &imageInfos[slot];
+    writes.push_back(t);
+  }
+  vkUpdateDescriptorSets(context_.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+bool GpuScene::alphaAccepts(uint32_t globalGeometry, uint32_t primitive, float b1, float b2) const {
+  const gpu::GpuGeometry& g = bvh_.geometries.at(globalGeometry);
+  const gpu::GpuMaterial& m = textures_.materials.at(g.material);
+  uint32_t base = g.firstIndex + 3 * primitive;
+  glm::vec2 uv0 = bvh_.uvs[bvh_.indices[base] + g.vertexOffset];
+  glm::vec2 uv1 = bvh_.uvs[bvh_.indices[base + 1] + g.vertexOffset];
+  glm::vec2 uv2 = bvh_.uvs[bvh_.indices[base + 2] + g.vertexOffset];
+  // Same expression order as interpolateUv in shaders/rt/scene.glsl.
+  glm::vec2 uv = uv0 * (1.0f - b1 - b2) + uv1 * b1 + uv2 * b2;
+  float cutoff = (m.flags & gpu::MATERIAL_ALPHA_BLEND) ? 0.5f : m.alphaCutoff;
+  return materialAlpha(textures_, m, uv) >= cutoff;
+}
+
+}  // namespace bounce

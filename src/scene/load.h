@@ -1,0 +1,24 @@
+// Where scenes come from: a built-in procedural scene by name, or a glTF 2.0 file.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace bounce {
+
+// glTF 2.0 (.gltf with external or embedded buffers, or .glb). Throws bounce::Error naming the
+// file and the problem for anything malformed or unsupported. (src/scene/gltf_loader.cpp)
+Scene loadGltf(const std::string& path);
+
+// Built-in procedural scenes (src/scene/procedural/). Names: cornell, sunroom, foliage,
+// manylights, furnace, city.
+std::vector<std::string> builtinSceneNames();
+std::optional<Scene> makeBuiltinScene(const std::string& name);
+
+// A built-in name, or a path ending in .gltf/.glb. Unknown names get an error listing the
+// built-ins. (src/scene/load.cpp)
+Scene loadScene(const std::string& nameOrPath);
+
+}  // namespace bounce

@@ -1,0 +1,144 @@
+// The scene model every part of Bounce shares: meshes made of geometries (glTF primitives),
+// instances placing meshes in the world, glTF metallic-roughness materials, images, punctual
+// lights, a camera, and the sun and sky. Conventions: glTF space, +Y up, metres, right-handed;
+// colours are linear RGB.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace bounce {
+
+struct Aabb {
+  glm::vec3 min{1e30f};
+  glm::vec3 max{-1e30f};
+  void extend(const glm::vec3& p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+  void extend(const Aabb& b) {
+    min = glm::min(min, b.min);
+    max = glm::max(max, b.max);
+  }
+  bool empty() const { return min.x > max.x; }
+  glm::vec3 center() const { return 0.5f * (min + max); }
+  glm::vec3 extent() const { return max - min; }
+};
+
+// One triangle list with one material (a glTF mesh primitive). After loading, every stream is
+// filled: `normals` and `uvs` have one entry per position (defaults are computed or zero when a
+// file lacks them); `tangents` is either empty or one per position.
+struct Geometry {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;
+  std::vector<glm::vec4> tangents;  // xyz tangent, w = bitangent sign
+  std::vector<uint32_t> indices;    // three per triangle
+  uint32_t material = 0;
+  uint32_t triangleCount() const { return uint32_t(indices.size() / 3); }
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<Geometry> geometries;
+};
+
+struct Instance {
+  uint32_t mesh = 0;
+  glm::mat4 transform{1.0f};  // object to world
+  std::string name;
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+// glTF 2.0 metallic-roughness material. Texture fields index Scene::images, -1 = none.
+struct Material {
+  std::string name;
+  glm::vec4 baseColor{1.0f};
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+  glm::vec3 emissive{0.0f};  // emissiveFactor x KHR_materials_emissive_strength
+  float normalScale = 1.0f;
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;
+  bool doubleSided = false;
+  int baseColorTexture = -1;          // sRGB RGBA
+  int metallicRoughnessTexture = -1;  // linear; G = roughness, B = metallic
+  int normalTexture = -1;             // linear tangent-space normal
+  int emissiveTexture = -1;           // sRGB RGB
+};
+
+// Decoded 8-bit RGBA pixels, rows top to bottom. Whether they are sRGB-encoded depends on how a
+// material uses them, not on the image.
+struct Image {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgba;
+};
+
+// KHR_lights_punctual. Point and spot intensity in candela (lm/sr), directional in lux.
+struct PunctualLight {
+  enum class Type { Point, Spot, Directional };
+  Type type = Type::Point;
+  std::string name;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  float range = 0.0f;  // 0 = infinite
+  float innerConeAngle = 0.0f;
+  float outerConeAngle = 0.7853982f;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  // direction the light travels (spot, directional)
+};
+
+// A pinhole camera: position, the point it looks at, vertical field of view in degrees.
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 5.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float verticalFovDegrees = 45.0f;
+};
+
+// The sun: `direction` is the direction the light travels (towards the ground), `irradiance`
+// the irradiance E in W/m^2 on a surface facing the sun, so a white Lambert surface facing it
+// has radiance E / pi. irradiance 0 = no sun.
+struct Sun {
+  glm::vec3 direction{0.3f, -1.0f, 0.2f};
+  float irradiance = 0.0f;
+  glm::vec3 color{1.0f};
+  float angularDiameterDegrees = 0.53f;
+};
+
+// Constant sky radiance for now; the analytic daylight sky comes with the hybrid frame.
+struct Sky {
+  glm::vec3 radiance{0.0f};
+};
+
+struct Scene {
+  std::string name;
+  std::vector<Mesh> meshes;
+  std::vector<Instance> instances;
+  std::vector<Material> materials;  // never empty after loading: a default grey one if needed
+  std::vector<Image> images;
+  std::vector<PunctualLight> lights;
+  std::optional<Camera> camera;  // from the file or the procedural scene; else a default framing
+  Sun sun;
+  Sky sky;
+
+  Aabb bounds() const;
+  uint64_t triangleCount() const;  // over instances, i.e. what a ray can hit
+  uint64_t uniqueTriangleCount() const;  // over meshes
+};
+
+// A camera that frames the scene's bounds from the front (+Z side), slightly above.
+Camera defaultCamera(const Scene& scene);
+
+// Checks invariants every consumer relies on (indices in range, streams sized, materials and
+// textures referenced exist, finite positions). Throws bounce::Error naming `source` and the
+// problem. Loaders and procedural builders call it before returning.
+void validateScene(const Scene& scene, const std::string& source);
+
+}  // namespace bounce

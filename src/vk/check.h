@@ -1,0 +1,17 @@
+// VK_CHECK turns a failed Vulkan call into a bounce::Error naming the call and the result.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include "core/error.h"
+
+namespace bounce::vk {
+const char* resultName(VkResult result);
+}
+
+#define VK_CHECK(call)                                                                     \
+  do {                                                                                     \
+    VkResult vk_check_result_ = (call);                                                    \
+    if (vk_check_result_ != VK_SUCCESS)                                                    \
+      ::bounce::fail("Vulkan call {} failed: {}", #call,                                   \
+                     ::bounce::vk::resultName(vk_check_result_));                          \
+  } while (0)

@@ -1,0 +1,457 @@
+#include "vk/context.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <unordered_map>
+
+#include "vk/check.h"
+
+namespace bounce::vk {
+
+namespace {
+
+constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
+
+std::unordered_map<VkDeviceMemory, VkDeviceSize>& allocationSizes() {
+  static std::unordered_map<VkDeviceMemory, VkDeviceSize> sizes;
+  return sizes;
+}
+
+bool hasLayer(const char* name) {
+  uint32_t count = 0;
+  vkEnumerateInstanceLayerProperties(&count, nullptr);
+  std::vector<VkLayerProperties> layers(count);
+  vkEnumerateInstanceLayerProperties(&count, layers.data());
+  return std::any_of(layers.begin(), layers.end(),
+                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+}
+
+bool hasInstanceExtension(const char* name) {
+  uint32_t count = 0;
+  vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> exts(count);
+  vkEnumerateInstanceExtensionProperties(nullptr, &count, exts.data());
+  return std::any_of(exts.begin(), exts.end(), [&](const VkExtensionProperties& e) {
+    return std::strcmp(e.extensionName, name) == 0;
+  });
+}
+
+std::vector<std::string> deviceExtensions(VkPhysicalDevice pd) {
+  uint32_t count = 0;
+  vkEnumerateDeviceExtensionProperties(pd, nullptr, &count, nullptr);
+  std::vector<VkExtensionProperties> exts(count);
+  vkEnumerateDeviceExtensionProperties(pd, nullptr, &count, exts.data());
+  std::vector<std::string> names;
+  for (const auto& e : exts) names.emplace_back(e.extensionName);
+  return names;
+}
+
+const char* deviceTypeName(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
+    default: return "other";
+  }
+}
+
+int typeRank(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
+    default: return 0;
+  }
+}
+
+// A queue family that can do both compute and graphics (the frame uses one queue).
+std::optional<uint32_t> findQueueFamily(VkPhysicalDevice pd, bool* timestamps) {
+  uint32_t count = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, nullptr);
+  std::vector<VkQueueFamilyProperties> families(count);
+  vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, families.data());
+  for (uint32_t i = 0; i < count; ++i) {
+    VkQueueFlags need = VK_QUEUE_COMPUTE_BIT | VK_QUEUE_GRAPHICS_BIT;
+    if ((families[i].queueFlags & need) == need) {
+      if (timestamps) *timestamps = families[i].timestampValidBits > 0;
+      return i;
+    }
+  }
+  return std::nullopt;
+}
+
+// Everything Bounce requires of a device (DESIGN.md §1: Vulkan 1.3 core plus what lavapipe
+// 22.3 offers). Returns the reason a device is unusable, or an empty string.
+std::string checkRequirements(VkPhysicalDevice pd, const VkPhysicalDeviceProperties& props) {
+  if (props.apiVersion < VK_API_VERSION_1_3) return "needs Vulkan 1.3";
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                       &f13};
+  VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+  vkGetPhysicalDeviceFeatures2(pd, &f2);
+  if (!f12.bufferDeviceAddress) return "no bufferDeviceAddress";
+  if (!f12.scalarBlockLayout) return "no scalarBlockLayout";
+  if (!f12.timelineSemaphore) return "no timelineSemaphore";
+  if (!f13.synchronization2) return "no synchronization2";
+  if (!f13.dynamicRendering) return "no dynamicRendering";
+  if (!f13.maintenance4) return "no maintenance4";
+  if (!f2.features.shaderInt64) return "no shaderInt64";
+  if (!findQueueFamily(pd, nullptr)) return "no queue with compute and graphics";
+  return {};
+}
+
+DeviceInfo describeDevice(VkPhysicalDevice pd, uint32_t index) {
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES,
+                                          &subgroup};
+  VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
+  vkGetPhysicalDeviceProperties2(pd, &props2);
+  const VkPhysicalDeviceProperties& p = props2.properties;
+
+  DeviceInfo info;
+  info.index = index;
+  info.name = p.deviceName;
+  info.type = deviceTypeName(p.deviceType);
+  info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+  info.apiVersion = p.apiVersion;
+  info.subgroupSize = subgroup.subgroupSize;
+  info.maxStorageBufferRange = p.limits.maxStorageBufferRange;
+  info.maxPushConstantsSize = p.limits.maxPushConstantsSize;
+  info.maxComputeWorkGroupInvocations = p.limits.maxComputeWorkGroupInvocations;
+  info.timestampPeriodNs = p.limits.timestampPeriod;
+  findQueueFamily(pd, &info.timestampsOnComputeQueue);
+
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+  vkGetPhysicalDeviceFeatures2(pd, &f2);
+  info.shaderFloat16 = f12.shaderFloat16;
+
+  for (const std::string& ext : deviceExtensions(pd)) {
+    if (ext == "VK_KHR_ray_tracing_pipeline") info.rayTracingPipeline = true;
+    if (ext == "VK_KHR_ray_query") info.rayQuery = true;
+    if (ext == "VK_KHR_cooperative_matrix" || ext == "VK_NV_cooperative_matrix")
+      info.cooperativeMatrix = true;
+  }
+  VkPhysicalDeviceMemoryProperties mem;
+  vkGetPhysicalDeviceMemoryProperties(pd, &mem);
+  for (uint32_t h = 0; h < mem.memoryHeapCount; ++h)
+    if (mem.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      info.deviceLocalBytes = std::max<uint64_t>(info.deviceLocalBytes, mem.memoryHeaps[h].size);
+
+  info.unsuitableBecause = checkRequirements(pd, p);
+  info.suitable = info.unsuitableBecause.empty();
+  info.rank = info.suitable ? typeRank(p.deviceType) : -1;
+  return info;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+  uint32_t count = 0;
+  vkEnumeratePhysicalDevices(instance, &count, nullptr);
+  std::vector<VkPhysicalDevice> devices(count);
+  vkEnumeratePhysicalDevices(instance, &count, devices.data());
+  return devices;
+}
+
+VkInstance createBareInstance(const std::vector<const char*>& layers,
+                              const std::vector<const char*>& extensions, const void* next) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "bounce";
+  app.pEngineName = "bounce";
+  app.apiVersion = VK_API_VERSION_1_3;
+  VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO, next};
+  ci.pApplicationInfo = &app;
+  ci.enabledLayerCount = uint32_t(layers.size());
+  ci.ppEnabledLayerNames = layers.data();
+  ci.enabledExtensionCount = uint32_t(extensions.size());
+  ci.ppEnabledExtensionNames = extensions.data();
+  VkInstance instance = VK_NULL_HANDLE;
+  VkResult r = vkCreateInstance(&ci, nullptr, &instance);
+  if (r != VK_SUCCESS)
+    fail("cannot create a Vulkan 1.3 instance ({}): is a Vulkan driver installed? "
+         "(lavapipe: apt-get install mesa-vulkan-drivers)",
+         resultName(r));
+  return instance;
+}
+
+}  // namespace
+
+ContextOptions contextOptionsFromEnvironment(ContextOptions options) {
+  if (const char* v = std::getenv("BOUNCE_VALIDATE"); v && std::strcmp(v, "0") != 0)
+    options.validation = true;
+  if (!options.deviceIndex) {
+    if (const char* d = std::getenv("BOUNCE_DEVICE")) {
+      char* end = nullptr;
+      long n = std::strtol(d, &end, 10);
+      if (end == d || *end != '\0' || n < 0) fail("BOUNCE_DEVICE='{}': expected a device index", d);
+      options.deviceIndex = uint32_t(n);
+    }
+  }
+  return options;
+}
+
+std::vector<DeviceInfo> Context::listDevices() {
+  VkInstance instance = createBareInstance({}, {}, nullptr);
+  std::vector<DeviceInfo> infos;
+  uint32_t index = 0;
+  for (VkPhysicalDevice pd : physicalDevices(instance)) infos.push_back(describeDevice(pd, index++));
+  vkDestroyInstance(instance, nullptr);
+  return infos;
+}
+
+Context::Context(const ContextOptions& options) {
+  createInstance(options);
+  pickPhysicalDevice(options);
+  createDevice();
+}
+
+Context::~Context() {
+  if (device_) {
+    vkDeviceWaitIdle(device_);
+    vkDestroyFence(device_, fence_, nullptr);
+    vkDestroyCommandPool(device_, commandPool_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+  }
+  if (messenger_) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance_, messenger_, nullptr);
+  }
+  if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+void Context::createInstance(const ContextOptions& options) {
+  std::vector<const char*> layers;
+  std::vector<const char*> extensions;
+  debugUtils_ = hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (debugUtils_) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (options.validation) {
+    if (!hasLayer(kValidationLayer))
+      fail("validation requested but {} is not installed (apt-get install vulkan-validationlayers)",
+           kValidationLayer);
+    if (!debugUtils_) fail("validation requested but VK_EXT_debug_utils is missing");
+    layers.push_back(kValidationLayer);
+    validationEnabled_ = true;
+  }
+
+  VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
+      VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                  VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  messengerInfo.pfnUserCallback = &Context::onValidationMessage;
+  messengerInfo.pUserData = this;
+
+  VkValidationFeatureEnableEXT syncValidation =
+      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = &syncValidation;
+
+  const void* next = nullptr;
+  if (validationEnabled_) {
+    next = &messengerInfo;
+    if (options.synchronizationValidation) {
+      features.pNext = &messengerInfo;
+      next = &features;
+    }
+  }
+  instance_ = createBareInstance(layers, extensions, next);
+  if (validationEnabled_) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+    VK_CHECK(create(instance_, &messengerInfo, nullptr, &messenger_));
+  }
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL Context::onValidationMessage(
+    VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+    const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
+  auto* context = static_cast<Context*>(self);
+  bool error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  if (error) ++context->validationErrors_;
+  std::fprintf(stderr, "bounce: validation %s: %s\n", error ? "error" : "warning",
+               data->pMessage ? data->pMessage : "");
+  return VK_FALSE;
+}
+
+void Context::pickPhysicalDevice(const ContextOptions& options) {
+  std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
+  if (devices.empty())
+    fail("no Vulkan device found (for the CPU fallback: apt-get install mesa-vulkan-drivers)");
+  std::vector<DeviceInfo> infos;
+  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describeDevice(devices[i], i));
+
+  uint32_t chosen = 0;
+  if (options.deviceIndex) {
+    chosen = *options.deviceIndex;
+    if (chosen >= devices.size())
+      fail("--device {}: only {} Vulkan device(s) (see `bounce info`)", chosen, devices.size());
+    if (!infos[chosen].suitable)
+      fail("--device {} ({}): unsupported: {}", chosen, infos[chosen].name,
+           infos[chosen].unsuitableBecause);
+  } else {
+    auto best = std::max_element(infos.begin(), infos.end(),
+                                 [](const DeviceInfo& a, const DeviceInfo& b) { return a.rank < b.rank; });
+    if (!best->suitable) {
+      std::string reasons;
+      for (const DeviceInfo& d : infos) reasons += fmt::format("\n  {}: {}", d.name, d.unsuitableBecause);
+      fail("no Vulkan device meets Bounce's requirements:{}", reasons);
+    }
+    chosen = best->index;
+  }
+  physicalDevice_ = devices[chosen];
+  info_ = infos[chosen];
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(physicalDevice_, &props);
+  limits_ = props.limits;
+  vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+}
+
+void Context::createDevice() {
+  queueFamily_ = *findQueueFamily(physicalDevice_, nullptr);
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queueInfo.queueFamilyIndex = queueFamily_;
+  queueInfo.queueCount = 1;
+  queueInfo.pQueuePriorities = &priority;
+
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  f13.synchronization2 = VK_TRUE;
+  f13.dynamicRendering = VK_TRUE;
+  f13.maintenance4 = VK_TRUE;  // workgroup sizes from shared-header constants (LocalSizeId)
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                       &f13};
+  f12.bufferDeviceAddress = VK_TRUE;
+  f12.scalarBlockLayout = VK_TRUE;
+  f12.timelineSemaphore = VK_TRUE;
+  f12.hostQueryReset = VK_TRUE;
+  f12.shaderFloat16 = info_.shaderFloat16;
+  VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+  f2.features.shaderInt64 = VK_TRUE;
+
+  VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f2};
+  ci.queueCreateInfoCount = 1;
+  ci.pQueueCreateInfos = &queueInfo;
+  VK_CHECK(vkCreateDevice(physicalDevice_, &ci, nullptr, &device_));
+  vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = queueFamily_;
+  VK_CHECK(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_));
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VK_CHECK(vkCreateFence(device_, &fenceInfo, nullptr, &fence_));
+}
+
+VkDeviceMemory Context::allocate(const VkMemoryRequirements& req, MemoryUse use,
+                                 bool deviceAddress) {
+  // Preferred property sets, best first; the first type that the resource accepts wins.
+  std::vector<VkMemoryPropertyFlags> preferences;
+  const VkMemoryPropertyFlags hostCoherent =
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  switch (use) {
+    case MemoryUse::DeviceOnly:
+      preferences = {VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0};
+      break;
+    case MemoryUse::Upload:
+      preferences = {hostCoherent | VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, hostCoherent};
+      break;
+    case MemoryUse::Readback:
+      preferences = {hostCoherent | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, hostCoherent};
+      break;
+  }
+  uint32_t typeIndex = UINT32_MAX;
+  for (VkMemoryPropertyFlags want : preferences) {
+    for (uint32_t i = 0; i < memoryProperties_.memoryTypeCount && typeIndex == UINT32_MAX; ++i)
+      if ((req.memoryTypeBits & (1u << i)) &&
+          (memoryProperties_.memoryTypes[i].propertyFlags & want) == want)
+        typeIndex = i;
+    if (typeIndex != UINT32_MAX) break;
+  }
+  if (typeIndex == UINT32_MAX) fail("no Vulkan memory type fits a {}-byte allocation", req.size);
+
+  VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, deviceAddress ? &flags : nullptr};
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex = typeIndex;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkResult r = vkAllocateMemory(device_, &ai, nullptr, &memory);
+  if (r != VK_SUCCESS)
+    fail("out of GPU memory allocating {:.1f} MiB ({})", double(req.size) / (1 << 20), resultName(r));
+  ++allocationCount_;
+  liveBytes_ += req.size;
+  allocationSizes()[memory] = req.size;
+  return memory;
+}
+
+void Context::free(VkDeviceMemory memory) {
+  if (!memory) return;
+  auto it = allocationSizes().find(memory);
+  if (it != allocationSizes().end()) {
+    liveBytes_ -= it->second;
+    allocationSizes().erase(it);
+  }
+  vkFreeMemory(device_, memory, nullptr);
+}
+
+void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) {
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = commandPool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  VkCommandBuffer cmd;
+  VK_CHECK(vkAllocateCommandBuffers(device_, &ai, &cmd));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd, &bi));
+  record(cmd);
+  VK_CHECK(vkEndCommandBuffer(cmd));
+  VkCommandBufferSubmitInfo cbInfo{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cbInfo.commandBuffer = cmd;
+  VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  submit.commandBufferInfoCount = 1;
+  submit.pCommandBufferInfos = &cbInfo;
+  VK_CHECK(vkResetFences(device_, 1, &fence_));
+  VK_CHECK(vkQueueSubmit2(queue_, 1, &submit, fence_));
+  VkResult waited = vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX);
+  vkFreeCommandBuffers(device_, commandPool_, 1, &cmd);
+  VK_CHECK(waited);
+}
+
+void Context::setObjectName(uint64_t handle, VkObjectType type, const std::string& name) {
+  if (!debugUtils_ || !validationEnabled_) return;
+  auto setName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+      vkGetInstanceProcAddr(instance_, "vkSetDebugUtilsObjectNameEXT"));
+  if (!setName) return;
+  VkDebugUtilsObjectNameInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
+  info.objectType = type;
+  info.objectHandle = handle;
+  info.pObjectName = name.c_str();
+  setName(device_, &info);
+}
+
+const char* resultName(VkResult r) {
+  switch (r) {
+    case VK_SUCCESS: return "VK_SUCCESS";
+    case VK_NOT_READY: return "VK_NOT_READY";
+    case VK_TIMEOUT: return "VK_TIMEOUT";
+    case VK_ERROR_OUT_OF_HOST_MEMORY: return "VK_ERROR_OUT_OF_HOST_MEMORY";
+    case VK_ERROR_OUT_OF_DEVICE_MEMORY: return "VK_ERROR_OUT_OF_DEVICE_MEMORY";
+    case VK_ERROR_INITIALIZATION_FAILED: return "VK_ERROR_INITIALIZATION_FAILED";
+    case VK_ERROR_DEVICE_LOST: return "VK_ERROR_DEVICE_LOST";
+    case VK_ERROR_LAYER_NOT_PRESENT: return "VK_ERROR_LAYER_NOT_PRESENT";
+    case VK_ERROR_EXTENSION_NOT_PRESENT: return "VK_ERROR_EXTENSION_NOT_PRESENT";
+    case VK_ERROR_FEATURE_NOT_PRESENT: return "VK_ERROR_FEATURE_NOT_PRESENT";
+    case VK_ERROR_INCOMPATIBLE_DRIVER: return "VK_ERROR_INCOMPATIBLE_DRIVER";
+    default: return "VkResult error";
+  }
+}
+
+}  // namespace bounce::vk

@@ -1,0 +1,116 @@
+// The Vulkan device Bounce runs on: instance (optionally with validation), physical-device
+// choice (a discrete GPU first, lavapipe as the fallback), one queue that does compute and
+// graphics, memory allocation, one-shot command submission. Fully headless: no surface, no
+// window-system extension.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace bounce::vk {
+
+// What `bounce info` prints, and what device choice looks at.
+struct DeviceInfo {
+  uint32_t index = 0;
+  std::string name;
+  std::string type;  // "discrete", "integrated", "cpu", ...
+  std::string driver;
+  uint32_t apiVersion = 0;
+  bool suitable = false;
+  std::string unsuitableBecause;  // empty when suitable
+  uint32_t subgroupSize = 0;
+  uint64_t maxStorageBufferRange = 0;
+  uint32_t maxPushConstantsSize = 0;
+  uint32_t maxComputeWorkGroupInvocations = 0;
+  uint64_t deviceLocalBytes = 0;
+  float timestampPeriodNs = 0.0f;
+  bool timestampsOnComputeQueue = false;
+  bool shaderFloat16 = false;
+  bool rayTracingPipeline = false;  // optional back end, not required
+  bool rayQuery = false;            // optional back end, not required
+  bool cooperativeMatrix = false;   // optional, not required
+  int rank = 0;                     // higher is preferred
+};
+
+struct ContextOptions {
+  std::optional<uint32_t> deviceIndex;  // --device N; else BOUNCE_DEVICE; else the best ranked
+  bool validation = false;              // Khronos validation layer; errors are counted
+  bool synchronizationValidation = false;
+};
+
+enum class MemoryUse {
+  DeviceOnly,  // fastest for the GPU; filled by copies or shaders
+  Upload,      // host writes, GPU reads (mapped)
+  Readback,    // GPU writes, host reads (mapped, cached where possible)
+};
+
+class Context {
+ public:
+  explicit Context(const ContextOptions& options = {});
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  // Enumerates devices on a temporary instance without creating a device.
+  static std::vector<DeviceInfo> listDevices();
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  const DeviceInfo& info() const { return info_; }
+  const VkPhysicalDeviceLimits& limits() const { return limits_; }
+
+  // Allocates dedicated memory for a resource; counted so tests can check that frames do
+  // not allocate (DESIGN.md §1).
+  VkDeviceMemory allocate(const VkMemoryRequirements& requirements, MemoryUse use,
+                          bool deviceAddress);
+  void free(VkDeviceMemory memory);
+  uint64_t allocationCount() const { return allocationCount_; }
+  uint64_t liveAllocationBytes() const { return liveBytes_; }
+
+  // Records commands with `record`, submits them and waits. For set-up and tests; frames use
+  // their own command buffers.
+  void submitAndWait(const std::function<void(VkCommandBuffer)>& record);
+
+  // Validation messages of error severity seen so far (0 when validation is off).
+  uint32_t validationErrorCount() const { return validationErrors_; }
+  bool validationEnabled() const { return validationEnabled_; }
+
+  void setObjectName(uint64_t handle, VkObjectType type, const std::string& name);
+
+ private:
+  void createInstance(const ContextOptions& options);
+  void pickPhysicalDevice(const ContextOptions& options);
+  void createDevice();
+  static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
+      VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+      const VkDebugUtilsMessengerCallbackDataEXT* data, void* self);
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queueFamily_ = 0;
+  VkCommandPool commandPool_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceMemoryProperties memoryProperties_{};
+  VkPhysicalDeviceLimits limits_{};
+  DeviceInfo info_;
+  bool validationEnabled_ = false;
+  bool debugUtils_ = false;
+  uint32_t validationErrors_ = 0;
+  uint64_t allocationCount_ = 0;
+  uint64_t liveBytes_ = 0;
+};
+
+// Reads BOUNCE_VALIDATE / BOUNCE_DEVICE from the environment into options (tests and CLI).
+ContextOptions contextOptionsFromEnvironment(ContextOptions options = {});
+
+}  // namespace bounce::vk

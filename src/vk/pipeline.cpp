@@ -1,0 +1,140 @@
+#include "vk/pipeline.h"
+
+#include <utility>
+
+#include "vk/check.h"
+#include "vk/shader_registry.h"
+
+namespace bounce::vk {
+
+DescriptorSetLayout::DescriptorSetLayout(Context& context, const std::vector<Binding>& bindings)
+    : context_(&context), bindings_(bindings) {
+  std::vector<VkDescriptorSetLayoutBinding> vkBindings;
+  for (const Binding& b : bindings)
+    vkBindings.push_back({b.binding, b.type, b.count, VK_SHADER_STAGE_ALL, nullptr});
+  VkDescriptorSetLayoutCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  ci.bindingCount = uint32_t(vkBindings.size());
+  ci.pBindings = vkBindings.data();
+  VK_CHECK(vkCreateDescriptorSetLayout(context.device(), &ci, nullptr, &layout_));
+}
+
+DescriptorSetLayout::~DescriptorSetLayout() {
+  if (context_ && layout_) vkDestroyDescriptorSetLayout(context_->device(), layout_, nullptr);
+}
+
+DescriptorSetLayout& DescriptorSetLayout::operator=(DescriptorSetLayout&& o) noexcept {
+  if (this != &o) {
+    if (context_ && layout_) vkDestroyDescriptorSetLayout(context_->device(), layout_, nullptr);
+    context_ = std::exchange(o.context_, nullptr);
+    layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
+    bindings_ = std::move(o.bindings_);
+  }
+  return *this;
+}
+
+DescriptorPool::DescriptorPool(Context& context, uint32_t maxSets, uint32_t perType)
+    : context_(context) {
+  std::vector<VkDescriptorPoolSize> sizes = {
+      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, perType},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, perType},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, perType},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, perType},
+      {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, perType},
+  };
+  VkDescriptorPoolCreateInfo ci{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  ci.maxSets = maxSets;
+  ci.poolSizeCount = uint32_t(sizes.size());
+  ci.pPoolSizes = sizes.data();
+  VK_CHECK(vkCreateDescriptorPool(context.device(), &ci, nullptr, &pool_));
+}
+
+DescriptorPool::~DescriptorPool() { vkDestroyDescriptorPool(context_.device(), pool_, nullptr); }
+
+VkDescriptorSet DescriptorPool::allocate(const DescriptorSetLayout& layout) {
+  VkDescriptorSetLayout l = layout.handle();
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = pool_;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &l;
+  VkDescriptorSet set;
+  VK_CHECK(vkAllocateDescriptorSets(context_.device(), &ai, &set));
+  return set;
+}
+
+ComputePipeline::ComputePipeline(Context& context, const std::string& shader,
+                                 const std::vector<const DescriptorSetLayout*>& setLayouts,
+                                 uint32_t pushConstantBytes)
+    : context_(&context), name_(shader) {
+  std::span<const uint32_t> spirv = embeddedShader(shader);
+  VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  mi.codeSize = spirv.size_bytes();
+  mi.pCode = spirv.data();
+  VkShaderModule module;
+  VK_CHECK(vkCreateShaderModule(context.device(), &mi, nullptr, &module));
+
+  std::vector<VkDescriptorSetLayout> layouts;
+  for (const DescriptorSetLayout* l : setLayouts) layouts.push_back(l->handle());
+  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
+  VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  li.setLayoutCount = uint32_t(layouts.size());
+  li.pSetLayouts = layouts.data();
+  li.pushConstantRangeCount = pushConstantBytes ? 1 : 0;
+  li.pPushConstantRanges = &range;
+  VK_CHECK(vkCreatePipelineLayout(context.device(), &li, nullptr, &layout_));
+
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = module;
+  ci.stage.pName = "main";
+  ci.layout = layout_;
+  VkResult r = vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
+  vkDestroyShaderModule(context.device(), module, nullptr);
+  if (r != VK_SUCCESS) fail("creating compute pipeline '{}' failed: {}", shader, resultName(r));
+  context.setObjectName(uint64_t(pipeline_), VK_OBJECT_TYPE_PIPELINE, shader);
+}
+
+ComputePipeline::~ComputePipeline() {
+  if (!context_) return;
+  vkDestroyPipeline(context_->device(), pipeline_, nullptr);
+  vkDestroyPipelineLayout(context_->device(), layout_, nullptr);
+}
+
+ComputePipeline& ComputePipeline::operator=(ComputePipeline&& o) noexcept {
+  if (this != &o) {
+    this->~ComputePipeline();
+    context_ = std::exchange(o.context_, nullptr);
+    name_ = std::move(o.name_);
+    layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
+    pipeline_ = std::exchange(o.pipeline_, VK_NULL_HANDLE);
+  }
+  return *this;
+}
+
+void ComputePipeline::bind(VkCommandBuffer cmd, const std::vector<VkDescriptorSet>& sets) const {
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+  if (!sets.empty())
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(sets.size()),
+                            sets.data(), 0, nullptr);
+}
+
+void ComputePipeline::dispatchCovering(VkCommandBuffer cmd, uint32_t width, uint32_t height,
+                                       uint32_t groupWidth, uint32_t groupHeight) {
+  vkCmdDispatch(cmd, (width + groupWidth - 1) / groupWidth, (height + groupHeight - 1) / groupHeight,
+                1);
+}
+
+void computeBarrier(VkCommandBuffer cmd) {
+  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
+  barrier.srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
+  barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
+  barrier.dstAccessMask = VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT |
+                          VK_ACCESS_2_TRANSFER_READ_BIT;
+  VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dep.memoryBarrierCount = 1;
+  dep.pMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+}  // namespace bounce::vk

@@ -1,0 +1,23 @@
+// Helpers shared by the tests: where the shared data and the `bounce` program are, and running
+// the program as a subprocess to check its exit code and error text.
+#pragma once
+#include <string>
+
+namespace bounce::test {
+
+// ../shared beside the checkout (scenes, references).
+std::string sharedDir();
+// The built `bounce` program (BOUNCE_EXE, set by CTest).
+std::string bounceExe();
+// A fresh empty directory under the system temp dir for this test's files.
+std::string tempDir(const std::string& tag);
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+// Runs `command` through the shell with a time limit (seconds); a hang counts as failure with
+// exitCode 124.
+CommandResult runCommand(const std::string& command, int timeoutSeconds = 120);
+
+}  // namespace bounce::test
