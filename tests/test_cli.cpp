@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "test_support.h"
+#include "harness.h"
 #include "tools/image_io.h"
 
 namespace bounce {
@@ -75,7 +75,7 @@ TEST(Cli, PrimaryViewsOfBuiltinScenes) {
       for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
           glm::vec4 p = image.at(x, y);
-          lit += (p.r + p.g + p.b) > 0.0f;
+          lit += (p.x + p.y + p.z) > 0.0f;
         }
       // Enclosed scenes fill the frame; open ones show sky (black here) in part of it.
       EXPECT_GT(lit, image.width * image.height / 3) << scene << " " << view;

@@ -48,6 +48,6 @@ void main() {
   if (any(greaterThanEqual(pixel, pc.resolution))) return;
   vec3 dir = cameraRayDirection(pc.camera, vec2(pixel) + 0.5, vec2(pc.resolution));
   TraceHit hit = traceClosest(pc.camera.position, dir, 0.0, 3.0e38, pc.alphaTest != 0u);
-  vec4 result = traceHitFound(hit) ? vec4(shade(hit, dir), 1.0) : vec4(0.0);
+  vec4 result = vec4(traceHitFound(hit) ? shade(hit, dir) : vec3(0.0), 1.0);
   OutputImage(pc.outputImage).v[pixel.y * pc.resolution.x + pixel.x] = result;
 }

@@ -14,7 +14,7 @@ BOUNCE_CONST uint PRIMARY_VIEW_GEOMETRY = 4u;  // a colour per geometry id
 
 struct PrimaryViewConstants {
   GpuCamera camera;
-  DeviceAddress outputImage;  // vec4[width * height], linear RGB + coverage
+  DeviceAddress outputImage;  // vec4[width * height], linear RGB (black where rays miss), alpha 1
   uvec2 resolution;
   uint view;
   uint alphaTest;

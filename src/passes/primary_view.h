@@ -26,7 +26,7 @@ gpu::GpuCamera makeGpuCamera(const Camera& camera, uint32_t width, uint32_t heig
 class PrimaryViewPass {
  public:
   PrimaryViewPass(vk::Context& context, const GpuScene& scene);
-  // Renders and reads back the view (linear RGBA; alpha = 1 where a surface was hit).
+  // Renders and reads back the view (linear RGB, black where the primary ray misses).
   ImageRGBA32F render(const Camera& camera, uint32_t width, uint32_t height, PrimaryViewKind view,
                       vk::GpuTimer* timer = nullptr);
 

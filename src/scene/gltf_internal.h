@@ -1,0 +1,67 @@
+// Pieces of the glTF loader shared by its files (gltf_loader.cpp: file, nodes, cameras, lights;
+// gltf_mesh.cpp: primitives; gltf_material.cpp: materials and images). Not a public API.
+#pragma once
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+#include <glm/glm.hpp>
+
+#include "scene/gltf_accessor.h"
+#include "scene/scene.h"
+
+namespace bounce::gltf {
+
+// Non-fatal problems (skipped primitives, dropped triangles, ignored features) go to stderr so
+// the user sees them, but loading goes on.
+void warn(const std::string& path, const std::string& message);
+
+// "node 3", or "node 3 ('Chair')" when the object has a name, for messages.
+std::string describe(const char* kind, int index, const std::string& name);
+
+// One glTF mesh primitive as a Geometry with every stream filled (normals computed when absent,
+// zero UVs when absent) and zero-area triangles removed. Returns nothing, after a warning, for
+// primitives we do not render (points, lines, empty). `material` is left for the caller.
+std::optional<Geometry> loadPrimitive(const Source& src, int mesh, int primitive);
+
+// Applies a 2D affine UV transform (KHR_texture_transform, as a 3x3 matrix) to every UV.
+void transformUvs(Geometry& geometry, const glm::mat3& uvTransform);
+
+// Converts the materials the scene uses, on first use, and the images their textures need.
+// Materials are appended to scene.materials in order of first use, so unused materials (and
+// their images) cost nothing.
+class MaterialTable {
+ public:
+  MaterialTable(const Source& src, Scene& scene) : src_(src), scene_(scene) {}
+
+  // Index in scene.materials of glTF material `gltfMaterial`; -1 = the default grey material.
+  uint32_t sceneIndex(int gltfMaterial);
+  // The UV transform to bake into geometry drawn with `gltfMaterial` (KHR_texture_transform),
+  // or nothing when it has none.
+  std::optional<glm::mat3> uvTransform(int gltfMaterial);
+  // Guarantees at least one material (the default) so the scene is never without one.
+  void ensureNotEmpty();
+  // Decodes the images the converted materials refer to into scene.images (in parallel).
+  void decodeImages();
+
+ private:
+  struct Converted {
+    uint32_t sceneIndex;
+    std::optional<glm::mat3> uvTransform;
+  };
+  const Converted& convert(int gltfMaterial);
+  Material makeMaterial(int gltfMaterial, std::optional<glm::mat3>& uvTransform);
+  int imageFor(int texture, int texCoord, const tinygltf::ExtensionMap& extensions,
+               const std::string& slot, int material, std::optional<glm::mat3>& uvTransform);
+
+  const Source& src_;
+  Scene& scene_;
+  std::map<int, Converted> converted_;  // glTF material -> scene material
+  std::optional<uint32_t> defaultMaterial_;
+  std::map<int, int> sceneImageOfGltfImage_;
+  std::vector<int> gltfImageOfSceneImage_;  // decode list, in scene.images order
+};
+
+}  // namespace bounce::gltf

@@ -1,0 +1,502 @@
+// glTF 2.0 loader on Debian's tinygltf 2.7: reads the file (checking the GLB layout itself),
+// lets tinygltf parse the JSON and buffers, then walks the default scene's node trees into
+// instances, the first perspective camera and KHR_lights_punctual lights. Primitives are in
+// gltf_mesh.cpp, materials and images in gltf_material.cpp, accessor reads in gltf_accessor.cpp.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <new>
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "core/error.h"
+#include "scene/gltf_internal.h"
+#include "scene/load.h"
+
+namespace bounce {
+namespace {
+
+using gltf::Source;
+using gltf::warn;
+
+// tinygltf takes 32-bit lengths.
+constexpr uint64_t kMaxFileBytes = 0xFFFFFFFFull;
+// Deeper hierarchies are corrupt files in practice; the limit also bounds the recursion.
+constexpr int kMaxNodeDepth = 1024;
+// Primitives may share accessors, so a small file can name the same large accessor thousands
+// of times; capping the total vertex + index count keeps memory bounded (2^28 is far above
+// any real-time scene: 150 million triangles with unshared vertices).
+constexpr uint64_t kMaxSceneElements = uint64_t(1) << 28;
+constexpr uint32_t kGlbChunkJson = 0x4E4F534A;
+constexpr uint32_t kGlbChunkBin = 0x004E4942;
+
+std::vector<uint8_t> readFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    fail("{}: cannot open file: it is a directory", path);
+  uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec) fail("{}: cannot open file ({})", path, ec.message());
+  if (size == 0) fail("{}: file is empty", path);
+  if (size > kMaxFileBytes)
+    fail("{}: file is {} bytes; files over 4 GiB are not supported", path, size);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("{}: cannot open file", path);
+  std::vector<uint8_t> bytes(size);
+  in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size));
+  if (uint64_t(in.gcount()) != size)
+    fail("{}: read error after {} of {} bytes", path, in.gcount(), size);
+  return bytes;
+}
+
+uint32_t readU32(const std::vector<uint8_t>& bytes, uint64_t offset) {
+  uint32_t v;  // GLB is little-endian, like every machine we build for
+  std::memcpy(&v, bytes.data() + offset, 4);
+  return v;
+}
+
+bool hasGlbMagic(const std::vector<uint8_t>& bytes) {
+  return bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+}
+
+std::string printableMagic(const std::vector<uint8_t>& bytes) {
+  std::string s;
+  for (size_t i = 0; i < std::min<size_t>(4, bytes.size()); ++i)
+    s += std::isprint(bytes[i]) ? char(bytes[i]) : '?';
+  return s;
+}
+
+// GLB (glTF 2.0 §4.4): a 12-byte header (magic, version 2, total length), a JSON chunk and an
+// optional BIN chunk, each behind an 8-byte (length, type) header. Checked here because
+// tinygltf 2.7 lets a BIN chunk run 8 bytes past the end of the data.
+void checkGlbLayout(const std::string& path, const std::vector<uint8_t>& bytes) {
+  if (bytes.size() < 20)
+    fail("{}: truncated binary glTF: {} bytes, the headers alone need 20", path, bytes.size());
+  uint32_t version = readU32(bytes, 4);
+  if (version != 2) fail("{}: binary glTF version {} is not supported (expected 2)", path, version);
+  uint64_t length = readU32(bytes, 8);
+  if (length > bytes.size())
+    fail("{}: truncated binary glTF: the header declares {} bytes but the file has {}", path,
+         length, bytes.size());
+  uint64_t jsonEnd = 20 + uint64_t(readU32(bytes, 12));
+  if (readU32(bytes, 16) != kGlbChunkJson) fail("{}: binary glTF: first chunk is not JSON", path);
+  if (jsonEnd > length)
+    fail("{}: truncated binary glTF: the JSON chunk ends at byte {}, past the declared length {}",
+         path, jsonEnd, length);
+  if (jsonEnd + 8 > length) return;  // no BIN chunk
+  uint64_t binEnd = jsonEnd + 8 + readU32(bytes, jsonEnd);
+  if (readU32(bytes, jsonEnd + 4) == kGlbChunkBin && binEnd > length)
+    fail("{}: truncated binary glTF: the BIN chunk ends at byte {}, past the declared length {}",
+         path, binEnd, length);
+}
+
+// tinygltf converts `extras` and `extensions` to its Value type recursively, so a file nested
+// a hundred thousand levels deep overflows the stack. Real glTF stays a few levels deep; the
+// limit leaves ample room for extras. Brackets inside strings do not count.
+void checkJsonNesting(const std::string& path, const uint8_t* text, size_t size) {
+  constexpr int kMaxJsonDepth = 256;
+  int depth = 0;
+  bool inString = false;
+  for (size_t i = 0; i < size; ++i) {
+    char c = char(text[i]);
+    if (inString) {
+      if (c == '\\')
+        ++i;  // skip the escaped character
+      else if (c == '"')
+        inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '{' || c == '[') {
+      if (++depth > kMaxJsonDepth)
+        fail("{}: invalid JSON: nested deeper than {} levels", path, kMaxJsonDepth);
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
+}
+
+// tinygltf image callback: keep the encoded bytes instead of decoding, so only images that a
+// used material needs are decoded, in parallel, with our own size checks (gltf_material.cpp).
+// Images in buffer views are left alone: their view is range-checked before it is read.
+bool keepEncodedImage(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView >= 0) return true;
+  image->image.assign(bytes, bytes + size);
+  image->as_is = true;
+  return true;
+}
+
+// tinygltf's messages end in newlines and may quote raw bytes of a corrupt file; make them one
+// printable line.
+std::string oneLine(std::string text) {
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  for (char& c : text)
+    if (c == '\n')
+      c = ';';
+    else if (!std::isprint(static_cast<unsigned char>(c)))
+      c = '?';
+  return text;
+}
+
+void printTinygltfWarnings(const std::string& path, const std::string& warnings) {
+  size_t start = 0;
+  while (start < warnings.size()) {
+    size_t end = warnings.find('\n', start);
+    if (end == std::string::npos) end = warnings.size();
+    if (end > start) warn(path, oneLine(warnings.substr(start, end - start)));
+    start = end + 1;
+  }
+}
+
+std::string lowercaseExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+tinygltf::Model parseModel(const std::string& path) {
+  std::vector<uint8_t> bytes = readFile(path);
+  bool binary = hasGlbMagic(bytes);
+  if (lowercaseExtension(path) == ".glb" && !binary)
+    fail("{}: not a binary glTF: bad magic '{}' (expected 'glTF')", path, printableMagic(bytes));
+  std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::string baseDir = parent.empty() ? std::string(".") : parent.string();
+
+  tinygltf::TinyGLTF parser;
+  parser.SetImageLoader(&keepEncodedImage, nullptr);
+  tinygltf::Model model;
+  std::string error, warnings;
+  bool ok;
+  if (binary) {
+    checkGlbLayout(path, bytes);
+    checkJsonNesting(path, bytes.data() + 20, readU32(bytes, 12));
+    ok = parser.LoadBinaryFromMemory(&model, &error, &warnings, bytes.data(),
+                                     unsigned(readU32(bytes, 8)), baseDir);
+  } else {
+    checkJsonNesting(path, bytes.data(), bytes.size());
+    ok = parser.LoadASCIIFromString(&model, &error, &warnings,
+                                    reinterpret_cast<const char*>(bytes.data()),
+                                    unsigned(bytes.size()), baseDir);
+  }
+  printTinygltfWarnings(path, warnings);
+  if (!ok) {
+    if (error.find("json.exception.parse_error") != std::string::npos)
+      fail("{}: invalid JSON: {}", path, oneLine(error));
+    fail("{}: cannot load glTF: {}", path, oneLine(error.empty() ? "unknown error" : error));
+  }
+  return model;
+}
+
+void checkVersion(const std::string& path, const tinygltf::Model& model) {
+  const std::string& v = model.asset.version;
+  if (v.size() < 2 || v[0] != '2' || v[1] != '.')
+    fail("{}: glTF version '{}' is not supported (expected 2.x)", path, v);
+}
+
+// Extensions we can honour or safely ignore when a file marks them required: the ones we load,
+// and material extensions that only refine shading (the base metallic-roughness material stays
+// a fair approximation). Spec-gloss is excluded: it replaces the material model altogether.
+bool isSupportedRequiredExtension(const std::string& name) {
+  if (name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" ||
+      name == "KHR_texture_transform")
+    return true;
+  return name.starts_with("KHR_materials_") && name != "KHR_materials_pbrSpecularGlossiness";
+}
+
+void checkRequiredExtensions(const std::string& path, const tinygltf::Model& model) {
+  for (const std::string& name : model.extensionsRequired)
+    if (!isSupportedRequiredExtension(name))
+      fail("{}: requires unsupported extension {}", path, name);
+}
+
+bool isFinite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+std::optional<glm::vec3> unitDirection(const glm::mat4& toWorld, glm::vec3 local) {
+  glm::vec3 d(toWorld * glm::vec4(local, 0.0f));
+  float length = glm::length(d);
+  if (!std::isfinite(length) || length <= 0.0f) return std::nullopt;
+  return d / length;
+}
+
+class SceneBuilder {
+ public:
+  explicit SceneBuilder(const Source& src) : src_(src), materials_(src, scene_) {}
+
+  Scene build(const std::string& name) {
+    nodeState_.assign(src_.model.nodes.size(), NodeState::Unvisited);
+    for (int root : rootNodes()) visitNode(root, glm::mat4(1.0f), 0, "the scene");
+    materials_.ensureNotEmpty();
+    materials_.decodeImages();
+    scene_.name = name;
+    validateScene(scene_, src_.path);
+    return std::move(scene_);
+  }
+
+ private:
+  enum class NodeState : uint8_t { Unvisited, Visiting, Done };
+
+  // The default scene, else scene 0. A file with nodes but no scenes is most likely a sloppy
+  // export rather than an intentionally empty file, so then every parentless node is a root.
+  std::vector<int> rootNodes() const {
+    const tinygltf::Model& model = src_.model;
+    if (!model.scenes.empty()) {
+      int s = model.defaultScene >= 0 ? model.defaultScene : 0;
+      if (size_t(s) >= model.scenes.size())
+        fail("{}: default scene {} does not exist ({} scenes)", src_.path, s, model.scenes.size());
+      return model.scenes[size_t(s)].nodes;
+    }
+    std::vector<bool> isChild(model.nodes.size(), false);
+    for (const tinygltf::Node& node : model.nodes)
+      for (int child : node.children)
+        if (child >= 0 && size_t(child) < isChild.size()) isChild[size_t(child)] = true;
+    std::vector<int> roots;
+    for (size_t i = 0; i < model.nodes.size(); ++i)
+      if (!isChild[i]) roots.push_back(int(i));
+    return roots;
+  }
+
+  void visitNode(int index, const glm::mat4& parentToWorld, int depth,
+                 const std::string& referrer) {
+    if (index < 0 || size_t(index) >= src_.model.nodes.size())
+      fail("{}: {} refers to node {} ({} nodes)", src_.path, referrer, index,
+           src_.model.nodes.size());
+    NodeState& state = nodeState_[size_t(index)];
+    if (state == NodeState::Visiting)
+      fail("{}: the node hierarchy has a cycle through node {}", src_.path, index);
+    if (state == NodeState::Done)
+      fail("{}: node {} is reached twice (nodes must form disjoint trees)", src_.path, index);
+    if (depth > kMaxNodeDepth)
+      fail("{}: the node hierarchy is deeper than {} levels", src_.path, kMaxNodeDepth);
+    state = NodeState::Visiting;
+
+    const tinygltf::Node& node = src_.model.nodes[size_t(index)];
+    glm::mat4 toWorld = parentToWorld * localTransform(index);
+    if (!isFinite(toWorld))
+      fail("{}: {} has a non-finite world transform", src_.path,
+           gltf::describe("node", index, node.name));
+    if (node.mesh >= 0) addInstance(index, toWorld);
+    if (node.camera >= 0) addCamera(index, toWorld);
+    addLight(index, toWorld);
+    for (int child : node.children)
+      visitNode(child, toWorld, depth + 1, fmt::format("node {}", index));
+    state = NodeState::Done;
+  }
+
+  // The node's matrix, or T * R * S (glTF 2.0 §3.5.3), as float; any component that is not
+  // finite after the conversion (1e39 in the file) is an error.
+  glm::mat4 localTransform(int index) const {
+    const tinygltf::Node& n = src_.model.nodes[size_t(index)];
+    auto checkSize = [&](const std::vector<double>& v, size_t expected, const char* what) {
+      if (!v.empty() && v.size() != expected)
+        fail("{}: node {} {} has {} numbers, expected {}", src_.path, index, what, v.size(),
+             expected);
+    };
+    checkSize(n.matrix, 16, "matrix");
+    checkSize(n.translation, 3, "translation");
+    checkSize(n.rotation, 4, "rotation");
+    checkSize(n.scale, 3, "scale");
+    glm::mat4 m(1.0f);
+    if (!n.matrix.empty()) {
+      for (int i = 0; i < 16; ++i)
+        glm::value_ptr(m)[i] = float(n.matrix[size_t(i)]);  // column-major, as glTF
+    } else {
+      glm::vec3 t =
+          n.translation.empty() ? glm::vec3(0.0f) : glm::vec3(glm::make_vec3(n.translation.data()));
+      glm::vec3 s = n.scale.empty() ? glm::vec3(1.0f) : glm::vec3(glm::make_vec3(n.scale.data()));
+      glm::quat q(1.0f, 0.0f, 0.0f, 0.0f);
+      if (!n.rotation.empty())  // glTF stores (x, y, z, w); glm's constructor takes (w, x, y, z)
+        q = glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
+                      float(n.rotation[2]));
+      float qLength = glm::length(q);
+      if (!std::isfinite(qLength) || qLength == 0.0f)
+        fail("{}: {} has a non-finite or zero rotation quaternion", src_.path,
+             gltf::describe("node", index, n.name));
+      m = glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(q / qLength) *
+          glm::scale(glm::mat4(1.0f), s);
+    }
+    if (!isFinite(m))
+      fail("{}: {} has a non-finite transform", src_.path, gltf::describe("node", index, n.name));
+    return m;
+  }
+
+  void addInstance(int index, const glm::mat4& toWorld) {
+    const tinygltf::Node& node = src_.model.nodes[size_t(index)];
+    if (size_t(node.mesh) >= src_.model.meshes.size())
+      fail("{}: node {} refers to mesh {} ({} meshes)", src_.path, index, node.mesh,
+           src_.model.meshes.size());
+    if (node.skin >= 0 && !warnedSkin_) {
+      warn(src_.path, "skins are not supported; skinned meshes are placed by their node transform");
+      warnedSkin_ = true;
+    }
+    std::optional<uint32_t> mesh = sceneMesh(node.mesh);
+    if (!mesh) return;
+    std::string name = node.name.empty() ? fmt::format("node {}", index) : node.name;
+    scene_.instances.push_back(Instance{*mesh, toWorld, name});
+  }
+
+  // Loads a glTF mesh on first use; several nodes sharing it share one scene Mesh (instancing).
+  // Meshes without any triangle primitive give no Mesh and their nodes no instance.
+  std::optional<uint32_t> sceneMesh(int gltfMesh) {
+    auto cached = meshes_.find(gltfMesh);
+    if (cached != meshes_.end()) return cached->second;
+    const tinygltf::Mesh& source = src_.model.meshes[size_t(gltfMesh)];
+    Mesh mesh;
+    mesh.name = source.name.empty() ? fmt::format("mesh {}", gltfMesh) : source.name;
+    for (size_t p = 0; p < source.primitives.size(); ++p) {
+      std::optional<Geometry> geometry = gltf::loadPrimitive(src_, gltfMesh, int(p));
+      if (!geometry) continue;
+      loadedElements_ += geometry->positions.size() + geometry->indices.size();
+      if (loadedElements_ > kMaxSceneElements)
+        fail("{}: the scene has more than 2^28 vertices and indices in total", src_.path);
+      int material = source.primitives[p].material;
+      if (material >= int(src_.model.materials.size()))
+        fail("{}: mesh {} primitive {} refers to material {} ({} materials)", src_.path, gltfMesh,
+             p, material, src_.model.materials.size());
+      geometry->material = materials_.sceneIndex(material);
+      if (std::optional<glm::mat3> uvTransform = materials_.uvTransform(material))
+        gltf::transformUvs(*geometry, *uvTransform);
+      if (!source.primitives[p].targets.empty())
+        warn(src_.path, fmt::format("mesh {} primitive {}: morph targets ignored", gltfMesh, p));
+      mesh.geometries.push_back(std::move(*geometry));
+    }
+    std::optional<uint32_t> result;
+    if (mesh.geometries.empty()) {
+      warn(src_.path, fmt::format("{} has no triangles; its nodes are skipped",
+                                  gltf::describe("mesh", gltfMesh, source.name)));
+    } else {
+      result = uint32_t(scene_.meshes.size());
+      scene_.meshes.push_back(std::move(mesh));
+    }
+    meshes_.emplace(gltfMesh, result);
+    return result;
+  }
+
+  // The first perspective camera met in node order becomes the scene camera: at the node's
+  // origin, looking down its -Z with its +Y up (glTF 2.0 §3.10.1).
+  void addCamera(int index, const glm::mat4& toWorld) {
+    const tinygltf::Node& node = src_.model.nodes[size_t(index)];
+    if (size_t(node.camera) >= src_.model.cameras.size())
+      fail("{}: node {} refers to camera {} ({} cameras)", src_.path, index, node.camera,
+           src_.model.cameras.size());
+    if (scene_.camera) return;
+    const tinygltf::Camera& camera = src_.model.cameras[size_t(node.camera)];
+    if (camera.type != "perspective") {
+      warn(src_.path, fmt::format("camera {} is {}, only perspective cameras are used", node.camera,
+                                  camera.type));
+      return;
+    }
+    double yfov = camera.perspective.yfov;
+    if (!(yfov > 0.0 && yfov < glm::pi<double>()))
+      fail("{}: camera {} has yfov {}, expected between 0 and pi radians", src_.path, node.camera,
+           yfov);
+    std::optional<glm::vec3> forward = unitDirection(toWorld, {0.0f, 0.0f, -1.0f});
+    std::optional<glm::vec3> up = unitDirection(toWorld, {0.0f, 1.0f, 0.0f});
+    if (!forward || !up)
+      fail("{}: node {} gives camera {} a degenerate orientation", src_.path, index, node.camera);
+    Camera result;
+    result.position = glm::vec3(toWorld[3]);
+    result.target = result.position + *forward;
+    result.up = *up;
+    result.verticalFovDegrees = float(glm::degrees(yfov));
+    scene_.camera = result;
+  }
+
+  // KHR_lights_punctual: the node's {"light": i} places light i at the node origin, shining
+  // down the node's -Z.
+  void addLight(int index, const glm::mat4& toWorld) {
+    const tinygltf::Node& node = src_.model.nodes[size_t(index)];
+    auto ext = node.extensions.find("KHR_lights_punctual");
+    if (ext == node.extensions.end() || !ext->second.Has("light")) return;
+    const tinygltf::Value& ref = ext->second.Get("light");
+    double light = ref.IsNumber() ? ref.GetNumberAsDouble() : -1.0;
+    if (!(light >= 0.0 && light < double(src_.model.lights.size())) || light != std::floor(light))
+      fail("{}: node {} refers to light {} ({} lights)", src_.path, index, light,
+           src_.model.lights.size());
+    std::optional<PunctualLight> converted = convertLight(size_t(light));
+    if (!converted) return;
+    converted->position = glm::vec3(toWorld[3]);
+    std::optional<glm::vec3> direction = unitDirection(toWorld, {0.0f, 0.0f, -1.0f});
+    if (!direction)
+      fail("{}: node {} gives light {} a degenerate direction", src_.path, index, light);
+    converted->direction = *direction;
+    scene_.lights.push_back(*converted);
+  }
+
+  std::optional<PunctualLight> convertLight(size_t index) const {
+    const tinygltf::Light& l = src_.model.lights[index];
+    PunctualLight out;
+    if (l.type == "point")
+      out.type = PunctualLight::Type::Point;
+    else if (l.type == "spot")
+      out.type = PunctualLight::Type::Spot;
+    else if (l.type == "directional")
+      out.type = PunctualLight::Type::Directional;
+    else {
+      warn(src_.path, fmt::format("light {} has unknown type '{}'; ignored", index, l.type));
+      return std::nullopt;
+    }
+    out.name = l.name;
+    if (l.color.size() == 3)
+      out.color = glm::vec3(float(l.color[0]), float(l.color[1]), float(l.color[2]));
+    out.intensity = float(l.intensity);
+    out.range = float(l.range);
+    out.innerConeAngle = float(l.spot.innerConeAngle);
+    out.outerConeAngle = float(l.spot.outerConeAngle);
+    bool finite = std::isfinite(out.color.x) && std::isfinite(out.color.y) &&
+                  std::isfinite(out.color.z) && std::isfinite(out.intensity) &&
+                  std::isfinite(out.range);
+    if (!finite || out.intensity < 0.0f || out.range < 0.0f ||
+        glm::any(glm::lessThan(out.color, glm::vec3(0.0f))))
+      fail("{}: light {} needs finite, non-negative color, intensity and range", src_.path, index);
+    if (out.type == PunctualLight::Type::Spot &&
+        !(out.innerConeAngle >= 0.0f && out.innerConeAngle < out.outerConeAngle &&
+          out.outerConeAngle <= 1.5707964f))
+      fail("{}: light {} needs 0 <= innerConeAngle < outerConeAngle <= pi/2, got {} and {}",
+           src_.path, index, out.innerConeAngle, out.outerConeAngle);
+    return out;
+  }
+
+  const Source& src_;
+  Scene scene_;
+  gltf::MaterialTable materials_;  // refers to scene_, so declared after it
+  std::vector<NodeState> nodeState_;
+  std::map<int, std::optional<uint32_t>> meshes_;
+  bool warnedSkin_ = false;
+  uint64_t loadedElements_ = 0;
+};
+
+Scene loadParsed(const std::string& path) {
+  tinygltf::Model model = parseModel(path);
+  checkVersion(path, model);
+  checkRequiredExtensions(path, model);
+  Source src{model, path};
+  return SceneBuilder(src).build(std::filesystem::path(path).stem().string());
+}
+
+}  // namespace
+
+Scene loadGltf(const std::string& path) {
+  // Our own checks throw bounce::Error; anything else escaping tinygltf or the standard
+  // library (an allocation failure, a length error) still becomes an error naming the file.
+  try {
+    return loadParsed(path);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    fail("{}: out of memory while loading", path);
+  } catch (const std::exception& e) {
+    fail("{}: {}", path, e.what());
+  }
+}
+
+}  // namespace bounce

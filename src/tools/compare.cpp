@@ -1,0 +1,153 @@
+#include "tools/compare.h"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "tools/heatmap.h"
+#include "tools/image_io.h"
+#include "tools/metrics.h"
+
+namespace bounce {
+namespace {
+
+std::string describeKind(bool ldr) {
+  return ldr ? "an LDR image (8-bit sRGB PNG/JPG)" : "an HDR image (linear EXR)";
+}
+
+void requireComparable(const std::string& testPath, const ImageRGBA32F& test,
+                       const std::string& referencePath, const ImageRGBA32F& reference) {
+  if (test.sourceWasLdr != reference.sourceWasLdr) {
+    fail(
+        "{} is {} but {} is {}: compare PNG/JPG with PNG/JPG (LDR-FLIP) or EXR with EXR "
+        "(HDR-FLIP); a display-referred picture and scene-referred radiance differ by a tone "
+        "mapping, so their difference would not mean anything",
+        testPath, describeKind(test.sourceWasLdr), referencePath,
+        describeKind(reference.sourceWasLdr));
+  }
+  if (test.width != reference.width || test.height != reference.height) {
+    fail("{} is {}x{} but {} is {}x{}: the images must have the same size", testPath, test.width,
+         test.height, referencePath, reference.width, reference.height);
+  }
+}
+
+void requireFinite(const std::string& path, const ImageRGBA32F& image) {
+  if (const size_t bad = countNonFinitePixels(image)) {
+    fail("{}: {} pixel(s) have NaN or infinite values; metrics would be meaningless", path, bad);
+  }
+}
+
+// JSON has no infinity; an exact match reports PSNR as null.
+nlohmann::json finiteOrNull(double value) {
+  return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+std::string formatPsnr(const CompareReport& report) {
+  const std::string basis = report.hdr ? "linear, peak = reference max" : "sRGB, peak 1";
+  if (!std::isfinite(report.psnrDb)) return fmt::format("inf dB ({}; identical)", basis);
+  return fmt::format("{:.2f} dB ({})", report.psnrDb, basis);
+}
+
+}  // namespace
+
+CompareReport compareImages(const std::string& testPath, const std::string& referencePath,
+                            float pixelsPerDegree) {
+  const ImageRGBA32F test = readImage(testPath);
+  const ImageRGBA32F reference = readImage(referencePath);
+  requireComparable(testPath, test, referencePath, reference);
+  requireFinite(testPath, test);
+  requireFinite(referencePath, reference);
+
+  CompareReport report;
+  report.testPath = testPath;
+  report.referencePath = referencePath;
+  report.width = test.width;
+  report.height = test.height;
+  report.hdr = !reference.sourceWasLdr;
+  report.pixelsPerDegree = pixelsPerDegree;
+  report.mse = meanSquaredError(test, reference);
+  report.relMse = relativeMeanSquaredError(test, reference);
+  report.psnrDb = report.hdr ? psnrHdr(test, reference) : psnrLdr(test, reference);
+  const auto start = std::chrono::steady_clock::now();
+  report.flip = report.hdr ? computeHdrFlip(test, reference, pixelsPerDegree)
+                           : computeLdrFlip(test, reference, pixelsPerDegree);
+  report.flipSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+std::string formatCompareTable(const CompareReport& r) {
+  const FlipStatistics& s = r.flip.statistics;
+  std::string out = fmt::format("test       {}\nreference  {}\n", r.testPath, r.referencePath);
+  out += fmt::format("size       {}x{}, {} at {:.2f} pixels/degree\n\n", r.width, r.height,
+                     r.hdr ? "HDR-FLIP" : "LDR-FLIP", r.pixelsPerDegree);
+  const auto row = [&out](const char* name, const std::string& value) {
+    out += fmt::format("  {:<28}{}\n", name, value);
+  };
+  row("relMSE", fmt::format("{:.6f} (epsilon {})", r.relMse, kRelMseEpsilon));
+  row("MSE", fmt::format("{:.6e} (linear)", r.mse));
+  row("PSNR", formatPsnr(r));
+  row("FLIP mean", fmt::format("{:.6f}", s.mean));
+  row("FLIP weighted median", fmt::format("{:.6f}", s.weightedMedian));
+  row("FLIP 1st weighted quartile", fmt::format("{:.6f}", s.firstWeightedQuartile));
+  row("FLIP 3rd weighted quartile", fmt::format("{:.6f}", s.thirdWeightedQuartile));
+  row("FLIP min", fmt::format("{:.6f}", s.min));
+  row("FLIP max", fmt::format("{:.6f}", s.max));
+  if (r.flip.exposures) {
+    const FlipExposureRange& e = *r.flip.exposures;
+    row("HDR-FLIP exposures",
+        fmt::format("{:.4f} to {:.4f} stops, {} steps, ACES", e.start, e.stop, e.count));
+  }
+  row("FLIP time", fmt::format("{:.3f} s", r.flipSeconds));
+  return out;
+}
+
+std::string compareReportJson(const CompareReport& r) {
+  const FlipStatistics& s = r.flip.statistics;
+  nlohmann::json flip = {{"mean", s.mean},
+                         {"weighted_median", s.weightedMedian},
+                         {"first_weighted_quartile", s.firstWeightedQuartile},
+                         {"third_weighted_quartile", s.thirdWeightedQuartile},
+                         {"min", s.min},
+                         {"max", s.max},
+                         {"pixels_per_degree", r.pixelsPerDegree},
+                         {"seconds", r.flipSeconds}};
+  if (r.flip.exposures) {
+    flip["tone_mapper"] = "aces";
+    flip["exposure_start"] = r.flip.exposures->start;
+    flip["exposure_stop"] = r.flip.exposures->stop;
+    flip["exposure_count"] = r.flip.exposures->count;
+  }
+  const nlohmann::json report = {{"test", r.testPath},
+                                 {"reference", r.referencePath},
+                                 {"width", r.width},
+                                 {"height", r.height},
+                                 {"mode", r.hdr ? "hdr" : "ldr"},
+                                 {"rel_mse", r.relMse},
+                                 {"rel_mse_epsilon", kRelMseEpsilon},
+                                 {"mse", r.mse},
+                                 {"psnr_db", finiteOrNull(r.psnrDb)},
+                                 {"flip", flip}};
+  return report.dump(2) + "\n";
+}
+
+CompareReport runCompare(const CompareOptions& options) {
+  if (!options.heatmapPath.empty() && imageExtension(options.heatmapPath) != "png") {
+    fail("{}: the heat map is written as PNG; give it a .png name", options.heatmapPath);
+  }
+  CompareReport report =
+      compareImages(options.testPath, options.referencePath, options.pixelsPerDegree);
+  if (!options.heatmapPath.empty()) writeHeatmap(options.heatmapPath, report.flip);
+  if (!options.jsonPath.empty()) {
+    std::ofstream file(options.jsonPath);
+    file << compareReportJson(report);
+    if (!file) fail("{}: cannot write the JSON report", options.jsonPath);
+  }
+  return report;
+}
+
+}  // namespace bounce

@@ -1,0 +1,232 @@
+#include "tools/image_io.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+#include <tinyexr.h>
+
+#include "core/error.h"
+
+namespace bounce {
+
+ImageRGBA32F::ImageRGBA32F(int w, int h, glm::vec4 fill) : width(w), height(h) {
+  pixels.resize(pixelCount() * 4);
+  for (size_t i = 0; i < pixelCount(); ++i) {
+    for (int c = 0; c < 4; ++c) pixels[4 * i + c] = fill[c];
+  }
+}
+
+glm::vec4 ImageRGBA32F::at(int x, int y) const {
+  const float* p = pixel(x, y);
+  return {p[0], p[1], p[2], p[3]};
+}
+
+void ImageRGBA32F::set(int x, int y, const glm::vec4& rgba) {
+  float* p = pixel(x, y);
+  for (int c = 0; c < 4; ++c) p[c] = rgba[c];
+}
+
+float srgbToLinear(float encoded) {
+  if (encoded <= 0.04045f) return encoded / 12.92f;
+  return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+float linearToSrgb(float linear) {
+  if (linear <= 0.0031308f) return linear * 12.92f;
+  return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+std::string imageExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool isHdrExtension(const std::string& path) {
+  return imageExtension(path) == "exr";
+}
+
+bool isLdrExtension(const std::string& path) {
+  const std::string ext = imageExtension(path);
+  return ext == "png" || ext == "jpg" || ext == "jpeg";
+}
+
+namespace {
+
+void requireReadableFile(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) fail("{}: no such file", path);
+  if (!std::filesystem::is_regular_file(path, ec)) fail("{}: not a regular file", path);
+}
+
+void requireSaneSize(const std::string& path, long long width, long long height) {
+  if (width <= 0 || height <= 0) fail("{}: invalid image size {}x{}", path, width, height);
+  if (width > kMaxImageSide || height > kMaxImageSide ||
+      size_t(width) * size_t(height) > kMaxImagePixels) {
+    fail("{}: image size {}x{} exceeds the limit ({} per side, {} pixels in total)", path, width,
+         height, kMaxImageSide, kMaxImagePixels);
+  }
+}
+
+// tinyexr hands back a malloc'ed message that must be released with its own function.
+std::string takeExrMessage(const char* message) {
+  std::string text = message ? message : "unknown error";
+  if (message) FreeEXRErrorMessage(message);
+  return text;
+}
+
+void checkExrHeader(const std::string& path) {
+  EXRVersion version;
+  if (ParseEXRVersionFromFile(&version, path.c_str()) != TINYEXR_SUCCESS) {
+    fail("{}: not an OpenEXR file (bad magic number or version)", path);
+  }
+  if (version.multipart || version.non_image) {
+    fail("{}: multi-part and deep EXR files are not supported", path);
+  }
+  EXRHeader header;
+  InitEXRHeader(&header);
+  const char* message = nullptr;
+  if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &message) != TINYEXR_SUCCESS) {
+    fail("{}: invalid EXR header: {}", path, takeExrMessage(message));
+  }
+  const long long width = (long long)header.data_window.max_x - header.data_window.min_x + 1;
+  const long long height = (long long)header.data_window.max_y - header.data_window.min_y + 1;
+  FreeEXRHeader(&header);
+  requireSaneSize(path, width, height);
+}
+
+ImageRGBA32F readExr(const std::string& path) {
+  checkExrHeader(path);
+  float* rgba = nullptr;
+  int width = 0, height = 0;
+  const char* message = nullptr;
+  if (LoadEXR(&rgba, &width, &height, path.c_str(), &message) != TINYEXR_SUCCESS) {
+    fail("{}: cannot read EXR (truncated or corrupt?): {}", path, takeExrMessage(message));
+  }
+  ImageRGBA32F image;
+  image.width = width;
+  image.height = height;
+  image.pixels.assign(rgba, rgba + image.pixelCount() * 4);
+  std::free(rgba);
+  return image;
+}
+
+// 8-bit codes to linear, once: decoding a 1080p PNG then costs no pow() calls.
+const std::array<float, 256>& srgb8ToLinearTable() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[i] = srgbToLinear(float(i) / 255.0f);
+    return t;
+  }();
+  return table;
+}
+
+std::string stbReason() {
+  const char* reason = stbi_failure_reason();
+  return reason ? reason : "unknown error";
+}
+
+template <typename Sample>
+void decodeSrgb(const Sample* samples, ImageRGBA32F& image) {
+  for (size_t i = 0; i < image.pixelCount(); ++i) {
+    for (int c = 0; c < 4; ++c) {
+      const Sample s = samples[4 * i + c];
+      float value;
+      if constexpr (sizeof(Sample) == 1) {
+        value = c < 3 ? srgb8ToLinearTable()[s] : float(s) / 255.0f;
+      } else {
+        value = c < 3 ? srgbToLinear(float(s) / 65535.0f) : float(s) / 65535.0f;
+      }
+      image.pixels[4 * i + c] = value;
+    }
+  }
+}
+
+ImageRGBA32F readLdr(const std::string& path) {
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info(path.c_str(), &width, &height, &channels)) {
+    fail("{}: not a readable PNG/JPEG image: {}", path, stbReason());
+  }
+  requireSaneSize(path, width, height);
+  ImageRGBA32F image;
+  image.width = width;
+  image.height = height;
+  image.sourceWasLdr = true;
+  image.pixels.resize(image.pixelCount() * 4);
+  // Ask for 4 channels: grey and grey+alpha files are expanded by stb.
+  if (stbi_is_16_bit(path.c_str())) {
+    stbi_us* samples = stbi_load_16(path.c_str(), &width, &height, &channels, 4);
+    if (!samples) fail("{}: cannot decode image (truncated or corrupt?): {}", path, stbReason());
+    decodeSrgb(samples, image);
+    stbi_image_free(samples);
+  } else {
+    stbi_uc* samples = stbi_load(path.c_str(), &width, &height, &channels, 4);
+    if (!samples) fail("{}: cannot decode image (truncated or corrupt?): {}", path, stbReason());
+    decodeSrgb(samples, image);
+    stbi_image_free(samples);
+  }
+  return image;
+}
+
+bool isOpaque(const ImageRGBA32F& image) {
+  for (size_t i = 0; i < image.pixelCount(); ++i) {
+    if (image.pixels[4 * i + 3] < 1.0f) return false;
+  }
+  return true;
+}
+
+uint8_t toByte(float unitValue) {
+  // NaN fails both comparisons of std::clamp's contract, so test it explicitly.
+  if (!(unitValue > 0.0f)) return 0;
+  if (unitValue >= 1.0f) return 255;
+  return uint8_t(std::lround(unitValue * 255.0f));
+}
+
+}  // namespace
+
+ImageRGBA32F readImage(const std::string& path) {
+  requireReadableFile(path);
+  if (isHdrExtension(path)) return readExr(path);
+  if (isLdrExtension(path)) return readLdr(path);
+  fail("{}: unsupported image format '{}' (expected .exr, .png, .jpg or .jpeg)", path,
+       imageExtension(path));
+}
+
+void writeExr(const std::string& path, const ImageRGBA32F& image) {
+  requireSaneSize(path, image.width, image.height);
+  const char* message = nullptr;
+  if (SaveEXR(image.pixels.data(), image.width, image.height, 4, /*save_as_fp16=*/0, path.c_str(),
+              &message) != TINYEXR_SUCCESS) {
+    fail("{}: cannot write EXR: {}", path, takeExrMessage(message));
+  }
+}
+
+void writePng(const std::string& path, const ImageRGBA32F& image, float exposure) {
+  requireSaneSize(path, image.width, image.height);
+  const int channels = isOpaque(image) ? 3 : 4;
+  std::vector<uint8_t> bytes(image.pixelCount() * channels);
+  for (size_t i = 0; i < image.pixelCount(); ++i) {
+    const float* p = &image.pixels[4 * i];
+    for (int c = 0; c < 3; ++c) bytes[channels * i + c] = toByte(linearToSrgb(p[c] * exposure));
+    if (channels == 4) bytes[channels * i + 3] = toByte(p[3]);  // alpha stays linear
+  }
+  if (!stbi_write_png(path.c_str(), image.width, image.height, channels, bytes.data(),
+                      image.width * channels)) {
+    fail("{}: cannot write PNG (does the directory exist and is it writable?)", path);
+  }
+}
+
+void writeImage(const std::string& path, const ImageRGBA32F& image, float exposure) {
+  if (isHdrExtension(path)) return writeExr(path, image);
+  if (imageExtension(path) == "png") return writePng(path, image, exposure);
+  fail("{}: cannot write images of type '{}' (use .exr or .png)", path, imageExtension(path));
+}
+
+}  // namespace bounce
