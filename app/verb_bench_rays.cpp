@@ -66,7 +66,7 @@ int runBenchRays(const BenchRaysOptions& options) {
   std::vector<RayKindResult> kinds = runRayBench(*context, gpuScene, scene, bench);
   std::printf("%-8s %12s %10s %10s %12s %8s\n", "rays", "count", "median ms", "min ms", "Mrays/s", "hit %");
   for (const RayKindResult& k : kinds)
-    std::printf("%-8s %12llu %10.3f %10.3f %12.1f %8.1f\n", k.kind.c_str(),
+    std::printf("%-8s %12llu %10.3f %10.3f %12.3f %8.1f\n", k.kind.c_str(),
                 (unsigned long long)k.rays, k.medianMilliseconds, k.minMilliseconds,
                 k.mraysPerSecond, 100.0 * k.hitFraction);
   if (!options.json.empty()) {

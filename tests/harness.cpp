@@ -16,7 +16,7 @@ std::string sharedDir() {
 
 std::string bounceExe() {
   if (const char* env = std::getenv("BOUNCE_EXE")) return env;
-  return std::string(BOUNCE_SOURCE_DIR) + "/build/bounce";
+  return BOUNCE_EXE_PATH;
 }
 
 std::string tempDir(const std::string& tag) {

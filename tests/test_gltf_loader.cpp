@@ -162,18 +162,27 @@ class GltfLoaderTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir); }
 
   // Loading `path` must throw bounce::Error whose message names the file and contains
-  // `keyword`.
+  // `keyword`; and the `bounce` program given the file must exit with code 1 and the same
+  // message on stderr (never crash, hang or render).
   static void expectError(const std::string& path, const std::string& keyword) {
+    const std::string fileName = fs::path(path).filename().string();
     try {
       loadGltf(path);
       ADD_FAILURE() << path << " loaded, expected an error containing '" << keyword << "'";
     } catch (const Error& e) {
       std::string message = e.what();
-      EXPECT_NE(message.find(fs::path(path).filename().string()), std::string::npos)
+      EXPECT_NE(message.find(fileName), std::string::npos)
           << "message does not name the file: " << message;
       EXPECT_NE(message.find(keyword), std::string::npos)
           << "message lacks '" << keyword << "': " << message;
     }
+    test::CommandResult r = test::runCommand(test::bounceExe() + " render --res 8x8 --scene '" +
+                                             path + "' --out '" + path + ".png'", 60);
+    EXPECT_EQ(r.exitCode, 1) << "bounce render --scene " << path << "\n" << r.output;
+    EXPECT_NE(r.output.find("bounce: error: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(fileName), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(keyword), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(path + ".png")) << "an image was written for a broken file";
   }
 
   // A 2x2 RGBA PNG next to the glTF.

@@ -262,6 +262,12 @@ void Context::createInstance(const ContextOptions& options) {
     }
   }
   instance_ = createBareInstance(layers, extensions, next);
+  if (debugUtils_) {
+    beginLabel_ = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCmdBeginDebugUtilsLabelEXT"));
+    endLabel_ = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
+  }
   if (validationEnabled_) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
@@ -435,6 +441,17 @@ void Context::setObjectName(uint64_t handle, VkObjectType type, const std::strin
   info.objectHandle = handle;
   info.pObjectName = name.c_str();
   setName(device_, &info);
+}
+
+void Context::beginDebugLabel(VkCommandBuffer cmd, const std::string& name) const {
+  if (!beginLabel_ || !endLabel_) return;
+  VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+  label.pLabelName = name.c_str();
+  beginLabel_(cmd, &label);
+}
+
+void Context::endDebugLabel(VkCommandBuffer cmd) const {
+  if (beginLabel_ && endLabel_) endLabel_(cmd);
 }
 
 const char* resultName(VkResult r) {

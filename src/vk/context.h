@@ -83,6 +83,10 @@ class Context {
   bool validationEnabled() const { return validationEnabled_; }
 
   void setObjectName(uint64_t handle, VkObjectType type, const std::string& name);
+  // Debug-utils labels around a command range (shown by validation messages and GPU
+  // debuggers); no-ops when VK_EXT_debug_utils is missing.
+  void beginDebugLabel(VkCommandBuffer cmd, const std::string& name) const;
+  void endDebugLabel(VkCommandBuffer cmd) const;
 
  private:
   void createInstance(const ContextOptions& options);
@@ -105,6 +109,8 @@ class Context {
   DeviceInfo info_;
   bool validationEnabled_ = false;
   bool debugUtils_ = false;
+  PFN_vkCmdBeginDebugUtilsLabelEXT beginLabel_ = nullptr;
+  PFN_vkCmdEndDebugUtilsLabelEXT endLabel_ = nullptr;
   uint32_t validationErrors_ = 0;
   uint64_t allocationCount_ = 0;
   uint64_t liveBytes_ = 0;

@@ -89,7 +89,8 @@ void downloadBuffer(Context& context, const Buffer& buffer, std::span<std::byte>
 }
 
 Image::Image(Context& context, VkFormat format, uint32_t width, uint32_t height, uint32_t layers,
-             uint32_t mips, VkImageUsageFlags usage, const std::string& name)
+             uint32_t mips, VkImageUsageFlags usage, const std::string& name,
+             std::optional<VkImageViewType> viewType)
     : context_(&context), format_(format), width_(width), height_(height), layers_(layers),
       mips_(mips) {
   if (width == 0 || height == 0 || layers == 0 || mips == 0)
@@ -115,6 +116,7 @@ Image::Image(Context& context, VkFormat format, uint32_t width, uint32_t height,
   vi.image = image_;
   vi.viewType = layers > 1 || (usage & VK_IMAGE_USAGE_SAMPLED_BIT) ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
                                                                    : VK_IMAGE_VIEW_TYPE_2D;
+  if (viewType) vi.viewType = *viewType;
   vi.format = format;
   vi.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT),
                          0, mips, 0, layers};

@@ -3,6 +3,7 @@
 // scene-sized data through buffer_reference pointers.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -62,9 +63,12 @@ void downloadBuffer(Context& context, const Buffer& buffer, std::span<std::byte>
 class Image {
  public:
   Image() = default;
-  // A 2D (array) image with a full view over its layers and mips.
+  // A 2D (array) image with a full view over its layers and mips. The view is a 2D array when
+  // the image has several layers or is sampled (scene textures), unless `viewType` says otherwise
+  // (storage images bound as image2D need a 2D view).
   Image(Context& context, VkFormat format, uint32_t width, uint32_t height, uint32_t layers,
-        uint32_t mips, VkImageUsageFlags usage, const std::string& name);
+        uint32_t mips, VkImageUsageFlags usage, const std::string& name,
+        std::optional<VkImageViewType> viewType = std::nullopt);
   ~Image() { reset(); }
   Image(Image&& other) noexcept { *this = std::move(other); }
   Image& operator=(Image&& other) noexcept;
