@@ -44,7 +44,7 @@ TEST(Cli, BadInputGetsAClearError) {
       {"render --scene cornell --camera 0,0,0:0,0,0:45", "--camera"},
       {"render --scene cornell --sun 0,-1,0", "--sun"},
       {"render --scene cornell --sky 1,nan,1", "--sky"},
-      {"render --scene cornell --view nosuchview --res 8x8", "--view"},
+      {"render --scene cornell --view nosuchview --res 8x8", "nosuchview"},
       {"render --scene cornell --device 99 --res 8x8", "--device 99"},
       {"compare " + dir + "/a.png " + dir + "/b.png", "a.png"},
   };

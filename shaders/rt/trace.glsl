@@ -39,27 +39,30 @@ vec3 safeReciprocal(vec3 d) {
 // Per-ray slab set-up: near/far planes are picked by the sign of the reciprocal direction,
 // which makes the inverted box of an empty child miss without a special case.
 struct BoxRay {
+  vec3 origin;
   vec3 invDir;
-  vec3 originTimesInv;
   bvec3 negative;
 };
 
 BoxRay makeBoxRay(vec3 origin, vec3 dir) {
   BoxRay r;
+  r.origin = origin;
   r.invDir = safeReciprocal(dir);
-  r.originTimesInv = origin * r.invDir;
   r.negative = lessThan(r.invDir, vec3(0.0));
   return r;
 }
 
 // Entry distance of the ray into the box, or +inf when it misses (tMin, tMax). The exit
 // distance is widened by 1 + 2 gamma(3) so a hit the watertight triangle test finds is never
-// culled by rounding (Ize 2013, "Robust BVH Ray Traversal").
+// culled by rounding (Ize 2013, "Robust BVH Ray Traversal"). The plane distances are written
+// (plane - origin) * invDir and kept `precise`: the cheaper plane * invDir - origin * invDir,
+// once fused into an FMA, wrongly rejects rays aimed at the edges of small boxes far from the
+// origin (src/rt/cpu_trace.cpp uses the same form).
 float intersectBox(vec3 boxMin, vec3 boxMax, BoxRay r, float tMin, float tMax) {
   vec3 nearPlane = mix(boxMin, boxMax, r.negative);
   vec3 farPlane = mix(boxMax, boxMin, r.negative);
-  vec3 tNear = nearPlane * r.invDir - r.originTimesInv;
-  vec3 tFar = farPlane * r.invDir - r.originTimesInv;
+  precise vec3 tNear = (nearPlane - r.origin) * r.invDir;
+  precise vec3 tFar = (farPlane - r.origin) * r.invDir;
   float enter = max(max(tNear.x, tNear.y), max(tNear.z, tMin));
   float exit = min(min(tFar.x, tFar.y), min(tFar.z, tMax)) * 1.0000004;
   return enter <= exit ? enter : 1.0 / 0.0;

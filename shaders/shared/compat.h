@@ -35,6 +35,7 @@ using glm::normalize;
   static_assert(sizeof(Type) == (bytes), #Type " must match its GLSL scalar layout")
 #define BOUNCE_CONST inline constexpr
 #define BOUNCE_FN inline
+#define BOUNCE_PRECISE
 #else
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_EXT_buffer_reference : require
@@ -45,6 +46,7 @@ using glm::normalize;
 #define BOUNCE_CHECK_SIZE(Type, bytes)
 #define BOUNCE_CONST const
 #define BOUNCE_FN
+#define BOUNCE_PRECISE precise
 #define DeviceAddress uint64_t
 #endif
 

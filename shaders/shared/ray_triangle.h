@@ -41,7 +41,10 @@ struct TriangleHit {
   bool frontFacing;  // counter-clockwise seen from the ray origin (glTF front face)
 };
 
-// Hit with t in (tMin, tMax); both sides of the triangle count.
+// Hit with t in (tMin, tMax); both sides of the triangle count. The edge functions are
+// BOUNCE_PRECISE: a GPU compiler must not contract them into FMAs, which would break the
+// antisymmetry of U, V, W between two triangles sharing an edge (and so watertightness) and
+// make the GPU disagree with the CPU.
 BOUNCE_FN TriangleHit intersectTriangle(vec3 origin, RayShear s, vec3 v0, vec3 v1, vec3 v2,
                                         float tMin, float tMax) {
   TriangleHit h;
@@ -53,32 +56,32 @@ BOUNCE_FN TriangleHit intersectTriangle(vec3 origin, RayShear s, vec3 v0, vec3 v
   vec3 A = v0 - origin;
   vec3 B = v1 - origin;
   vec3 C = v2 - origin;
-  float Ax = A[s.kx] - s.shear.x * A[s.kz];
-  float Ay = A[s.ky] - s.shear.y * A[s.kz];
-  float Bx = B[s.kx] - s.shear.x * B[s.kz];
-  float By = B[s.ky] - s.shear.y * B[s.kz];
-  float Cx = C[s.kx] - s.shear.x * C[s.kz];
-  float Cy = C[s.ky] - s.shear.y * C[s.kz];
+  BOUNCE_PRECISE float Ax = A[s.kx] - s.shear.x * A[s.kz];
+  BOUNCE_PRECISE float Ay = A[s.ky] - s.shear.y * A[s.kz];
+  BOUNCE_PRECISE float Bx = B[s.kx] - s.shear.x * B[s.kz];
+  BOUNCE_PRECISE float By = B[s.ky] - s.shear.y * B[s.kz];
+  BOUNCE_PRECISE float Cx = C[s.kx] - s.shear.x * C[s.kz];
+  BOUNCE_PRECISE float Cy = C[s.ky] - s.shear.y * C[s.kz];
   // Scaled barycentrics: U for v0, V for v1, W for v2.
-  float U = Cx * By - Cy * Bx;
-  float V = Ax * Cy - Ay * Cx;
-  float W = Bx * Ay - By * Ax;
+  BOUNCE_PRECISE float U = Cx * By - Cy * Bx;
+  BOUNCE_PRECISE float V = Ax * Cy - Ay * Cx;
+  BOUNCE_PRECISE float W = Bx * Ay - By * Ax;
   if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return h;
-  float det = U + V + W;
+  BOUNCE_PRECISE float det = U + V + W;
   if (det == 0.0f) return h;
-  float Az = s.shear.z * A[s.kz];
-  float Bz = s.shear.z * B[s.kz];
-  float Cz = s.shear.z * C[s.kz];
-  float T = U * Az + V * Bz + W * Cz;
+  BOUNCE_PRECISE float Az = s.shear.z * A[s.kz];
+  BOUNCE_PRECISE float Bz = s.shear.z * B[s.kz];
+  BOUNCE_PRECISE float Cz = s.shear.z * C[s.kz];
+  BOUNCE_PRECISE float T = U * Az + V * Bz + W * Cz;
   float t = T / det;
   if (!(t > tMin && t < tMax)) return h;
   h.hit = true;
   h.t = t;
   h.b1 = V / det;
   h.b2 = W / det;
-  // With the shear's handedness, det < 0 means the triangle winds counter-clockwise as seen
-  // from the origin.
-  h.frontFacing = det < 0.0f;
+  // With the shear's handedness, det > 0 means the triangle winds counter-clockwise as seen
+  // from the origin (glTF's front face).
+  h.frontFacing = det > 0.0f;
   return h;
 }
 

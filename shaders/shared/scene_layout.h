@@ -1,5 +1,5 @@
 // GPU layout of a scene: instances, geometries, materials, vertex streams, and the two-level
-// BVH (one BLAS per mesh, a TLAS over instances). Shared by C++ (src/rt/scene_gpu.cpp writes it)
+// BVH (one BLAS per mesh, a TLAS over instances). Shared by C++ (src/rt/scene_bvh.cpp writes it)
 // and GLSL (shaders/rt/ reads it through buffer device addresses).
 #ifndef BOUNCE_SHARED_SCENE_LAYOUT_H
 #define BOUNCE_SHARED_SCENE_LAYOUT_H

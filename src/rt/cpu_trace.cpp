@@ -1,0 +1,292 @@
+#include "rt/cpu_trace.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "shared/ray_triangle.h"
+
+namespace bounce::rt {
+namespace {
+
+// 1 + 2 * gamma(3) with gamma(n) = n u / (1 - n u), u = 2^-24 (Ize 2013, "Robust BVH ray
+// traversal"): scaling the far slab distance by it keeps the float box test conservative.
+constexpr float kRobustFarScale = 1.0000004f;
+// Direction components smaller than this are replaced by it (with their sign) before
+// inverting, so a slab distance is never 0 * inf = NaN.
+constexpr float kMinDirection = 1e-20f;
+// Stack entries at the TLAS level with this bit set name an instance to enter.
+constexpr uint32_t kInstanceEntry = 0x80000000u;
+
+// A ray prepared for one space (world, or one instance's object space).
+struct SpaceRay {
+  glm::vec3 origin;
+  glm::vec3 invDir;
+  gpu::RayShear shear;
+};
+
+SpaceRay prepareRay(const glm::vec3& origin, const glm::vec3& direction) {
+  SpaceRay r;
+  r.origin = origin;
+  for (int axis = 0; axis < 3; ++axis) {
+    float d = direction[axis];
+    if (std::abs(d) < kMinDirection) d = d < 0.0f ? -kMinDirection : kMinDirection;
+    r.invDir[axis] = 1.0f / d;
+  }
+  r.shear = gpu::makeRayShear(direction);
+  return r;
+}
+
+glm::vec3 transformPoint(const gpu::vec4 rows[3], const glm::vec3& p) {
+  return {glm::dot(glm::vec3(rows[0]), p) + rows[0].w, glm::dot(glm::vec3(rows[1]), p) + rows[1].w,
+          glm::dot(glm::vec3(rows[2]), p) + rows[2].w};
+}
+
+glm::vec3 transformVector(const gpu::vec4 rows[3], const glm::vec3& v) {
+  return {glm::dot(glm::vec3(rows[0]), v), glm::dot(glm::vec3(rows[1]), v),
+          glm::dot(glm::vec3(rows[2]), v)};
+}
+
+// A mirroring transform turns counter-clockwise triangles clockwise (glTF: the winding of a
+// node with a negative determinant is reversed).
+bool mirrors(const gpu::vec4 rows[3]) {
+  return glm::dot(glm::vec3(rows[0]), glm::cross(glm::vec3(rows[1]), glm::vec3(rows[2]))) < 0.0f;
+}
+
+struct BoxHit {
+  bool hit;
+  float tNear;
+};
+
+// Slab test with the near plane picked by the sign of invDir, so an inverted (empty) box has
+// tNear > tFar and is never entered.
+BoxHit intersectBox(const SpaceRay& ray, const glm::vec3& lo, const glm::vec3& hi, float tMin,
+                    float tMax) {
+  float tNear = tMin, tFar = tMax;
+  for (int axis = 0; axis < 3; ++axis) {
+    const bool negative = ray.invDir[axis] < 0.0f;
+    const float nearPlane = negative ? hi[axis] : lo[axis];
+    const float farPlane = negative ? lo[axis] : hi[axis];
+    tNear = std::max(tNear, (nearPlane - ray.origin[axis]) * ray.invDir[axis]);
+    tFar = std::min(tFar, (farPlane - ray.origin[axis]) * ray.invDir[axis] * kRobustFarScale);
+  }
+  return {tNear <= tFar, tNear};
+}
+
+struct Child {
+  uint32_t index;
+  uint32_t count;
+  BoxHit box;
+};
+
+}  // namespace
+
+template <bool kAnyHit>
+TraceHit CpuTracer::traverse(const Ray& ray, float tMax, const AlphaTest& alphaTest) const {
+  TraceHit result;
+  const float tMin = ray.tMin;
+  const SpaceRay worldRay = prepareRay(ray.origin, ray.direction);
+  SpaceRay current = worldRay;
+
+  uint32_t stack[gpu::BVH_STACK_SIZE];
+  uint32_t stackSize = 0;
+  bool inBlas = false;
+  uint32_t blasStackBase = 0;
+  uint32_t instanceIndex = 0;
+  bool mirrored = false;
+  uint32_t entry = 0;  // the TLAS root
+
+  while (true) {
+    if (entry & kInstanceEntry) {
+      // Enter the instance: same t in both spaces, because the direction is not normalised.
+      instanceIndex = entry & ~kInstanceEntry;
+      const gpu::GpuInstance& instance = arrays_.instances[instanceIndex];
+      current = prepareRay(transformPoint(instance.worldToObject, ray.origin),
+                           transformVector(instance.worldToObject, ray.direction));
+      mirrored = mirrors(instance.worldToObject);
+      inBlas = true;
+      blasStackBase = stackSize;
+      entry = instance.blasRoot;
+    }
+
+    const gpu::GpuBvhNode& node = inBlas ? arrays_.blasNodes[entry] : arrays_.tlasNodes[entry];
+    Child left{node.leftIndex, node.leftCount,
+               intersectBox(current, node.leftMin, node.leftMax, tMin, tMax)};
+    Child right{node.rightIndex, node.rightCount,
+                intersectBox(current, node.rightMin, node.rightMax, tMin, tMax)};
+    const bool rightFirst = right.box.hit && (!left.box.hit || right.box.tNear < left.box.tNear);
+    const Child& nearChild = rightFirst ? right : left;
+    const Child& farChild = rightFirst ? left : right;
+
+    // BLAS leaves are intersected right away; interior children and instances wait their turn.
+    Child next[2];
+    uint32_t nextCount = 0;
+    for (const Child* child : {&nearChild, &farChild}) {
+      if (!child->box.hit) continue;
+      if (child->count == 0) {
+        next[nextCount++] = *child;
+      } else if (!inBlas) {
+        next[nextCount++] = {child->index | kInstanceEntry, 0, child->box};
+      } else {
+        for (uint32_t k = child->index; k < child->index + child->count; ++k) {
+          const gpu::GpuTriangle& tri = arrays_.triangles[k];
+          gpu::TriangleHit h = gpu::intersectTriangle(current.origin, current.shear, tri.v0, tri.v1,
+                                                      tri.v2, tMin, tMax);
+          if (!h.hit) continue;
+          const gpu::GpuInstance& instance = arrays_.instances[instanceIndex];
+          const uint32_t geometry =
+              instance.geometryBase + (tri.geometry & ~gpu::GPU_TRIANGLE_ALPHA_TESTED);
+          if ((tri.geometry & gpu::GPU_TRIANGLE_ALPHA_TESTED) && alphaTest &&
+              !alphaTest(instanceIndex, geometry, tri.primitive, h.b1, h.b2))
+            continue;
+          result = {true,          h.t,  instanceIndex, geometry,
+                    tri.primitive, h.b1, h.b2,          h.frontFacing != mirrored};
+          if constexpr (kAnyHit) return result;
+          tMax = h.t;
+        }
+      }
+    }
+    // A leaf hit may have moved tMax in front of a waiting child (next is sorted near first).
+    while (nextCount > 0 && next[nextCount - 1].box.tNear > tMax) --nextCount;
+
+    if (nextCount == 2) {
+      if (stackSize == gpu::BVH_STACK_SIZE)
+        throw std::logic_error("BVH traversal stack overflow: tree deeper than its contract");
+      stack[stackSize++] = next[1].index;
+    }
+    if (nextCount >= 1) {
+      entry = next[0].index;
+      continue;
+    }
+    if (inBlas && stackSize == blasStackBase) {
+      inBlas = false;
+      current = worldRay;
+    }
+    if (stackSize == 0) return result;
+    entry = stack[--stackSize];
+  }
+}
+
+TraceHit CpuTracer::closestHit(const Ray& ray, float tMax, const AlphaTest& alphaTest) const {
+  return traverse<false>(ray, tMax, alphaTest);
+}
+
+bool CpuTracer::anyHit(const Ray& ray, float tMax, const AlphaTest& alphaTest) const {
+  return traverse<true>(ray, tMax, alphaTest).hit;
+}
+
+// ---- brute force ------------------------------------------------------------------------------
+
+namespace {
+
+// Mesh bounds in object space, computed from the Scene itself (not from any BVH).
+Aabb meshBounds(const Mesh& mesh) {
+  Aabb b;
+  for (const Geometry& g : mesh.geometries)
+    for (const glm::vec3& p : g.positions) b.extend(p);
+  return b;
+}
+
+// World bounds of an instance, from the 8 transformed corners of its object-space box,
+// inflated by a relative 1e-3 of its size (plus a tiny absolute term) so that the cull below can
+// never reject a triangle the float triangle test would hit.
+Aabb inflatedWorldBounds(const Aabb& object, const glm::mat4& objectToWorld) {
+  Aabb world;
+  if (object.empty()) return world;
+  for (int corner = 0; corner < 8; ++corner) {
+    glm::vec3 p{corner & 1 ? object.max.x : object.min.x, corner & 2 ? object.max.y : object.min.y,
+                corner & 4 ? object.max.z : object.min.z};
+    world.extend(glm::vec3(objectToWorld * glm::vec4(p, 1.0f)));
+  }
+  glm::vec3 margin = 1e-3f * (world.extent() + glm::vec3(glm::length(world.max - world.min))) +
+                     glm::vec3(1e-6f) * (glm::abs(world.min) + glm::abs(world.max));
+  world.min -= margin;
+  world.max += margin;
+  return world;
+}
+
+// Whether the segment (tMin, tMax) of the ray touches the box, in double precision.
+bool segmentTouchesBox(const Ray& ray, float tMax, const Aabb& box) {
+  if (box.empty()) return false;
+  double enter = ray.tMin, exit = tMax;
+  for (int axis = 0; axis < 3; ++axis) {
+    double o = ray.origin[axis], d = ray.direction[axis];
+    if (d == 0.0) {
+      if (o < box.min[axis] || o > box.max[axis]) return false;
+      continue;
+    }
+    double t0 = (box.min[axis] - o) / d, t1 = (box.max[axis] - o) / d;
+    enter = std::max(enter, std::min(t0, t1));
+    exit = std::min(exit, std::max(t0, t1));
+  }
+  return enter <= exit;
+}
+
+}  // namespace
+
+BruteForceTracer::BruteForceTracer(const Scene& scene) : scene_(scene) {
+  geometryBase_.resize(scene.meshes.size());
+  for (size_t m = 1; m < scene.meshes.size(); ++m)
+    geometryBase_[m] = geometryBase_[m - 1] + uint32_t(scene.meshes[m - 1].geometries.size());
+  std::vector<Aabb> bounds(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m) bounds[m] = meshBounds(scene.meshes[m]);
+  for (const Instance& instance : scene.instances) {
+    gpu::GpuInstance transform{};
+    setInstanceTransform(transform, instance.transform);
+    instances_.push_back({transform, inflatedWorldBounds(bounds[instance.mesh], instance.transform),
+                          glm::determinant(glm::mat3(instance.transform)) < 0.0f});
+  }
+}
+
+// Every triangle of every instance whose (inflated) world box the ray segment touches, in object
+// space. The ray is taken there exactly as the traversal does it (same inverse, same
+// arithmetic), so both see bit-identical object-space rays and any disagreement is the BVH's.
+template <bool kAnyHit>
+TraceHit BruteForceTracer::trace(const Ray& ray, float tMax, const AlphaTest& alphaTest) const {
+  TraceHit result;
+  for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
+    const PreparedInstance& prepared = instances_[i];
+    if (!segmentTouchesBox(ray, tMax, prepared.worldBounds)) continue;
+    const Instance& instance = scene_.instances[i];
+    const glm::vec3 origin = transformPoint(prepared.transform.worldToObject, ray.origin);
+    const glm::vec3 direction = transformVector(prepared.transform.worldToObject, ray.direction);
+    const gpu::RayShear shear = gpu::makeRayShear(direction);
+    const Mesh& mesh = scene_.meshes[instance.mesh];
+    for (uint32_t g = 0; g < mesh.geometries.size(); ++g) {
+      const Geometry& geometry = mesh.geometries[g];
+      const bool alphaTested =
+          scene_.materials[geometry.material].alphaMode != AlphaMode::Opaque && alphaTest;
+      const uint32_t globalGeometry = geometryBase_[instance.mesh] + g;
+      for (uint32_t p = 0; p < geometry.triangleCount(); ++p) {
+        const uint32_t* index = &geometry.indices[size_t(p) * 3];
+        gpu::TriangleHit h = gpu::intersectTriangle(origin, shear, geometry.positions[index[0]],
+                                                    geometry.positions[index[1]],
+                                                    geometry.positions[index[2]], ray.tMin, tMax);
+        if (!h.hit) continue;
+        if (alphaTested && !alphaTest(i, globalGeometry, p, h.b1, h.b2)) continue;
+        result = {true, h.t, i, globalGeometry, p, h.b1, h.b2, h.frontFacing != prepared.mirrored};
+        if constexpr (kAnyHit) return result;
+        tMax = h.t;
+      }
+    }
+  }
+  return result;
+}
+
+TraceHit BruteForceTracer::closestHit(const Ray& ray, float tMax, const AlphaTest& alphaTest) const {
+  return trace<false>(ray, tMax, alphaTest);
+}
+
+bool BruteForceTracer::anyHit(const Ray& ray, float tMax, const AlphaTest& alphaTest) const {
+  return trace<true>(ray, tMax, alphaTest).hit;
+}
+
+TraceHit closestHitBruteForce(const Scene& scene, const Ray& ray, float tMax,
+                              const AlphaTest& alphaTest) {
+  return BruteForceTracer(scene).closestHit(ray, tMax, alphaTest);
+}
+
+bool anyHitBruteForce(const Scene& scene, const Ray& ray, float tMax, const AlphaTest& alphaTest) {
+  return BruteForceTracer(scene).anyHit(ray, tMax, alphaTest);
+}
+
+}  // namespace bounce::rt

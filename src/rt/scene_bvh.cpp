@@ -1,0 +1,370 @@
+#include "rt/scene_bvh.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "core/error.h"
+#include "rt/task_pool.h"
+
+namespace bounce::rt {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Meshes at least this large are built one at a time with all threads; smaller ones are built
+// side by side, one thread each.
+constexpr uint64_t kLargeMeshTriangles = 64 * 1024;
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+uint32_t resolveThreads(uint32_t requested) {
+  return requested ? requested : std::max(1u, std::thread::hardware_concurrency());
+}
+
+// ---- geometry streams -------------------------------------------------------------------------
+
+void checkGeometry(const Scene& scene, size_t meshIndex, size_t geometryIndex) {
+  const Mesh& mesh = scene.meshes[meshIndex];
+  const Geometry& g = mesh.geometries[geometryIndex];
+  auto where = [&] {
+    return fmt::format("scene BVH: mesh {} ('{}') geometry {}", meshIndex, mesh.name,
+                       geometryIndex);
+  };
+  const size_t n = g.positions.size();
+  if (g.normals.size() != n || g.uvs.size() != n || (!g.tangents.empty() && g.tangents.size() != n))
+    fail("{}: vertex streams differ in length ({} positions, {} normals, {} uvs, {} tangents)",
+         where(), n, g.normals.size(), g.uvs.size(), g.tangents.size());
+  if (g.indices.size() % 3 != 0)
+    fail("{}: index count {} is not a multiple of 3", where(), g.indices.size());
+  for (uint32_t index : g.indices)
+    if (index >= n) fail("{}: index {} out of range ({} vertices)", where(), index, n);
+  for (const glm::vec3& p : g.positions)
+    if (!finite(p)) fail("{}: a vertex position is NaN or infinite", where());
+  if (g.material >= scene.materials.size())
+    fail("{}: material {} does not exist ({} materials)", where(), g.material,
+         scene.materials.size());
+}
+
+// Appends every geometry's streams in mesh order and records where each starts.
+void flattenGeometries(const Scene& scene, SceneBvh& out) {
+  size_t vertices = 0, indices = 0;
+  for (const Mesh& mesh : scene.meshes)
+    for (const Geometry& g : mesh.geometries) {
+      vertices += g.positions.size();
+      indices += g.indices.size();
+    }
+  if (vertices >= gpu::BVH_INVALID || indices >= gpu::BVH_INVALID)
+    fail("scene BVH: {} vertices and {} indices exceed 32-bit offsets", vertices, indices);
+  out.positions.reserve(vertices);
+  out.normals.reserve(vertices);
+  out.uvs.reserve(vertices);
+  out.tangents.reserve(vertices);
+  out.indices.reserve(indices);
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    out.geometryBase.push_back(uint32_t(out.geometries.size()));
+    for (size_t gi = 0; gi < scene.meshes[m].geometries.size(); ++gi) {
+      checkGeometry(scene, m, gi);
+      const Geometry& g = scene.meshes[m].geometries[gi];
+      out.geometries.push_back({uint32_t(out.indices.size()), uint32_t(out.positions.size()),
+                                g.triangleCount(), g.material});
+      out.indices.insert(out.indices.end(), g.indices.begin(), g.indices.end());
+      out.positions.insert(out.positions.end(), g.positions.begin(), g.positions.end());
+      out.normals.insert(out.normals.end(), g.normals.begin(), g.normals.end());
+      out.uvs.insert(out.uvs.end(), g.uvs.begin(), g.uvs.end());
+      if (g.tangents.empty())
+        out.tangents.insert(out.tangents.end(), g.positions.size(), glm::vec4(1, 0, 0, 1));
+      else
+        out.tangents.insert(out.tangents.end(), g.tangents.begin(), g.tangents.end());
+    }
+  }
+}
+
+// ---- one BLAS per mesh ------------------------------------------------------------------------
+
+// A mesh's triangles are numbered across its geometries in order: triangle t belongs to the
+// geometry g with firstTriangle[g] <= t < firstTriangle[g + 1].
+struct MeshTriangles {
+  std::vector<uint32_t> firstTriangle;  // per geometry, plus the total at the end
+  uint32_t count() const { return firstTriangle.back(); }
+};
+
+MeshTriangles numberTriangles(const Mesh& mesh) {
+  // GpuTriangle::geometry keeps the local geometry index in 31 bits.
+  if (mesh.geometries.size() >= gpu::GPU_TRIANGLE_ALPHA_TESTED)
+    fail("scene BVH: mesh '{}' has {} geometries", mesh.name, mesh.geometries.size());
+  MeshTriangles t;
+  t.firstTriangle.push_back(0);
+  uint64_t total = 0;
+  for (const Geometry& g : mesh.geometries) {
+    total += g.triangleCount();
+    if (total >= gpu::BVH_INVALID) fail("scene BVH: mesh '{}' has over 2^32 triangles", mesh.name);
+    t.firstTriangle.push_back(uint32_t(total));
+  }
+  return t;
+}
+
+struct MeshBlas {
+  Bvh bvh;
+  MeshTriangles triangles;
+  Aabb bounds;
+};
+
+MeshBlas buildMeshBlas(const Mesh& mesh, const BvhBuildOptions& options) {
+  MeshBlas blas;
+  blas.triangles = numberTriangles(mesh);
+  std::vector<Aabb> boxes(blas.triangles.count());
+  std::vector<glm::vec3> centroids(boxes.size());
+  size_t t = 0;
+  for (const Geometry& g : mesh.geometries) {
+    for (size_t i = 0; i < g.indices.size(); i += 3, ++t) {
+      const glm::vec3& a = g.positions[g.indices[i]];
+      const glm::vec3& b = g.positions[g.indices[i + 1]];
+      const glm::vec3& c = g.positions[g.indices[i + 2]];
+      boxes[t].min = glm::min(a, glm::min(b, c));
+      boxes[t].max = glm::max(a, glm::max(b, c));
+      centroids[t] = boxes[t].center();  // the box centre, as Wald 2007 bins
+      blas.bounds.extend(boxes[t]);
+    }
+  }
+  blas.bvh = buildBvh(boxes, centroids, options);
+  return blas;
+}
+
+std::vector<MeshBlas> buildAllBlas(const Scene& scene, const BvhBuildOptions& options) {
+  const size_t meshCount = scene.meshes.size();
+  std::vector<MeshBlas> blas(meshCount);
+  std::vector<size_t> small;
+  BvhBuildOptions single = options;
+  single.threadCount = 1;
+  for (size_t m = 0; m < meshCount; ++m) {
+    uint64_t triangles = 0;
+    for (const Geometry& g : scene.meshes[m].geometries) triangles += g.triangleCount();
+    if (triangles >= kLargeMeshTriangles)
+      blas[m] = buildMeshBlas(scene.meshes[m], options);
+    else
+      small.push_back(m);
+  }
+  // Each build is deterministic on its own, so the schedule cannot change the result.
+  TaskPool pool(std::min<uint32_t>(resolveThreads(options.threadCount), uint32_t(small.size())));
+  pool.parallelFor(uint32_t(small.size()), [&](uint32_t i) {
+    blas[small[i]] = buildMeshBlas(scene.meshes[small[i]], single);
+  });
+  return blas;
+}
+
+// Copies one mesh's BLAS into the shared arrays: node indices become absolute, leaves point
+// into the shared triangle array, whose entries are written in leaf order.
+void appendBlas(const Scene& scene, size_t meshIndex, const MeshBlas& blas, uint32_t nodeOffset,
+                uint32_t triangleOffset, SceneBvh& out) {
+  const Mesh& mesh = scene.meshes[meshIndex];
+  auto relocate = [&](uint32_t& index, uint32_t count) {
+    if (count > 0)
+      index += triangleOffset;
+    else if (index != gpu::BVH_INVALID)
+      index += nodeOffset;
+  };
+  gpu::GpuBvhNode* nodes = out.blasNodes.data() + nodeOffset;
+  for (size_t i = 0; i < blas.bvh.nodes.size(); ++i) {
+    gpu::GpuBvhNode node = blas.bvh.nodes[i];
+    relocate(node.leftIndex, node.leftCount);
+    relocate(node.rightIndex, node.rightCount);
+    nodes[i] = node;
+  }
+  gpu::GpuTriangle* triangles = out.triangles.data() + triangleOffset;
+  const std::vector<uint32_t>& first = blas.triangles.firstTriangle;
+  for (size_t i = 0; i < blas.bvh.primitiveOrder.size(); ++i) {
+    const uint32_t t = blas.bvh.primitiveOrder[i];
+    const uint32_t g =
+        uint32_t(std::upper_bound(first.begin(), first.end(), t) - first.begin() - 1);
+    const Geometry& geometry = mesh.geometries[g];
+    const uint32_t primitive = t - first[g];
+    const uint32_t* index = &geometry.indices[size_t(primitive) * 3];
+    const bool alphaTested = scene.materials[geometry.material].alphaMode != AlphaMode::Opaque;
+    triangles[i] = {geometry.positions[index[0]], geometry.positions[index[1]],
+                    geometry.positions[index[2]], primitive,
+                    g | (alphaTested ? gpu::GPU_TRIANGLE_ALPHA_TESTED : 0u)};
+  }
+}
+
+void concatenateBlas(const Scene& scene, const std::vector<MeshBlas>& blas, uint32_t threads,
+                     SceneBvh& out) {
+  std::vector<uint32_t> nodeOffset(blas.size()), triangleOffset(blas.size());
+  uint64_t nodes = 0, triangles = 0;
+  for (size_t m = 0; m < blas.size(); ++m) {
+    nodeOffset[m] = uint32_t(nodes);
+    triangleOffset[m] = uint32_t(triangles);
+    nodes += blas[m].bvh.nodes.size();
+    triangles += blas[m].bvh.primitiveOrder.size();
+    if (nodes >= gpu::BVH_INVALID || triangles >= gpu::BVH_INVALID)
+      fail("scene BVH: {} triangles exceed the 32-bit index range", triangles);
+  }
+  out.blasNodes.resize(nodes);
+  out.triangles.resize(triangles);
+  out.blasRoot = nodeOffset;
+  TaskPool pool(std::min<uint32_t>(threads, uint32_t(blas.size())));
+  pool.parallelFor(uint32_t(blas.size()), [&](uint32_t m) {
+    appendBlas(scene, m, blas[m], nodeOffset[m], triangleOffset[m], out);
+  });
+}
+
+void recordBlasStats(const std::vector<MeshBlas>& blas, SceneBvhStats& stats) {
+  double weightedSah = 0.0;
+  for (const MeshBlas& b : blas) {
+    stats.triangleCount += b.bvh.primitiveOrder.size();
+    stats.maxBlasDepth = std::max(stats.maxBlasDepth, b.bvh.stats.maxDepth);
+    weightedSah += b.bvh.stats.sahCost * double(b.bvh.primitiveOrder.size());
+  }
+  if (stats.triangleCount > 0) stats.blasSahCost = weightedSah / double(stats.triangleCount);
+}
+
+template <typename T>
+size_t bytesOf(const std::vector<T>& v) {
+  return v.size() * sizeof(T);
+}
+
+}  // namespace
+
+// ---- instances --------------------------------------------------------------------------------
+
+void setInstanceTransform(gpu::GpuInstance& instance, const glm::mat4& objectToWorld) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 3; ++r)
+      if (!std::isfinite(objectToWorld[c][r]))
+        fail("instance transform has a NaN or infinite entry");
+  const glm::mat3 linear(objectToWorld);
+  const float det = glm::determinant(linear);
+  const glm::mat3 inverseLinear = glm::inverse(linear);
+  const glm::vec3 inverseTranslation = -(inverseLinear * glm::vec3(objectToWorld[3]));
+  bool invertible = det != 0.0f && std::isfinite(det) && finite(inverseTranslation);
+  for (int c = 0; c < 3; ++c) invertible = invertible && finite(inverseLinear[c]);
+  if (!invertible) fail("instance transform is singular (determinant {})", det);
+  // Rows of the 3x4 matrices; glm stores columns.
+  for (int r = 0; r < 3; ++r) {
+    instance.objectToWorld[r] = glm::vec4(objectToWorld[0][r], objectToWorld[1][r],
+                                          objectToWorld[2][r], objectToWorld[3][r]);
+    instance.worldToObject[r] = glm::vec4(inverseLinear[0][r], inverseLinear[1][r],
+                                          inverseLinear[2][r], inverseTranslation[r]);
+  }
+}
+
+gpu::GpuInstance makeGpuInstance(const glm::mat4& objectToWorld, uint32_t mesh,
+                                 const SceneBvh& bvh) {
+  if (mesh >= bvh.blasRoot.size())
+    fail("instance refers to mesh {} ({} meshes)", mesh, bvh.blasRoot.size());
+  gpu::GpuInstance instance{};
+  setInstanceTransform(instance, objectToWorld);
+  instance.blasRoot = bvh.blasRoot[mesh];
+  instance.geometryBase = bvh.geometryBase[mesh];
+  instance.mesh = mesh;
+  instance.flags = 0;
+  return instance;
+}
+
+// Arvo 1990 ("Transforming axis-aligned bounding boxes"): the transformed box's half extent is
+// |M| times the original's, its centre M times the centre.
+Aabb instanceWorldBounds(const gpu::GpuInstance& instance, const Aabb& meshBounds) {
+  const glm::vec3 center = meshBounds.center();
+  const glm::vec3 halfExtent = 0.5f * meshBounds.extent();
+  Aabb box;
+  for (int r = 0; r < 3; ++r) {
+    const glm::vec4& row = instance.objectToWorld[r];
+    const float worldCenter = row.x * center.x + row.y * center.y + row.z * center.z + row.w;
+    const float worldHalfExtent = std::abs(row.x) * halfExtent.x + std::abs(row.y) * halfExtent.y +
+                                  std::abs(row.z) * halfExtent.z;
+    // Rays meet the mesh in object space, through the rounded worldToObject; widen the world
+    // box by a few float ulps of its coordinates so the TLAS never culls such a hit at the edge.
+    const float pad = 1e-5f * (std::abs(worldCenter) + worldHalfExtent);
+    box.min[r] = worldCenter - worldHalfExtent - pad;
+    box.max[r] = worldCenter + worldHalfExtent + pad;
+  }
+  return box;
+}
+
+std::vector<gpu::GpuBvhNode> buildTlas(std::span<const gpu::GpuInstance> instances,
+                                       std::span<const Aabb> meshBounds,
+                                       const BvhBuildOptions& options, BvhBuildStats* stats) {
+  if (options.maxLeafSize != 1) fail("TLAS build: maxLeafSize must be 1 (one instance per leaf)");
+  std::vector<Aabb> boxes;
+  std::vector<glm::vec3> centroids;
+  std::vector<uint32_t> instanceOfPrimitive;
+  boxes.reserve(instances.size());
+  centroids.reserve(instances.size());
+  instanceOfPrimitive.reserve(instances.size());
+  for (size_t i = 0; i < instances.size(); ++i) {
+    const gpu::GpuInstance& instance = instances[i];
+    if (instance.mesh >= meshBounds.size())
+      fail("TLAS build: instance {} refers to mesh {} ({} meshes)", i, instance.mesh,
+           meshBounds.size());
+    const Aabb& bounds = meshBounds[instance.mesh];
+    if (bounds.empty()) continue;  // nothing to hit
+    boxes.push_back(instanceWorldBounds(instance, bounds));
+    centroids.push_back(boxes.back().center());
+    instanceOfPrimitive.push_back(uint32_t(i));
+  }
+  BvhBuildOptions tlasOptions = options;
+  tlasOptions.measureTree = options.measureTree && stats != nullptr;
+  Bvh bvh = buildBvh(boxes, centroids, tlasOptions);
+  for (gpu::GpuBvhNode& node : bvh.nodes) {
+    if (node.leftCount > 0)
+      node.leftIndex = instanceOfPrimitive[bvh.primitiveOrder[node.leftIndex]];
+    if (node.rightCount > 0)
+      node.rightIndex = instanceOfPrimitive[bvh.primitiveOrder[node.rightIndex]];
+  }
+  if (stats) *stats = bvh.stats;
+  return std::move(bvh.nodes);
+}
+
+// ---- the whole scene --------------------------------------------------------------------------
+
+SceneBvh buildSceneBvh(const Scene& scene, const SceneBvhOptions& options) {
+  const auto start = Clock::now();
+  SceneBvh out;
+  flattenGeometries(scene, out);
+
+  const auto blasStart = Clock::now();
+  std::vector<MeshBlas> blas = buildAllBlas(scene, options.blas);
+  concatenateBlas(scene, blas, resolveThreads(options.blas.threadCount), out);
+  for (const MeshBlas& b : blas) out.meshBounds.push_back(b.bounds);
+  out.stats.blasSeconds = secondsSince(blasStart);
+  recordBlasStats(blas, out.stats);
+  blas.clear();
+
+  out.instances.reserve(scene.instances.size());
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& instance = scene.instances[i];
+    try {
+      out.instances.push_back(makeGpuInstance(instance.transform, instance.mesh, out));
+    } catch (const Error& e) {
+      fail("scene BVH: instance {} ('{}'): {}", i, instance.name, e.what());
+    }
+  }
+
+  const auto tlasStart = Clock::now();
+  BvhBuildStats tlasStats;
+  out.tlasNodes = buildTlas(out.instances, out.meshBounds, options.tlas, &tlasStats);
+  out.stats.tlasSeconds = secondsSince(tlasStart);
+
+  SceneBvhStats& stats = out.stats;
+  stats.blasNodeCount = uint32_t(out.blasNodes.size());
+  stats.tlasNodeCount = uint32_t(out.tlasNodes.size());
+  stats.tlasDepth = tlasStats.maxDepth;
+  stats.tlasSahCost = tlasStats.sahCost;
+  stats.trianglesPerSecond =
+      stats.blasSeconds > 0.0 ? double(stats.triangleCount) / stats.blasSeconds : 0.0;
+  stats.bytes = {bytesOf(out.blasNodes), bytesOf(out.triangles),  bytesOf(out.tlasNodes),
+                 bytesOf(out.instances), bytesOf(out.geometries), bytesOf(out.indices),
+                 bytesOf(out.positions), bytesOf(out.normals),    bytesOf(out.uvs),
+                 bytesOf(out.tangents)};
+  stats.seconds = secondsSince(start);
+  return out;
+}
+
+}  // namespace bounce::rt
