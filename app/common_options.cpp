@@ -11,7 +11,9 @@ void CommonOptions::addSceneOptions(CLI::App& cmd, const std::string& defaultSce
   cmd.add_option("--scene", scene, "Built-in scene name or .gltf/.glb path")->capture_default_str();
   cmd.add_option("--camera", camera, "px,py,pz:tx,ty,tz:vfov (glTF space, +Y up, degrees)");
   cmd.add_option("--sun", sun, "dx,dy,dz:E[:r,g,b][:angle_deg] (direction of travel, irradiance)");
-  cmd.add_option("--sky", sky, "r,g,b constant sky radiance");
+  cmd.add_option("--sky", sky,
+                 "r,g,b constant sky radiance, or daylight[:T] for the Preetham sky lit by the sun "
+                 "(turbidity T in [2, 10], default 3)");
 }
 
 void CommonOptions::addDeviceOptions(CLI::App& cmd) {
@@ -30,7 +32,7 @@ Scene CommonOptions::loadScene() const {
   SceneOverrides overrides;
   if (!camera.empty()) overrides.camera = parseCamera(camera);
   if (!sun.empty()) overrides.sun = parseSun(sun);
-  if (!sky.empty()) overrides.skyRadiance = parseRgb(sky, "--sky");
+  if (!sky.empty()) overrides.sky = parseSky(sky);
   applyOverrides(s, overrides);
   return s;
 }

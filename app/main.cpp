@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   bounce::app::addInfoVerb(app, action);
   bounce::app::addRenderVerb(app, action);
   bounce::app::addBenchRaysVerb(app, action);
+  bounce::app::addReferenceVerb(app, action);
   bounce::app::addCompareVerb(app, action);
   try {
     app.parse(argc, argv);

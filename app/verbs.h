@@ -14,5 +14,6 @@ void addInfoVerb(CLI::App& app, VerbAction& action);
 void addRenderVerb(CLI::App& app, VerbAction& action);
 void addBenchRaysVerb(CLI::App& app, VerbAction& action);
 void addCompareVerb(CLI::App& app, VerbAction& action);
+void addReferenceVerb(CLI::App& app, VerbAction& action);
 
 }  // namespace bounce::app

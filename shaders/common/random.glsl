@@ -27,4 +27,24 @@ vec2 random2(uvec2 pixel, uint frame, uint purpose) {
   return vec2(h.xy >> 8u) * (1.0 / 16777216.0);
 }
 
+// The four-dimensional variant from the same paper, for keys with more than three parts.
+uvec4 pcg4d(uvec4 v) {
+  v = v * 1664525u + 1013904223u;
+  v.x += v.y * v.w;
+  v.y += v.z * v.x;
+  v.z += v.x * v.y;
+  v.w += v.y * v.z;
+  v ^= v >> 16u;
+  v.x += v.y * v.w;
+  v.y += v.z * v.x;
+  v.z += v.x * v.y;
+  v.w += v.y * v.z;
+  return v;
+}
+
+// Four uniform numbers in [0, 1) from the 24 high bits of each hash word.
+vec4 uniformFromHash(uvec4 h) {
+  return vec4(h >> 8u) * (1.0 / 16777216.0);
+}
+
 #endif

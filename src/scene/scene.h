@@ -112,10 +112,23 @@ struct Sun {
   float angularDiameterDegrees = 0.53f;
 };
 
-// Constant sky radiance for now; the analytic daylight sky comes with the hybrid frame.
+enum class SkyModel { Constant, Daylight };
+
+// What rays that leave the scene see. Constant: `radiance` in every direction. Daylight: the
+// analytic clear sky of Preetham, Shirley & Smits 1999 (shaders/common/sky.glsl) for the sun's
+// direction and `turbidity` (2 very clear, 3 clear, 6 hazy, 10 thin overcast; the model's
+// range). The model gives luminance in kcd/m^2; Bounce scales it by daylightSkyScale(sun) so that
+// sun and sky keep their natural ratio in whatever units the sun's irradiance E is given: E
+// stands for a clear day's direct-normal illuminance of kDaylightSunKilolux. Without a sun
+// (E = 0) the daylight sky is black; it fades out as the sun sets.
 struct Sky {
+  SkyModel model = SkyModel::Constant;
   glm::vec3 radiance{0.0f};
+  float turbidity = 3.0f;
 };
+
+inline constexpr float kDaylightSunKilolux = 100.0f;
+inline float daylightSkyScale(const Sun& sun) { return sun.irradiance / kDaylightSunKilolux; }
 
 struct Scene {
   std::string name;

@@ -106,10 +106,27 @@ glm::vec3 parseRgb(const std::string& text, const std::string& option) {
   return c;
 }
 
+Sky parseSky(const std::string& text) {
+  Sky sky;
+  const std::string daylight = "daylight";
+  if (text.compare(0, daylight.size(), daylight) != 0) {
+    sky.radiance = parseRgb(text, "--sky");
+    return sky;
+  }
+  sky.model = SkyModel::Daylight;
+  if (text.size() == daylight.size()) return sky;
+  const std::string form = "r,g,b or daylight[:T] (turbidity T in [2, 10])";
+  if (text[daylight.size()] != ':') fail("--sky '{}': expected {}", text, form);
+  sky.turbidity = parseScalar(text.substr(daylight.size() + 1), "--sky", form);
+  if (sky.turbidity < 2.0f || sky.turbidity > 10.0f)
+    fail("--sky '{}': turbidity must be in [2, 10], the range of the daylight model", text);
+  return sky;
+}
+
 void applyOverrides(Scene& scene, const SceneOverrides& overrides) {
   if (overrides.camera) scene.camera = overrides.camera;
   if (overrides.sun) scene.sun = *overrides.sun;
-  if (overrides.skyRadiance) scene.sky.radiance = *overrides.skyRadiance;
+  if (overrides.sky) scene.sky = *overrides.sky;
 }
 
 Camera effectiveCamera(const Scene& scene) {

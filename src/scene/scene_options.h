@@ -1,5 +1,6 @@
 // Parsing of the command-line options that keep one meaning in every verb (DESIGN.md §7):
-// --res WxH, --camera px,py,pz:tx,ty,tz:vfov, --sun dx,dy,dz:E[:r,g,b][:angle], --sky r,g,b.
+// --res WxH, --camera px,py,pz:tx,ty,tz:vfov, --sun dx,dy,dz:E[:r,g,b][:angle],
+// --sky r,g,b|daylight[:T].
 // Bad text gets a bounce::Error naming the option and the expected form.
 #pragma once
 #include <optional>
@@ -24,12 +25,15 @@ Camera parseCamera(const std::string& text);
 Sun parseSun(const std::string& text);
 // "r,g,b", each finite and >= 0.
 glm::vec3 parseRgb(const std::string& text, const std::string& option);
+// --sky: "r,g,b" (constant radiance) or "daylight[:T]" (Preetham sky lit by the sun, turbidity
+// T in [2, 10], default 3).
+Sky parseSky(const std::string& text);
 
 // What the common options change in a loaded scene.
 struct SceneOverrides {
   std::optional<Camera> camera;
   std::optional<Sun> sun;
-  std::optional<glm::vec3> skyRadiance;
+  std::optional<Sky> sky;
 };
 void applyOverrides(Scene& scene, const SceneOverrides& overrides);
 

@@ -1,0 +1,133 @@
+// Next-event estimation: picking a light and a point on it for a shading point, and the density
+// with which a BRDF-sampled ray that hits an emissive triangle would have been picked (for MIS).
+// The tables are built on the CPU (src/reference/light_table.cpp); their layout is described in
+// shared/reference_io.h.
+#ifndef BOUNCE_REFERENCE_LIGHTS_GLSL
+#define BOUNCE_REFERENCE_LIGHTS_GLSL
+#include "common/ray_offset.glsl"
+#include "common/sampling.glsl"
+#include "reference/settings.glsl"
+#include "reference/surface.glsl"
+
+// A point on a light as seen from a shading point x.
+struct LightSample {
+  vec3 direction;       // unit, from x towards the light
+  vec3 shadowTarget;    // trace the shadow ray to here (local lights) ...
+  bool distant;         // ... or to infinity along direction (distant lights)
+  vec3 radianceOverPdf; // incoming radiance / (pdf of this direction), selection included
+  float pdf;            // solid-angle density for MIS; 0 for delta lights (no MIS)
+  bool valid;
+};
+
+LightSample invalidLightSample() {
+  LightSample l;
+  l.direction = vec3(0.0, 1.0, 0.0);
+  l.shadowTarget = vec3(0.0);
+  l.distant = false;
+  l.radianceOverPdf = vec3(0.0);
+  l.pdf = 0.0;
+  l.valid = false;
+  return l;
+}
+
+// Walker's alias method: u.x picks an entry uniformly, u.y keeps it or takes its alias.
+uint pickLocalLight(vec2 u, out float pmf) {
+  LightAliasArray table = LightAliasArray(settings.lightAlias);
+  uint n = settings.localLightCount;
+  uint i = min(uint(u.x * float(n)), n - 1u);
+  ReferenceLightAlias entry = table.v[i];
+  uint chosen = u.y < entry.threshold ? i : entry.alias;
+  pmf = table.v[chosen].pmf;
+  return chosen;
+}
+
+// A uniform point on the triangle (Shirley's square-root warp; Pharr et al., PBRT 3rd ed.
+// §13.6.4): barycentrics (b1, b2) of v1 and v2.
+vec2 uniformTriangleBarycentrics(vec2 u) {
+  float r = sqrt(u.x);
+  return vec2(r * (1.0 - u.y), r * u.y);
+}
+
+LightSample sampleEmissiveTriangle(uint index, float pmf, vec3 x, vec2 u) {
+  ReferenceEmissiveTriangle e = EmissiveTriangleArray(settings.emissiveTriangles).v[index];
+  vec2 b = uniformTriangleBarycentrics(u);
+  vec3 y = e.p0 + b.x * e.edge1 + b.y * e.edge2;
+  vec3 toLight = y - x;
+  float distanceSq = dot(toLight, toLight);
+  LightSample l = invalidLightSample();
+  if (!(distanceSq > 0.0)) return l;
+  l.direction = toLight * inversesqrt(distanceSq);
+  float cosLight = -dot(e.frontNormal, l.direction);
+  if (cosLight <= 0.0) return l;  // x is behind the emitting side
+  GpuGeometry g = sceneGeometry(e.geometry);
+  GpuMaterial m = sceneMaterial(g.material);
+  // A cut-out part of an alpha-tested emitter is not there: BRDF rays pass through it
+  // (traceClosest with the alpha test), so light sampling must not count it either.
+  if ((m.flags & (MATERIAL_ALPHA_MASK | MATERIAL_ALPHA_BLEND)) != 0u &&
+      !alphaAccepts(e.geometry, e.primitive, b))
+    return l;
+  vec2 uv = interpolateUv(triangleVertices(g, e.primitive), b);
+  vec3 radiance = materialEmission(m, uv);
+  // Area density pmf / area, turned into solid angle at x.
+  l.pdf = pmf * distanceSq / (cosLight * e.area);
+  l.radianceOverPdf = radiance / l.pdf;
+  l.shadowTarget = offsetRayOrigin(y, e.frontNormal);
+  l.valid = l.pdf > 0.0;
+  return l;
+}
+
+// glTF KHR_lights_punctual: intensity / distance^2, times the spot's smooth angular falloff.
+LightSample samplePunctualLight(uint index, float pmf, vec3 x) {
+  ReferencePunctualLight p = PunctualLightArray(settings.punctualLights).v[index];
+  vec3 toLight = p.position - x;
+  float distanceSq = dot(toLight, toLight);
+  LightSample l = invalidLightSample();
+  if (!(distanceSq > 0.0)) return l;
+  l.direction = toLight * inversesqrt(distanceSq);
+  float attenuation = 1.0;
+  if (p.type == REFERENCE_LIGHT_SPOT) {
+    float a = clamp(dot(p.spotDirection, -l.direction) * p.angleScale + p.angleOffset, 0.0, 1.0);
+    attenuation = a * a;
+  }
+  l.radianceOverPdf = p.intensity * (attenuation / (distanceSq * pmf));
+  l.shadowTarget = p.position;
+  l.pdf = 0.0;
+  l.valid = attenuation > 0.0;
+  return l;
+}
+
+// One local light (emissive triangle or punctual light), picked in proportion to its power.
+// u.xy choose the light, u.zw the point on it.
+LightSample sampleLocalLight(vec3 x, vec4 u) {
+  if (settings.localLightCount == 0u) return invalidLightSample();
+  float pmf;
+  uint index = pickLocalLight(u.xy, pmf);
+  if (!(pmf > 0.0)) return invalidLightSample();
+  if (index < settings.emissiveTriangleCount) return sampleEmissiveTriangle(index, pmf, x, u.zw);
+  return samplePunctualLight(index - settings.emissiveTriangleCount, pmf, x);
+}
+
+// Distant light k: a direction uniformly within its cone (or its one direction).
+LightSample sampleDistantLight(uint k, vec2 u) {
+  ReferenceDistantLight d = DistantLightArray(settings.distantLights).v[k];
+  LightSample l = invalidLightSample();
+  l.distant = true;
+  l.direction = d.cosHalfAngle < 1.0 ? sampleCone(d.towardLight, d.cosHalfAngle, u) : d.towardLight;
+  l.radianceOverPdf = d.coneWeight;
+  l.pdf = 0.0;  // never hit by BRDF rays: no MIS
+  l.valid = true;
+  return l;
+}
+
+// Density with which sampleLocalLight would have produced the direction of a ray from
+// `origin` that hit the front of an emissive triangle of `material` at `hitPoint`, whose
+// geometric normal is n.
+float emissiveHitLightPdf(uint material, vec3 origin, vec3 hitPoint, vec3 n) {
+  float areaPdf = FloatArray(settings.materialLightAreaPdf).v[material];
+  vec3 d = hitPoint - origin;
+  float distanceSq = dot(d, d);
+  float cosLight = abs(dot(n, d)) * inversesqrt(distanceSq);
+  return cosLight > 0.0 ? areaPdf * distanceSq / cosLight : 0.0;
+}
+
+#endif

@@ -1,0 +1,112 @@
+// What the path tracer needs to know about a hit point: position, a geometric normal and a
+// shading normal on the side the ray came from, the glTF material there (textures applied) as
+// a BrdfMaterial, and the radiance it emits back along the ray.
+#ifndef BOUNCE_REFERENCE_SURFACE_GLSL
+#define BOUNCE_REFERENCE_SURFACE_GLSL
+#include "common/brdf.glsl"
+#include "rt/trace.glsl"
+
+struct Surface {
+  vec3 position;
+  vec3 geometricNormal;  // unit, on the side of the incoming ray
+  vec3 shadingNormal;    // unit, on the same side, with wo above it
+  vec3 emission;         // radiance towards the ray origin (front faces only)
+  uint material;
+  BrdfMaterial brdf;
+};
+
+// Emitted radiance of a material at uv: emissive factor (strength folded in) x emissive texture.
+vec3 materialEmission(GpuMaterial m, vec2 uv) {
+  vec3 e = m.emissive;
+  if (m.emissiveTexture != NO_TEXTURE && any(greaterThan(e, vec3(0.0))))
+    e *= sampleSceneTexture(m.emissiveTexture, uv, 0.0).rgb;
+  return e;
+}
+
+// The normal map's perturbation of shading normal n, in a tangent frame made from the
+// triangle's uv gradient (the glTF sample viewer's rule when a mesh has no tangents):
+// t = dP/du made orthogonal to n, b = cross(n, t), flipped when the uv layout is mirrored
+// (glTF's v runs down the image, so an unmirrored layout has b along -dP/dv).
+vec3 applyNormalMap(GpuMaterial m, vec3 n, vec3 e1, vec3 e2, vec2 duv1, vec2 duv2, vec2 uv) {
+  float det = duv1.x * duv2.y - duv1.y * duv2.x;
+  if (abs(det) < 1e-12) return n;
+  vec3 dPdu = (e1 * duv2.y - e2 * duv1.y) / det;
+  vec3 dPdv = (e2 * duv1.x - e1 * duv2.x) / det;
+  vec3 t = dPdu - n * dot(n, dPdu);
+  if (dot(t, t) < 1e-20) return n;
+  t = normalize(t);
+  vec3 b = cross(n, t);
+  if (dot(b, dPdv) > 0.0) b = -b;
+  vec3 tangentSpace = sampleSceneTexture(m.normalTexture, uv, 0.0).rgb * 2.0 - 1.0;
+  tangentSpace.xy *= m.normalScale;
+  vec3 perturbed = tangentSpace.x * t + tangentSpace.y * b + tangentSpace.z * n;
+  return dot(perturbed, perturbed) > 1e-12 ? normalize(perturbed) : n;
+}
+
+bool instanceMirrors(GpuInstance instance) {
+  return dot(instance.worldToObject[0].xyz,
+             cross(instance.worldToObject[1].xyz, instance.worldToObject[2].xyz)) < 0.0;
+}
+
+Surface loadSurface(TraceHit hit, vec3 rayDirection, bool lambertOnly) {
+  GpuInstance instance = sceneInstance(hit.instance);
+  GpuGeometry geometry = sceneGeometry(hit.geometry);
+  GpuMaterial m = sceneMaterial(geometry.material);
+  uvec3 tri = triangleVertices(geometry, hit.primitive);
+  Vec3Array positions = Vec3Array(scene.positions);
+  vec3 p0 = transformPoint(instance.objectToWorld, positions.v[tri.x]);
+  vec3 p1 = transformPoint(instance.objectToWorld, positions.v[tri.y]);
+  vec3 p2 = transformPoint(instance.objectToWorld, positions.v[tri.z]);
+  vec2 b = hit.barycentrics;
+
+  Surface s;
+  s.material = geometry.material;
+  s.position = p0 * (1.0 - b.x - b.y) + p1 * b.x + p2 * b.y;
+  vec3 e1 = p1 - p0;
+  vec3 e2 = p2 - p0;
+  // The glTF front face, from the same world-space triangle and rule the light table uses for
+  // the emitting side (src/reference/light_table.cpp), so that light sampling and BRDF hits
+  // agree exactly on which side emits: counter-clockwise, or clockwise under a mirroring
+  // instance transform. This is TraceHit.frontFacing by definition.
+  vec3 frontNormal = cross(e1, e2) * (instanceMirrors(instance) ? -1.0 : 1.0);
+  bool frontFacing = dot(frontNormal, rayDirection) < 0.0;
+  vec3 ng = dot(frontNormal, frontNormal) > 0.0 ? normalize(frontNormal) : -rayDirection;
+  if (dot(ng, rayDirection) > 0.0) ng = -ng;
+  s.geometricNormal = ng;
+
+  // The interpolated normal decides which side is the back; the normal map is applied in the
+  // front-side frame and flipped with it (the sample viewer's rule for double-sided surfaces).
+  vec3 ns = transformNormal(instance, interpolateNormal(tri, b));
+  ns = dot(ns, ns) > 0.0 ? normalize(ns) : ng;
+  bool flip = dot(ns, ng) < 0.0;
+  if (flip) ns = -ns;
+  vec2 uv = interpolateUv(tri, b);
+  if (m.normalTexture != NO_TEXTURE) {
+    Vec2Array uvs = Vec2Array(scene.uvs);
+    vec2 uv0 = uvs.v[tri.x];
+    vec3 front = flip ? -ns : ns;
+    ns = applyNormalMap(m, front, e1, e2, uvs.v[tri.y] - uv0, uvs.v[tri.z] - uv0, uv);
+    if (flip) ns = -ns;
+  }
+  // A shading normal that hides the viewer would make the BRDF zero for every direction.
+  if (dot(ns, -rayDirection) <= 0.0 || any(isnan(ns))) ns = ng;
+  s.shadingNormal = ns;
+
+  vec3 baseColor = m.baseColor.rgb;
+  if (m.baseColorTexture != NO_TEXTURE)
+    baseColor *= sampleSceneTexture(m.baseColorTexture, uv, 0.0).rgb;
+  float metallic = m.metallic;
+  float roughness = m.roughness;
+  if (m.metallicRoughnessTexture != NO_TEXTURE) {
+    vec4 mr = sampleSceneTexture(m.metallicRoughnessTexture, uv, 0.0);
+    roughness *= mr.g;
+    metallic *= mr.b;
+  }
+  if (lambertOnly) metallic = 0.0;
+  s.brdf = makeBrdfMaterial(baseColor, metallic, roughness, lambertOnly);
+  // Emission is one-sided: only the glTF front face emits.
+  s.emission = frontFacing ? materialEmission(m, uv) : vec3(0.0);
+  return s;
+}
+
+#endif

@@ -1,0 +1,214 @@
+#include "reference/light_table.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "core/error.h"
+#include "scene/texture_pack.h"
+
+namespace bounce {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// transformPoint of shaders/rt/scene.glsl: the same float operations, so that CPU-side light
+// geometry matches what the GPU computes at a hit.
+glm::vec3 transformPoint(const glm::vec4 (&rows)[3], const glm::vec3& p) {
+  return {glm::dot(glm::vec3(rows[0]), p) + rows[0].w, glm::dot(glm::vec3(rows[1]), p) + rows[1].w,
+          glm::dot(glm::vec3(rows[2]), p) + rows[2].w};
+}
+
+// The tracer flips frontFacing for instances whose transform mirrors (scene_bvh.h).
+bool mirrors(const gpu::GpuInstance& instance) {
+  const glm::vec4* w = instance.worldToObject;
+  return glm::dot(glm::vec3(w[0]), glm::cross(glm::vec3(w[1]), glm::vec3(w[2]))) < 0.0f;
+}
+
+glm::vec3 meanTextureColor(const Image& image) {
+  glm::dvec3 sum(0.0);
+  const size_t texels = size_t(image.width) * size_t(image.height);
+  for (size_t i = 0; i < texels; ++i)
+    for (int c = 0; c < 3; ++c) sum[c] += srgb8ToLinear(image.rgba[4 * i + size_t(c)]);
+  return texels ? glm::vec3(sum / double(texels)) : glm::vec3(1.0f);
+}
+
+struct LocalLights {
+  std::vector<gpu::ReferenceEmissiveTriangle> triangles;
+  std::vector<double> trianglePower;
+};
+
+// Every emissive triangle of every instance, in world space.
+LocalLights gatherEmissiveTriangles(const Scene& scene, const rt::SceneBvh& bvh,
+                                    const std::vector<float>& materialLuminance) {
+  LocalLights out;
+  for (const gpu::GpuInstance& instance : bvh.instances) {
+    const Mesh& mesh = scene.meshes.at(instance.mesh);
+    const float side = mirrors(instance) ? -1.0f : 1.0f;
+    for (uint32_t local = 0; local < mesh.geometries.size(); ++local) {
+      const uint32_t global = instance.geometryBase + local;
+      const gpu::GpuGeometry& g = bvh.geometries.at(global);
+      const float emittedLuminance = materialLuminance.at(g.material);
+      if (!(emittedLuminance > 0.0f)) continue;
+      for (uint32_t primitive = 0; primitive < g.triangleCount; ++primitive) {
+        glm::vec3 p[3];
+        for (uint32_t k = 0; k < 3; ++k) {
+          uint32_t vertex = bvh.indices[g.firstIndex + 3 * primitive + k] + g.vertexOffset;
+          p[k] = transformPoint(instance.objectToWorld, bvh.positions[vertex]);
+        }
+        gpu::ReferenceEmissiveTriangle t{};
+        t.p0 = p[0];
+        t.edge1 = p[1] - p[0];
+        t.edge2 = p[2] - p[0];
+        glm::vec3 normal = glm::cross(t.edge1, t.edge2);
+        float twiceArea = glm::length(normal);
+        if (!(twiceArea > 0.0f) || !std::isfinite(twiceArea)) continue;  // no ray can hit it
+        t.area = 0.5f * twiceArea;
+        t.frontNormal = side * normal / twiceArea;
+        t.geometry = global;
+        t.primitive = primitive;
+        out.triangles.push_back(t);
+        out.trianglePower.push_back(kPi * double(t.area) * double(emittedLuminance));
+      }
+    }
+  }
+  return out;
+}
+
+gpu::ReferencePunctualLight makePunctualLight(const PunctualLight& light) {
+  gpu::ReferencePunctualLight p{};
+  p.position = light.position;
+  p.intensity = light.intensity * light.color;
+  p.spotDirection = glm::normalize(light.direction);
+  if (light.type == PunctualLight::Type::Spot) {
+    // The glTF KHR_lights_punctual reference falloff.
+    p.type = gpu::REFERENCE_LIGHT_SPOT;
+    float cosOuter = std::cos(light.outerConeAngle);
+    float cosInner = std::cos(light.innerConeAngle);
+    p.angleScale = 1.0f / std::max(0.001f, cosInner - cosOuter);
+    p.angleOffset = -cosOuter * p.angleScale;
+  } else {
+    p.type = gpu::REFERENCE_LIGHT_POINT;
+    p.angleScale = 0.0f;
+    p.angleOffset = 1.0f;
+  }
+  return p;
+}
+
+// A light at infinity with irradiance E (on a surface facing it), seen as a disc of the given
+// angular diameter. The disc's radiance is E / (pi sin^2 theta_max), the value for which a
+// surface facing it receives exactly E (and a surface tilted by theta, with the whole disc
+// above its horizon, exactly E cos theta); sampling the cone's solid angle
+// 2 pi (1 - cos theta_max) uniformly gives coneWeight = E * 2 / (1 + cos theta_max).
+gpu::ReferenceDistantLight makeDistantLight(const glm::vec3& travelDirection,
+                                            const glm::vec3& irradiance,
+                                            float angularDiameterDegrees) {
+  gpu::ReferenceDistantLight d{};
+  d.towardLight = -glm::normalize(travelDirection);
+  double halfAngle = 0.5 * double(angularDiameterDegrees) * kPi / 180.0;
+  d.cosHalfAngle = halfAngle > 0.0 ? float(std::cos(halfAngle)) : 1.0f;
+  d.coneWeight =
+      d.cosHalfAngle < 1.0f ? irradiance * float(2.0 / (1.0 + std::cos(halfAngle))) : irradiance;
+  return d;
+}
+
+std::vector<gpu::ReferenceDistantLight> gatherDistantLights(const Scene& scene) {
+  std::vector<gpu::ReferenceDistantLight> lights;
+  if (scene.sun.irradiance > 0.0f)
+    lights.push_back(makeDistantLight(scene.sun.direction, scene.sun.irradiance * scene.sun.color,
+                                      scene.sun.angularDiameterDegrees));
+  for (const PunctualLight& l : scene.lights)
+    if (l.type == PunctualLight::Type::Directional && l.intensity > 0.0f)
+      lights.push_back(makeDistantLight(l.direction, l.intensity * l.color, 0.0f));
+  if (lights.size() > gpu::REFERENCE_MAX_DISTANT_LIGHTS)
+    fail(
+        "{}: {} distant lights (sun and directional lights); the reference tracer takes at most {}",
+        scene.name, lights.size(), gpu::REFERENCE_MAX_DISTANT_LIGHTS);
+  return lights;
+}
+
+}  // namespace
+
+float luminance(const glm::vec3& rgb) {
+  return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z;
+}
+
+glm::vec3 meanEmission(const Scene& scene, const Material& material) {
+  glm::vec3 e = material.emissive;
+  if (material.emissiveTexture >= 0 && glm::any(glm::greaterThan(e, glm::vec3(0.0f))))
+    e *= meanTextureColor(scene.images.at(size_t(material.emissiveTexture)));
+  return e;
+}
+
+double punctualLightPower(const PunctualLight& light) {
+  double intensity = double(luminance(light.intensity * light.color));
+  if (light.type == PunctualLight::Type::Spot)
+    return 2.0 * kPi * (1.0 - std::cos(double(light.outerConeAngle))) * intensity;
+  return 4.0 * kPi * intensity;
+}
+
+std::vector<gpu::ReferenceLightAlias> buildAliasTable(std::span<const double> weights) {
+  const size_t n = weights.size();
+  double sum = 0.0;
+  for (double w : weights) {
+    if (!(w >= 0.0) || !std::isfinite(w)) fail("alias table: weight {} is not finite and >= 0", w);
+    sum += w;
+  }
+  if (!(sum > 0.0)) fail("alias table: the weights sum to {}", sum);
+
+  std::vector<gpu::ReferenceLightAlias> table(n);
+  std::vector<double> scaled(n);  // probability x n: 1 means "exactly its share"
+  std::vector<uint32_t> small, large;
+  for (size_t i = 0; i < n; ++i) {
+    table[i].pmf = float(weights[i] / sum);
+    table[i].alias = uint32_t(i);
+    scaled[i] = weights[i] / sum * double(n);
+    (scaled[i] < 1.0 ? small : large).push_back(uint32_t(i));
+  }
+  // Each under-full entry is topped up by one over-full entry, which then may become under-full.
+  while (!small.empty() && !large.empty()) {
+    uint32_t s = small.back(), l = large.back();
+    small.pop_back();
+    table[s].threshold = float(scaled[s]);
+    table[s].alias = l;
+    scaled[l] = (scaled[l] + scaled[s]) - 1.0;
+    if (scaled[l] < 1.0) {
+      large.pop_back();
+      small.push_back(l);
+    }
+  }
+  // What remains is full up to rounding.
+  for (uint32_t i : large) table[i].threshold = 1.0f;
+  for (uint32_t i : small) table[i].threshold = 1.0f;
+  return table;
+}
+
+ReferenceLightTable buildReferenceLights(const Scene& scene, const rt::SceneBvh& bvh) {
+  ReferenceLightTable table;
+  std::vector<float> materialLuminance;
+  for (const Material& m : scene.materials)
+    materialLuminance.push_back(luminance(meanEmission(scene, m)));
+
+  LocalLights emissive = gatherEmissiveTriangles(scene, bvh, materialLuminance);
+  table.emissiveTriangles = std::move(emissive.triangles);
+  std::vector<double> power = std::move(emissive.trianglePower);
+  for (const PunctualLight& l : scene.lights) {
+    if (l.type == PunctualLight::Type::Directional) continue;
+    double p = punctualLightPower(l);
+    if (!(p > 0.0)) continue;
+    table.punctualLights.push_back(makePunctualLight(l));
+    power.push_back(p);
+  }
+  table.distantLights = gatherDistantLights(scene);
+
+  table.materialLightAreaPdf.assign(scene.materials.size(), 0.0f);
+  if (power.empty()) return table;
+  table.alias = buildAliasTable(power);
+  for (double p : power) table.totalLocalPower += p;
+  for (size_t m = 0; m < scene.materials.size(); ++m)
+    table.materialLightAreaPdf[m] =
+        float(kPi * double(materialLuminance[m]) / table.totalLocalPower);
+  return table;
+}
+
+}  // namespace bounce

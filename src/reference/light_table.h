@@ -1,0 +1,55 @@
+// The lights the reference path tracer samples, gathered on the CPU once per scene (see
+// shared/reference_io.h for the GPU layout):
+//   - distant lights: the sun and KHR directional lights;
+//   - local lights: every emissive triangle of every instance, in world space, and the KHR
+//     point and spot lights, with an alias table that picks one in proportion to its power.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "rt/scene_bvh.h"
+#include "scene/scene.h"
+#include "shared/reference_io.h"
+
+namespace bounce {
+
+struct ReferenceLightTable {
+  std::vector<gpu::ReferenceEmissiveTriangle> emissiveTriangles;
+  std::vector<gpu::ReferencePunctualLight> punctualLights;
+  std::vector<gpu::ReferenceLightAlias> alias;  // emissive triangles first, then punctual lights
+  std::vector<gpu::ReferenceDistantLight> distantLights;
+  std::vector<float> materialLightAreaPdf;  // per Scene::materials entry, see reference_io.h
+  double totalLocalPower = 0.0;             // W (luminance-weighted), the alias table's sum
+
+  uint32_t localLightCount() const { return uint32_t(alias.size()); }
+};
+
+// Rec. 709 luminance of linear RGB.
+float luminance(const glm::vec3& rgb);
+
+// The mean emitted radiance of a material over its surface: emissive factor x the mean of its
+// emissive texture (decoded from sRGB). This is what light selection weighs triangles by.
+glm::vec3 meanEmission(const Scene& scene, const Material& material);
+
+// Power (luminance-weighted flux) each light contributes to the selection, in watts:
+//   emissive triangle   pi * area * luminance(mean emission)   (one side emits)
+//   point light         4 pi * luminance(intensity * colour)
+//   spot light          2 pi (1 - cos outerConeAngle) * luminance(intensity * colour)
+// The spot's is the flux of its full cone without the falloff: an estimate, which only steers
+// selection (any positive weight keeps the estimator unbiased).
+double punctualLightPower(const PunctualLight& light);
+
+// Walker's alias table (Walker 1977) built with Vose's stable method (Vose 1991, "A Linear
+// Algorithm for Generating Random Numbers with a Given Distribution"): entry i is chosen with
+// probability weights[i] / sum. Weights must be finite and >= 0 with a positive sum.
+std::vector<gpu::ReferenceLightAlias> buildAliasTable(std::span<const double> weights);
+
+// Everything above for a scene whose BVH arrays (instance transforms, vertex streams) are
+// `bvh`, exactly as the GPU sees them. Throws bounce::Error when the scene has more distant
+// lights than REFERENCE_MAX_DISTANT_LIGHTS.
+ReferenceLightTable buildReferenceLights(const Scene& scene, const rt::SceneBvh& bvh);
+
+}  // namespace bounce
