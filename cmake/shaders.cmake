@@ -1,6 +1,7 @@
 # Compiles every compute shader under shaders/ to SPIR-V with glslc and embeds the words in the
 # library, so `bounce` needs no files beside it. A shader is looked up by its path without the
-# extension, e.g. "rt/trace_rays" (see src/vk/shader_registry.h).
+# extension, e.g. "rt/trace_rays" (see src/vk/shader_registry.h). Graphics stages keep their
+# extension, since a pass's vertex and fragment shaders share a base name: "passes/vbuffer.vert".
 file(GLOB_RECURSE BOUNCE_SHADER_SOURCES CONFIGURE_DEPENDS
   ${CMAKE_SOURCE_DIR}/shaders/*.comp ${CMAKE_SOURCE_DIR}/shaders/*.vert ${CMAKE_SOURCE_DIR}/shaders/*.frag)
 
@@ -11,7 +12,7 @@ set(spv_files)
 set(spv_names)
 foreach(src ${BOUNCE_SHADER_SOURCES})
   file(RELATIVE_PATH rel ${CMAKE_SOURCE_DIR}/shaders ${src})
-  string(REGEX REPLACE "\\.(comp|vert|frag)$" "" name ${rel})
+  string(REGEX REPLACE "\\.comp$" "" name ${rel})
   set(spv ${spv_dir}/${rel}.spv)
   get_filename_component(spv_parent ${spv} DIRECTORY)
   add_custom_command(

@@ -55,16 +55,16 @@ struct FrameConstants {
   float skyAmbientStrength;     // placeholder ambient (unoccluded sky light), 0 = off
   float exposure;               // radiance multiplier before the tone curve
   uint frameIndex;
-  uvec2 resolution;             // render resolution
-  uvec2 shadowResolution;       // shadows.raw
-  uint shadowDivisor;           // render resolution / shadow resolution
-  uint flags;                   // FRAME_FLAG_*
-  DeviceAddress punctualLights;  // ReferencePunctualLight[punctualLightCount]
+  uvec2 resolution;                 // render resolution
+  uvec2 shadowResolution;           // shadows.raw
+  uint shadowDivisor;               // render resolution / shadow resolution
+  uint flags;                       // FRAME_FLAG_*
+  DeviceAddress punctualLights;     // ReferencePunctualLight[punctualLightCount]
   DeviceAddress directionalLights;  // ReferenceDistantLight[], KHR directional lights, not the sun
   uint punctualLightCount;
   uint directionalLightCount;
-  float shadowMaxHistory;        // frames the shadow accumulation averages at most
-  float nearPlane;               // of the reversed-Z projection
+  float shadowMaxHistory;  // frames the shadow accumulation averages at most
+  float nearPlane;         // of the reversed-Z projection
 };
 BOUNCE_CHECK_SIZE(FrameConstants, 312);
 
@@ -80,7 +80,7 @@ BOUNCE_CHECK_SIZE(HybridPassConstants, 16);
 struct VBufferDrawConstants {
   DeviceAddress frame;  // FrameConstants
   uint instance;
-  uint geometry;        // global geometry index
+  uint geometry;  // global geometry index
 };
 BOUNCE_CHECK_SIZE(VBufferDrawConstants, 16);
 

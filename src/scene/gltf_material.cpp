@@ -7,7 +7,7 @@
 
 #include "core/error.h"
 #include "scene/gltf_internal.h"
-#include "scene/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace bounce::gltf {
 namespace {

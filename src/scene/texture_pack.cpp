@@ -7,7 +7,7 @@
 #include <map>
 
 #include "core/error.h"
-#include "scene/parallel_for.h"
+#include "core/parallel_for.h"
 
 namespace bounce {
 namespace {

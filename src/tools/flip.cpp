@@ -13,7 +13,7 @@
 
 #include "core/error.h"
 #include "tools/color_space.h"
-#include "tools/parallel.h"
+#include "core/parallel_for.h"
 
 namespace bounce {
 namespace {

@@ -1,5 +1,5 @@
-// A minimal parallel loop for independent, coarse jobs (decoding images, building mip chains)
-// during scene loading. Each job should take milliseconds or more: a thread is started per
+// Minimal parallel loops for independent, coarse jobs (decoding images, building mip chains,
+// image metrics). Each job should take milliseconds or more: a thread is started per
 // worker for every call, so this is not for fine-grained work.
 #pragma once
 #include <algorithm>
@@ -48,6 +48,17 @@ void parallelFor(size_t count, const Job& job) {
   work();
   for (std::thread& t : threads) t.join();
   if (firstError) std::rethrow_exception(firstError);
+}
+
+// Calls rowBand(begin, end) for disjoint bands covering [0, rows), one band per thread at most.
+// Bands of fewer than `minRowsPerBand` rows are not worth a thread.
+template <typename RowBand>
+void parallelForRows(int rows, const RowBand& rowBand, int minRowsPerBand = 32) {
+  const int hardware = int(std::max(1u, std::thread::hardware_concurrency()));
+  const int bands = std::clamp(rows / std::max(1, minRowsPerBand), 1, hardware);
+  parallelFor(size_t(bands), [&](size_t band) {
+    rowBand(rows * int(band) / bands, rows * (int(band) + 1) / bands);
+  });
 }
 
 }  // namespace bounce

@@ -1,0 +1,106 @@
+// composite: the frame's radiance before exposure (DESIGN.md §4 step 7):
+//   direct sun (glTF BRDF, shaders/common/brdf.glsl) x denoised sun visibility
+//   + KHR point, spot and directional lights (unshadowed for now)
+//   + diffuse GI x albedo + reflections (input slots; zero for --gi none)
+//   + a placeholder ambient: unoccluded sky light, until a GI mode replaces it
+//   + emission; the sky where no surface is seen.
+#version 460
+#include "common/brdf.glsl"
+#include "passes/hybrid_frame.glsl"
+#include "shared/reference_io.h"
+
+layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
+layout(push_constant, scalar) uniform Push { HybridPassConstants pc; };
+
+layout(set = 1, binding = COMPOSITE_BINDING_BASE_COLOR, rgba16f) uniform readonly image2D baseColors;
+layout(set = 1, binding = COMPOSITE_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
+layout(set = 1, binding = COMPOSITE_BINDING_DEPTH, r32f) uniform readonly image2D depths;
+layout(set = 1, binding = COMPOSITE_BINDING_EMISSIVE, rgba16f) uniform readonly image2D emissives;
+layout(set = 1, binding = COMPOSITE_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
+layout(set = 1, binding = COMPOSITE_BINDING_SHADOWS, rg16f) uniform readonly image2D shadows;
+layout(set = 1, binding = COMPOSITE_BINDING_SKY, rgba16f) uniform readonly image2D sky;
+layout(set = 1, binding = COMPOSITE_BINDING_GI_DIFFUSE, rgba16f) uniform readonly image2D giDiffuse;
+layout(set = 1, binding = COMPOSITE_BINDING_REFLECTIONS, rgba16f) uniform readonly image2D reflections;
+layout(set = 1, binding = COMPOSITE_BINDING_OUTPUT, rgba16f) uniform writeonly image2D hdrOut;
+
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer PunctualLights {
+  ReferencePunctualLight v[];
+};
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer DirectionalLights {
+  ReferenceDistantLight v[];
+};
+
+// glTF KHR_lights_punctual: intensity / distance^2 with the spot's smooth angular falloff.
+vec3 punctualLight(ReferencePunctualLight p, BrdfMaterial m, vec3 position, vec3 n, vec3 wo) {
+  vec3 toLight = p.position - position;
+  float distanceSq = dot(toLight, toLight);
+  if (!(distanceSq > 0.0)) return vec3(0.0);
+  vec3 wi = toLight * inversesqrt(distanceSq);
+  float attenuation = 1.0;
+  if (p.type == REFERENCE_LIGHT_SPOT) {
+    float a = clamp(dot(p.spotDirection, -wi) * p.angleScale + p.angleOffset, 0.0, 1.0);
+    attenuation = a * a;
+  }
+  return brdfEvaluate(m, n, wo, wi) * max(dot(n, wi), 0.0) * p.intensity * (attenuation / distanceSq);
+}
+
+vec3 localLights(FrameConstants f, BrdfMaterial m, vec3 position, vec3 n, vec3 wo) {
+  vec3 sum = vec3(0.0);
+  for (uint i = 0u; i < f.punctualLightCount; ++i)
+    sum += punctualLight(PunctualLights(f.punctualLights).v[i], m, position, n, wo);
+  for (uint i = 0u; i < f.directionalLightCount; ++i) {
+    ReferenceDistantLight d = DirectionalLights(f.directionalLights).v[i];
+    // The table stores the cone-sampling weight E 2 / (1 + cos); undo it for the irradiance.
+    vec3 irradiance = d.coneWeight * (0.5 * (1.0 + d.cosHalfAngle));
+    sum += brdfEvaluate(m, n, wo, d.towardLight) * max(dot(n, d.towardLight), 0.0) * irradiance;
+  }
+  return sum;
+}
+
+// Unoccluded sky irradiance / pi around n from eight cosine-distributed directions on a
+// Fibonacci spiral: a placeholder for diffuse GI, which knows about occlusion.
+vec3 skyAmbient(FrameConstants f, vec3 n) {
+  const uint count = 8u;
+  const float goldenAngle = 2.39996323;
+  vec3 t, b;
+  orthonormalBasis(n, t, b);
+  vec3 sum = vec3(0.0);
+  for (uint i = 0u; i < count; ++i) {
+    float u = (float(i) + 0.5) / float(count);
+    float r = sqrt(u);
+    float phi = float(i) * goldenAngle;
+    vec3 dir = r * cos(phi) * t + r * sin(phi) * b + sqrt(1.0 - u) * n;
+    sum += skyRadianceToward(f, normalize(dir));
+  }
+  return sum / float(count);
+}
+
+vec3 surfaceRadiance(FrameConstants f, ivec2 pixel) {
+  vec4 baseMetallic = imageLoad(baseColors, pixel);
+  vec4 emissiveRoughness = imageLoad(emissives, pixel);
+  vec3 n = decodeOctahedral(imageLoad(normals, pixel).xy);
+  vec3 dir = pixelRayDirection(f, vec2(pixel) + 0.5);
+  vec3 wo = -dir;
+  vec3 position = positionFromDepth(f, vec2(pixel) + 0.5, imageLoad(depths, pixel).x);
+  bool lambert = (f.flags & FRAME_FLAG_LAMBERT) != 0u;
+  BrdfMaterial m = makeBrdfMaterial(baseMetallic.rgb, lambert ? 0.0 : baseMetallic.w,
+                                    emissiveRoughness.w, lambert);
+
+  float sunVisibility = imageLoad(shadows, pixel).x;
+  vec3 sun = brdfEvaluate(m, n, wo, f.towardSun) * max(dot(n, f.towardSun), 0.0) * f.sunIrradiance;
+  vec3 diffuseAlbedo = m.baseColor * (1.0 - m.metallic);
+  vec3 indirect = diffuseAlbedo * (imageLoad(giDiffuse, pixel).rgb + f.skyAmbientStrength * skyAmbient(f, n));
+  return sun * sunVisibility + localLights(f, m, position, n, wo) + indirect +
+         imageLoad(reflections, pixel).rgb + emissiveRoughness.rgb;
+}
+
+void main() {
+  FrameConstants f = FrameBlock(pc.frame).v;
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
+  bool surface = (imageLoad(flags, pixel).x & GBUFFER_FLAG_SURFACE) != 0u;
+  vec3 radiance = surface ? surfaceRadiance(f, pixel) : imageLoad(sky, pixel).rgb;
+  // A non-finite value would poison every later temporal pass that reads the frame.
+  if (any(isnan(radiance)) || any(isinf(radiance))) radiance = vec3(0.0);
+  imageStore(hdrOut, pixel, vec4(min(radiance, vec3(65000.0)), 1.0));
+}

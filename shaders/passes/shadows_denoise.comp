@@ -1,0 +1,110 @@
+// shadows-denoise: brings the shadow pixels to full resolution and averages them over time.
+//   1. Joint bilateral upsample (Kopf et al. 2007, "Joint Bilateral Upsampling"): the four
+//      nearest shadow pixels, bilinear weights times how well each one's surface agrees with
+//      this pixel's (distance to this pixel's tangent plane, normal similarity), so shadows do
+//      not bleed across depth or orientation edges.
+//   2. Temporal accumulation: the pixel's position last frame (velocity) is looked up in last
+//      frame's result; where last frame saw the same surface there (view depth agrees) the new
+//      value joins a running mean of up to shadowMaxHistory frames, else the history restarts.
+//      Nothing non-finite is ever stored.
+#version 460
+#include "passes/hybrid_frame.glsl"
+
+layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
+layout(push_constant, scalar) uniform Push { HybridPassConstants pc; };
+
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_RAW, r16f) uniform readonly image2D raw;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_DEPTH, r32f) uniform readonly image2D depths;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_VELOCITY, rg16f) uniform readonly image2D velocities;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_PREVIOUS_DEPTH, r32f) uniform readonly image2D previousDepths;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_PREVIOUS, rg16f) uniform readonly image2D previous;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_CURRENT, rg16f) uniform writeonly image2D current;
+
+// How far (relative to view depth) a neighbour may sit off this pixel's tangent plane, and how
+// far last frame's depth may differ, before they count as another surface.
+const float PLANE_TOLERANCE = 0.01;
+const float HISTORY_DEPTH_TOLERANCE = 0.03;
+const float NORMAL_POWER = 8.0;
+
+struct GSample {
+  vec3 position;
+  vec3 normal;
+  float depth;
+  bool surface;
+};
+
+GSample loadGSample(FrameConstants f, ivec2 pixel) {
+  GSample s;
+  s.surface = (imageLoad(flags, pixel).x & GBUFFER_FLAG_SURFACE) != 0u;
+  s.depth = imageLoad(depths, pixel).x;
+  s.normal = decodeOctahedral(imageLoad(normals, pixel).zw);
+  s.position = positionFromDepth(f, vec2(pixel) + 0.5, s.depth);
+  return s;
+}
+
+// Must match shadows_trace.comp.
+ivec2 fullResPixel(FrameConstants f, ivec2 shadowPixel) {
+  ivec2 p = shadowPixel * int(f.shadowDivisor) + int(f.shadowDivisor / 2u);
+  return min(p, ivec2(f.resolution) - 1);
+}
+
+float upsampledVisibility(FrameConstants f, ivec2 pixel, GSample here) {
+  float d = float(f.shadowDivisor);
+  vec2 u = (vec2(pixel) - float(f.shadowDivisor / 2u)) / d;
+  ivec2 base = ivec2(floor(u));
+  vec2 t = u - vec2(base);
+  ivec2 maxShadow = ivec2(f.shadowResolution) - 1;
+  float sum = 0.0, weightSum = 0.0;
+  float nearestValue = 1.0, nearestDistance = 3.0e38;
+  for (int k = 0; k < 4; ++k) {
+    ivec2 offset = ivec2(k & 1, k >> 1);
+    ivec2 tap = clamp(base + offset, ivec2(0), maxShadow);
+    GSample s = loadGSample(f, fullResPixel(f, tap));
+    if (!s.surface) continue;
+    float value = imageLoad(raw, tap).x;
+    float planeDistance = abs(dot(here.normal, s.position - here.position)) / max(here.depth, 1e-6);
+    float bilinear = (offset.x == 1 ? t.x : 1.0 - t.x) * (offset.y == 1 ? t.y : 1.0 - t.y);
+    float w = bilinear * exp(-planeDistance / PLANE_TOLERANCE) *
+              pow(max(dot(here.normal, s.normal), 0.0), NORMAL_POWER);
+    sum += w * value;
+    weightSum += w;
+    if (planeDistance < nearestDistance) {
+      nearestDistance = planeDistance;
+      nearestValue = value;
+    }
+  }
+  // No neighbour shares this surface (a thin feature): the most similar one is the best guess.
+  return weightSum > 1e-4 ? sum / weightSum : nearestValue;
+}
+
+// Last frame's (visibility, frames) where it saw this surface, else (0, 0).
+vec2 reprojectedHistory(FrameConstants f, ivec2 pixel, GSample here) {
+  if (pc.historyValid == 0u) return vec2(0.0);
+  vec2 previousPosition = vec2(pixel) + 0.5 - imageLoad(velocities, pixel).xy;
+  ivec2 p = ivec2(floor(previousPosition));
+  if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(f.resolution)))) return vec2(0.0);
+  float expectedDepth = (f.previousViewProjection * vec4(here.position, 1.0)).w;
+  float previousDepth = imageLoad(previousDepths, p).x;
+  if (abs(previousDepth - expectedDepth) > HISTORY_DEPTH_TOLERANCE * expectedDepth) return vec2(0.0);
+  vec2 history = imageLoad(previous, p).xy;
+  return isFiniteValue(history.x) && isFiniteValue(history.y) ? history : vec2(0.0);
+}
+
+void main() {
+  FrameConstants f = FrameBlock(pc.frame).v;
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
+  GSample here = loadGSample(f, pixel);
+  if (!here.surface) {
+    imageStore(current, pixel, vec4(1.0, 0.0, 0.0, 0.0));
+    return;
+  }
+  float visibility = upsampledVisibility(f, pixel, here);
+  if (!isFiniteValue(visibility)) visibility = 0.0;
+  vec2 history = reprojectedHistory(f, pixel, here);
+  float frames = min(history.y + 1.0, max(f.shadowMaxHistory, 1.0));
+  float accumulated = mix(history.x, visibility, 1.0 / frames);
+  imageStore(current, pixel, vec4(clamp(accumulated, 0.0, 1.0), frames, 0.0, 0.0));
+}

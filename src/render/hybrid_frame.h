@@ -1,0 +1,89 @@
+// The hybrid frame without GI (DESIGN.md §4; seed 000's mobile hybrid renderer): scene-update,
+// vbuffer, gbuffer, shadows-trace, shadows-denoise, sky, composite, tonemap, declared on the
+// frame graph once per frame by recordFrame(). Resources are created by the first frame (and a
+// resize); later frames only update the frame constants and record.
+//
+//   HybridFrame frame(context, gpuScene, scene, settings);
+//   frame.requestDebugView("composite");      // any pass or resource by name
+//   for (...) frame.render(camera);           // submits and waits; returns per-pass timings
+//   ImageRGBA32F hdr = frame.debugViewImage("composite");
+#pragma once
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "graph/frame_graph.h"
+#include "passes/image_pass.h"
+#include "render/gpu_scene.h"
+#include "render/settings.h"
+#include "scene/scene.h"
+#include "shared/hybrid_frame_io.h"
+#include "tools/image_io.h"
+#include "vk/gpu_timer.h"
+#include "vk/graphics_pipeline.h"
+
+namespace bounce {
+
+// World to Vulkan clip space for the camera that shoots rays through pixel centres
+// (shared/camera.h): y down, reversed Z with an infinite far plane, depth = near / view depth.
+glm::mat4 viewProjection(const gpu::GpuCamera& camera, float nearPlane);
+
+class HybridFrame {
+ public:
+  // `scene` must be the one `gpuScene` was built from.
+  HybridFrame(vk::Context& context, const GpuScene& gpuScene, const Scene& scene,
+              const HybridSettings& settings);
+
+  // Declares, records, submits and waits for one frame seen from `camera`. Returns the GPU
+  // time of each pass (debug-view copies included), in recording order.
+  std::vector<vk::PassTiming> render(const Camera& camera);
+
+  // A pass name shows the first image it writes; a resource name shows that image. Takes
+  // effect from the next frame on (it creates a readback buffer).
+  void requestDebugView(const std::string& passOrResource) {
+    graph_.requestDebugView(passOrResource);
+  }
+  // The view as captured by the last frame (linear values; see graph/debug_view_image.h).
+  ImageRGBA32F debugViewImage(const std::string& name) const;
+  // Forgets temporal history (a camera cut).
+  void resetHistory() { graph_.resetHistory(); }
+
+  const HybridSettings& settings() const { return settings_; }
+  const graph::FrameGraph& graph() const { return graph_; }
+
+ private:
+  struct Draw {
+    uint32_t instance;
+    uint32_t geometry;  // global
+    uint32_t triangles;
+  };
+
+  void recordFrame();
+  gpu::FrameConstants makeFrameConstants(const Camera& camera) const;
+  void drawVBuffer(VkCommandBuffer cmd, const graph::ResolvedImage& ids,
+                   const graph::ResolvedImage& depth) const;
+  gpu::HybridPassConstants passConstants(bool historyValid = false) const;
+
+  vk::Context& context_;
+  const GpuScene& gpuScene_;
+  HybridSettings settings_;
+  Sun sun_;
+  Sky sky_;
+  float nearPlane_ = 1e-3f;
+  std::vector<Draw> draws_;
+  vk::Buffer frameConstantsBuffer_;
+  vk::Buffer punctualLights_, directionalLights_;
+  uint32_t punctualLightCount_ = 0, directionalLightCount_ = 0;
+
+  vk::GraphicsPipeline vbuffer_;
+  ImageComputePass gbuffer_, shadowsTrace_, shadowsDenoise_, skyPass_, composite_, tonemap_;
+  vk::GpuTimer timer_;
+  graph::FrameGraph graph_;  // after what it imports: destroyed first
+
+  gpu::FrameConstants constants_{};
+  glm::mat4 previousViewProjection_{1.0f};
+  bool hasPreviousFrame_ = false;
+};
+
+}  // namespace bounce

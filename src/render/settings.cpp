@@ -1,0 +1,41 @@
+#include "render/settings.h"
+
+namespace bounce {
+
+std::optional<GiMode> giModeFromName(const std::string& name) {
+  if (name == "none") return GiMode::None;
+  return std::nullopt;
+}
+
+const char* giModeNames() {
+  return "none";
+}
+
+std::optional<Preset> presetFromName(const std::string& name) {
+  if (name == "mobile") return Preset::Mobile;
+  if (name == "desktop") return Preset::Desktop;
+  return std::nullopt;
+}
+
+const char* presetNames() {
+  return "mobile, desktop";
+}
+
+HybridSettings presetSettings(Preset preset) {
+  HybridSettings s;
+  switch (preset) {
+    case Preset::Mobile:
+      s.width = 1170;
+      s.height = 540;
+      s.shadowDivisor = 2;
+      break;
+    case Preset::Desktop:
+      s.width = 1920;
+      s.height = 1080;
+      s.shadowDivisor = 2;
+      break;
+  }
+  return s;
+}
+
+}  // namespace bounce
