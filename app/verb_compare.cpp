@@ -19,6 +19,13 @@ void addCompareVerb(CLI::App& app, VerbAction& action) {
       ->required();
   verb->add_option("--json", options->jsonPath, "Also write the metrics to this JSON file");
   verb->add_option("--heatmap", options->heatmapPath, "Write the FLIP error map as a colour PNG");
+  verb->add_option("--side-by-side", options->sideBySidePath,
+                   "Write test | reference | FLIP heat map side by side as one PNG");
+  verb->add_option("--exposure", options->exposureStops,
+                   "Side-by-side of EXR pairs: scale by 2^STOPS (default: the reference's 99th "
+                   "percentile luminance at white)");
+  verb->add_option("--zoom", options->zoom, "Side-by-side: enlarge each pixel N times (1-16)")
+      ->capture_default_str();
   verb->add_option("--ppd", options->pixelsPerDegree,
                    "Observer's pixels per degree of visual angle (FLIP tool default: 0.7 m wide "
                    "4K screen at 0.7 m)")

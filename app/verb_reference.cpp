@@ -31,6 +31,7 @@ struct ReferenceVerbOptions {
   int64_t maxBounces = 16;
   int64_t seed = 1;
   bool lambert = false;
+  bool pixelCentre = false;
   double timeLimit = 0.0;
   double exposureStops = 0.0;
   std::string out = "out/reference.exr";
@@ -74,6 +75,7 @@ int runReference(const ReferenceVerbOptions& o) {
   options.maxBounces = checkedRange(o.maxBounces, 0, 1024, "--max-bounces");
   options.seed = checkedRange(o.seed, 0, std::numeric_limits<uint32_t>::max(), "--seed");
   options.lambert = o.lambert;
+  options.pixelCentre = o.pixelCentre;
   if (!(o.timeLimit >= 0.0) || !std::isfinite(o.timeLimit))
     fail("--time-limit {}: expected seconds >= 0", o.timeLimit);
   options.timeLimitSeconds = o.timeLimit;
@@ -131,6 +133,9 @@ void addReferenceVerb(CLI::App& app, VerbAction& action) {
   cmd->add_flag(
       "--lambert", options->lambert,
       "Every material pure Lambert with its base colour (textures, emission, alpha kept)");
+  cmd->add_flag("--pixel-centre", options->pixelCentre,
+                "Camera rays through pixel centres only (no anti-aliasing), to compare pixel for "
+                "pixel with `bounce render`");
   cmd->add_option("--time-limit", options->timeLimit,
                   "Stop after the batch that passes this many seconds; reports the spp reached");
   cmd->add_option("--out", options->out, "Output image (.exr linear, .png sRGB)")

@@ -2,19 +2,24 @@
 // shadows, sky, composite, tonemap; DESIGN.md §4) for --frames frames and writes the final
 // frame, or every frame, as images; --view shows any pass's debug view instead, and the
 // ray-cast views primary-albedo|normal|depth|instance|geometry remain for checking a scene.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "common_options.h"
 #include "core/error.h"
 #include "passes/primary_view.h"
+#include "render/animation_player.h"
 #include "render/gpu_scene.h"
 #include "render/hybrid_frame.h"
 #include "render/settings.h"
+#include "scene/animation.h"
 #include "tools/image_io.h"
 #include "verbs.h"
 
@@ -36,6 +41,12 @@ struct RenderOptions {
   float skyAmbient = HybridSettings{}.skyAmbientStrength;
   uint32_t shadowDivisor = 0;  // 0: the preset's
   bool lambert = false;
+  // Motion and time (issue 4).
+  bool animate = false;
+  std::string cameraPath;
+  float fps = 30.0f;
+  std::optional<float> timeOfDay;
+  float dayCycle = 0.0f;
 };
 
 void createParentDirectory(const std::string& path) {
@@ -107,7 +118,35 @@ struct TimingRow {
   vk::PassTiming pass;
 };
 
+struct StatisticRow {
+  uint32_t frame;
+  GiStatistic statistic;
+};
+
+// Median GPU milliseconds of each pass over the frames (in the passes' recording order), and
+// of their sum per frame: robust to the first frames' warm-up and to the odd slow frame.
+std::vector<std::pair<std::string, double>> medianPassTimes(const std::vector<TimingRow>& rows,
+                                                            uint32_t frames) {
+  std::vector<std::string> order;
+  std::map<std::string, std::vector<double>> perPass;
+  std::vector<double> total(frames, 0.0);
+  for (const TimingRow& row : rows) {
+    if (!perPass.count(row.pass.name)) order.push_back(row.pass.name);
+    perPass[row.pass.name].push_back(row.pass.milliseconds);
+    if (row.pass.name.rfind("debug-view:", 0) != 0) total[row.frame] += row.pass.milliseconds;
+  }
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+  };
+  std::vector<std::pair<std::string, double>> result;
+  for (const std::string& name : order) result.emplace_back(name, median(perPass[name]));
+  result.emplace_back("frame (without debug views)", median(total));
+  return result;
+}
+
 void writeTimingsJson(const std::string& path, const std::vector<TimingRow>& rows,
+                      const std::vector<StatisticRow>& statistics,
                       const std::string& sceneName, const HybridSettings& settings,
                       const std::string& device) {
   createParentDirectory(path);
@@ -120,24 +159,55 @@ void writeTimingsJson(const std::string& path, const std::vector<TimingRow>& row
   for (size_t i = 0; i < rows.size(); ++i)
     f << fmt::format("    {{\"frame\": {}, \"pass\": \"{}\", \"ms\": {:.4f}}}{}\n", rows[i].frame,
                      rows[i].pass.name, rows[i].pass.milliseconds, i + 1 < rows.size() ? "," : "");
+  f << "  ],\n  \"statistics\": [\n";
+  for (size_t i = 0; i < statistics.size(); ++i)
+    f << fmt::format("    {{\"frame\": {}, \"name\": \"{}\", \"value\": {}}}{}\n",
+                     statistics[i].frame, statistics[i].statistic.name,
+                     statistics[i].statistic.value, i + 1 < statistics.size() ? "," : "");
   f << "  ]\n}\n";
+}
+
+// What moves: --animate plays the scene's own animation (with a slow orbit where it has no
+// camera path), --camera-path replaces the camera motion, --time-of-day / --day-cycle drive
+// the sun. Empty when none is given: a still frame, as before.
+SceneAnimation animationFrom(const RenderOptions& options, const Scene& scene) {
+  if (!(options.fps > 0.0f)) fail("--fps {}: must be positive", options.fps);
+  if (options.timeOfDay && !(*options.timeOfDay >= 0.0f && *options.timeOfDay <= 24.0f))
+    fail("--time-of-day {}: expected hours in [0, 24]", *options.timeOfDay);
+  if (!(options.dayCycle >= 0.0f)) fail("--day-cycle {}: must be >= 0 seconds", options.dayCycle);
+  SceneAnimation animation;
+  if (options.animate) {
+    animation = scene.animation;
+    // A --camera given on the command line is where the default sway starts, rather than being
+    // overridden by the scene's own path.
+    if (!animation.camera || !options.common.camera.empty())
+      animation.camera = swayCameraPath(effectiveCamera(scene), 4.0f, 0.3f, 8.0f);
+  }
+  if (!options.cameraPath.empty()) animation.camera = loadCameraPath(options.cameraPath);
+  if (options.timeOfDay || options.dayCycle > 0.0f)
+    animation.timeOfDay = TimeOfDayTrack{options.timeOfDay.value_or(12.0f), options.dayCycle};
+  return animation;
 }
 
 int renderHybridFrame(const RenderOptions& options) {
   if (options.frames == 0) fail("--frames 0: render at least one frame");
   HybridSettings settings = settingsFrom(options);
   Scene scene = options.common.loadScene();
+  SceneAnimation animation = animationFrom(options, scene);
   std::unique_ptr<vk::Context> context = options.common.createContext();
   GpuScene gpuScene(*context, scene);
   HybridFrame frame(*context, gpuScene, scene, settings);
   frame.requestDebugView(options.view);
-  Camera camera = effectiveCamera(scene);
+  AnimationPlayer player(scene, std::move(animation));
   bool everyFrame = outIsDirectory(options.out);
   if (everyFrame) std::filesystem::create_directories(options.out);
 
   std::vector<TimingRow> timings;
+  std::vector<StatisticRow> statistics;
   for (uint32_t i = 0; i < options.frames; ++i) {
+    Camera camera = player.apply(frame, float(i) / options.fps);
     for (vk::PassTiming& t : frame.render(camera)) timings.push_back({i, std::move(t)});
+    for (GiStatistic& s : frame.giStatistics()) statistics.push_back({i, std::move(s)});
     if (everyFrame) writeImage(frameImagePath(options.out, i), frame.debugViewImage(options.view));
   }
   if (!everyFrame) {
@@ -145,13 +215,17 @@ int renderHybridFrame(const RenderOptions& options) {
     writeImage(options.out, frame.debugViewImage(options.view));
   }
   if (!options.timings.empty())
-    writeTimingsJson(options.timings, timings, scene.name, settings, context->info().name);
+    writeTimingsJson(options.timings, timings, statistics, scene.name, settings,
+                     context->info().name);
   std::printf("%s: %s %ux%u, %u frame(s) on %s -> %s\n", scene.name.c_str(), options.view.c_str(),
               settings.width, settings.height, options.frames, context->info().name.c_str(),
               options.out.c_str());
-  for (const TimingRow& t : timings)
-    if (t.frame + 1 == options.frames)
-      std::printf("  %-24s %8.3f ms\n", t.pass.name.c_str(), t.pass.milliseconds);
+  std::printf("  GPU time per pass, median over the frames:\n");
+  for (const auto& [name, ms] : medianPassTimes(timings, options.frames))
+    std::printf("  %-28s %8.3f ms\n", name.c_str(), ms);
+  for (const StatisticRow& s : statistics)
+    if (s.frame + 1 == options.frames)
+      std::printf("  %-28s %g\n", s.statistic.name.c_str(), s.statistic.value);
   return exitCodeFor(*context);
 }
 
@@ -199,6 +273,25 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
       "--shadow-divisor", options->shadowDivisor,
       "Trace shadows at render resolution / N (1 = full res; default: the preset's, 2)");
   cmd->add_flag("--lambert", options->lambert, "Shade every material as pure Lambert");
+  cmd->add_flag("--animate", options->animate,
+                "Play the scene's animation over the frames (glTF animations; built-in scenes' "
+                "scripted motion, e.g. sunroom's swinging panel and sliding cube; a slow camera "
+                "sway and dolly where the scene has no camera path or --camera is given). "
+                "Frame i is at time i / --fps; a camera cut resets temporal history");
+  cmd->add_option("--camera-path", options->cameraPath,
+                  "Camera path JSON: {\"keyframes\": [{\"time\": s, \"position\": [x,y,z], "
+                  "\"target\": [x,y,z], \"vfov\": deg, \"cut\": false}, ...], \"loop\": true, "
+                  "\"interpolation\": \"catmull-rom\"|\"linear\"}; a cut key resets temporal "
+                  "history");
+  cmd->add_option("--fps", options->fps, "Animation time step: frame i is at i / fps seconds")
+      ->capture_default_str();
+  cmd->add_option("--time-of-day", options->timeOfDay,
+                  "Solar time in hours [0, 24] (45 deg N, equinox: sunrise 6, noon 12, sunset "
+                  "18; the noon sun comes from the scene's sun azimuth); below the horizon it is "
+                  "night (no sun, a dim constant sky)");
+  cmd->add_option("--day-cycle", options->dayCycle,
+                  "Seconds of animation time per 24 h: the time of day advances from "
+                  "--time-of-day (default 12) over the frames");
   cmd->callback([&action, options] { action = [options] { return runRender(*options); }; });
 }
 

@@ -795,5 +795,55 @@ TEST(SharedScenes, EmissiveStrength) {
   EXPECT_NEAR(materialNamed(scene, "Emit1").emissive.z, 0.9f, 1e-6f);
 }
 
+// glTF node animations become SceneAnimation tracks (src/scene/gltf_animation.cpp): a parent
+// node (static, baked) with an animated child quad; LINEAR translation, STEP rotation.
+TEST_F(GltfLoaderTest, NodeAnimationsBecomeTransformTracks) {
+  GltfWriter w;
+  int pos = w.addPositions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  int idx = w.addIndices16({0, 1, 2, 0, 2, 3});
+  int mesh = w.addMesh({{"attributes", {{"POSITION", pos}}}, {"indices", idx}});
+  int child = w.addNode({{"mesh", mesh}, {"scale", {2, 2, 2}}}, false);
+  w.addNode({{"translation", {0, 0, -5}}, {"children", {child}}});
+  const float times[] = {0.0f, 2.0f};
+  const float translations[] = {0, 0, 0, 4, 0, 0};
+  const float rotations[] = {0, 0, 0, 1, 0, 0.70710678f, 0, 0.70710678f};  // x, y, z, w
+  int in = w.addAccessor(w.addView(times, sizeof(times)), kFloat, 2, "SCALAR");
+  int t = w.addAccessor(w.addView(translations, sizeof(translations)), kFloat, 2, "VEC3");
+  int r = w.addAccessor(w.addView(rotations, sizeof(rotations)), kFloat, 2, "VEC4");
+  w.doc["animations"] = json::array(
+      {{{"samplers", {{{"input", in}, {"output", t}}, {{"input", in}, {"output", r}, {"interpolation", "STEP"}}}},
+        {"channels", {{{"sampler", 0}, {"target", {{"node", child}, {"path", "translation"}}}},
+                      {{"sampler", 1}, {"target", {{"node", child}, {"path", "rotation"}}}}}}}});
+  Scene scene = loadGltf(w.writeGltf(dir, "animated"));
+  ASSERT_EQ(scene.animation.transforms.size(), 1u);
+  EXPECT_FLOAT_EQ(scene.animation.transformDuration(), 2.0f);
+  std::vector<glm::mat4> transforms = {scene.instances[0].transform};
+  evaluateTransforms(scene.animation, 0.0f, transforms);
+  EXPECT_LT(glm::length(glm::vec3(transforms[0][3]) - glm::vec3(0, 0, -5)), 1e-5f);
+  EXPECT_NEAR(transforms[0][0][0], 2.0f, 1e-5f);  // rest scale kept, no rotation yet
+  evaluateTransforms(scene.animation, 1.0f, transforms);
+  EXPECT_LT(glm::length(glm::vec3(transforms[0][3]) - glm::vec3(2, 0, -5)), 1e-5f);
+  EXPECT_NEAR(transforms[0][0][0], 2.0f, 1e-5f);  // STEP: still the first rotation
+  evaluateTransforms(scene.animation, 1.999f, transforms);
+  EXPECT_NEAR(transforms[0][0][2], 0.0f, 1e-5f);
+  SceneAnimation held = scene.animation;
+  held.loop = false;
+  evaluateTransforms(held, 2.0f, transforms);  // the last key: 90 degrees about +Y
+  EXPECT_NEAR(transforms[0][0][2], -2.0f, 1e-4f);
+}
+
+TEST_F(GltfLoaderTest, CubicSplineAnimationIsAClearError) {
+  GltfWriter w;
+  w.addQuadScene();
+  const float times[] = {0.0f, 1.0f};
+  const float values[18] = {};
+  int in = w.addAccessor(w.addView(times, sizeof(times)), kFloat, 2, "SCALAR");
+  int out = w.addAccessor(w.addView(values, sizeof(values)), kFloat, 6, "VEC3");
+  w.doc["animations"] = json::array(
+      {{{"samplers", {{{"input", in}, {"output", out}, {"interpolation", "CUBICSPLINE"}}}},
+        {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}}}}});
+  expectError(w.writeGltf(dir, "cubic"), "CUBICSPLINE");
+}
+
 }  // namespace
 }  // namespace bounce

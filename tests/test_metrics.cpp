@@ -381,6 +381,34 @@ TEST(CompareCli, PrintsMetricsAndWritesJsonAndHeatmap) {
   EXPECT_EQ(heat.height, 256);
 }
 
+// The side-by-side picture: three panels (test, reference, heat map) with 4-pixel gaps, each
+// enlarged; the reference panel shows the reference's pixels.
+TEST(CompareCli, SideBySideHoldsTestReferenceAndHeatmap) {
+  const std::string dir = test::tempDir("metrics-cli-side");
+  const std::string out = dir + "/side.png";
+  const std::string command = quoted(test::bounceExe()) + " compare " + quoted(noisyPath("png")) +
+                              " " + quoted(referencePath("png")) + " --side-by-side " +
+                              quoted(out) + " --zoom 2 2>&1";
+  const test::CommandResult result = test::runCommand(command);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  const ImageRGBA32F side = readImage(out);
+  const ImageRGBA32F reference = readImage(referencePath("png"));
+  ASSERT_EQ(side.width, 3 * 256 * 2 + 2 * 4);
+  ASSERT_EQ(side.height, 256 * 2);
+  for (int y : {0, 101, 255})
+    for (int x : {0, 77, 255}) {
+      const glm::vec4 expected = reference.at(x, y);
+      const glm::vec4 shown = side.at(256 * 2 + 4 + 2 * x + 1, 2 * y + 1);
+      EXPECT_NEAR(shown.x, expected.x, 0.01f) << x << "," << y;
+      EXPECT_NEAR(shown.y, expected.y, 0.01f) << x << "," << y;
+    }
+  const test::CommandResult bad = test::runCommand(
+      quoted(test::bounceExe()) + " compare " + quoted(noisyPath("png")) + " " +
+      quoted(referencePath("png")) + " --side-by-side " + quoted(dir + "/side.exr") + " 2>&1");
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.output.find("PNG"), std::string::npos) << bad.output;
+}
+
 TEST(CompareCli, MissingFileExitsNonZeroWithMessageOnStderr) {
   const std::string missing = test::tempDir("metrics-cli-missing") + "/missing.png";
   // Only stderr reaches the pipe.

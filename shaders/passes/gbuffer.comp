@@ -55,10 +55,18 @@ TraceHit hitFromVBuffer(FrameConstants f, uvec4 ids, vec3 dir) {
   return hit;
 }
 
-// Pixel motion since last frame; a point behind last frame's camera gets a huge vector, which
-// every reprojection rejects.
-vec2 pixelVelocity(FrameConstants f, vec2 pixelCentre, vec3 position) {
-  vec4 clip = f.previousViewProjection * vec4(position, 1.0);
+// Pixel motion since last frame, camera and object: the surface point's object-space position
+// placed by last frame's instance transform, seen by last frame's camera. A point behind last
+// frame's camera gets a huge vector, which every reprojection rejects.
+vec2 pixelVelocity(FrameConstants f, vec2 pixelCentre, TraceHit hit) {
+  uvec3 tri = triangleVertices(sceneGeometry(hit.geometry), hit.primitive);
+  Vec3Array positions = Vec3Array(scene.positions);
+  vec3 objectPosition = positions.v[tri.x] * (1.0 - hit.barycentrics.x - hit.barycentrics.y) +
+                        positions.v[tri.y] * hit.barycentrics.x +
+                        positions.v[tri.z] * hit.barycentrics.y;
+  GpuInstance previousInstance = InstanceArray(f.previousInstances).v[hit.instance];
+  vec3 previousWorld = transformPoint(previousInstance.objectToWorld, objectPosition);
+  vec4 clip = f.previousViewProjection * vec4(previousWorld, 1.0);
   if (clip.w <= 0.0) return vec2(65504.0);
   vec2 previous = (clip.xy / clip.w * 0.5 + 0.5) * vec2(f.resolution);
   return pixelCentre - previous;
@@ -99,7 +107,7 @@ void main() {
   imageStore(depthOut, pixel, vec4(hit.t * dot(dir, f.camera.forward)));
   imageStore(uvOut, pixel, vec4(interpolateUv(triangleVertices(sceneGeometry(hit.geometry), hit.primitive),
                                               hit.barycentrics), 0.0, 0.0));
-  imageStore(velocityOut, pixel, vec4(pixelVelocity(f, centre, s.position), 0.0, 0.0));
+  imageStore(velocityOut, pixel, vec4(pixelVelocity(f, centre, hit), 0.0, 0.0));
   imageStore(emissiveOut, pixel, vec4(s.emission, roughness));
   imageStore(flagsOut, pixel, uvec4(flags));
 }

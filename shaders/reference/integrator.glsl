@@ -83,7 +83,9 @@ vec3 directLighting(Surface s, vec3 wo, uvec4 key, uint bounce) {
 vec3 tracePath(uvec2 pixel, uint sampleIndex) {
   uvec4 key = pcg4d(uvec4(pixel, sampleIndex, settings.seed));
   // 0xFFFFFFFF: no sample index has it (at most 2^24 samples), so this key is never a sample's.
-  vec2 jitter = pixelJitter(uvec4(pixel, 0xFFFFFFFFu, settings.seed), sampleIndex);
+  vec2 jitter = (settings.flags & REFERENCE_FLAG_PIXEL_CENTRE) != 0u
+                    ? vec2(0.5)
+                    : pixelJitter(uvec4(pixel, 0xFFFFFFFFu, settings.seed), sampleIndex);
   vec3 origin = settings.camera.position;
   vec3 direction = cameraRayDirection(settings.camera, vec2(pixel) + jitter, vec2(settings.resolution));
   bool lambertOnly = (settings.flags & REFERENCE_FLAG_LAMBERT) != 0u;

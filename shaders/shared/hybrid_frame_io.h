@@ -12,7 +12,8 @@
 //   gbuffer.depth      R32F         view depth (along the camera's forward axis), 0 for sky
 //                                   (history: reprojection)
 //   gbuffer.uv         RG32F        texture coordinates of the first UV set
-//   gbuffer.velocity   RG16F        pixel position now minus pixel position last frame
+//   gbuffer.velocity   RG16F        pixel position now minus pixel position last frame (camera
+//                                   and object motion)
 //   gbuffer.emissive   RGBA16F      emitted radiance (rgb), perceptual roughness in w
 //   gbuffer.flags      R32_UINT     GBUFFER_FLAG_* bits
 //   shadows.raw        R16F         sun visibility, one cone sample per pixel (1/divisor res)
@@ -65,8 +66,11 @@ struct FrameConstants {
   uint directionalLightCount;
   float shadowMaxHistory;  // frames the shadow accumulation averages at most
   float nearPlane;         // of the reversed-Z projection
+  // GpuInstance[], every instance's placement last frame (object motion in gbuffer.velocity);
+  // equal to the scene's instances while nothing moves.
+  DeviceAddress previousInstances;
 };
-BOUNCE_CHECK_SIZE(FrameConstants, 312);
+BOUNCE_CHECK_SIZE(FrameConstants, 320);
 
 // Push constants of every hybrid-frame compute pass: the frame constants' address.
 struct HybridPassConstants {

@@ -75,6 +75,9 @@ BOUNCE_CHECK_SIZE(ReferenceDistantLight, 32);
 BOUNCE_CONST uint REFERENCE_MAX_DISTANT_LIGHTS = 16u;
 
 BOUNCE_CONST uint REFERENCE_FLAG_LAMBERT = 1u;  // every material pure Lambert (--lambert)
+// Camera rays through pixel centres only (--pixel-centre): no anti-aliasing, like a real-time
+// frame's single sample per pixel, so that the two can be compared pixel for pixel.
+BOUNCE_CONST uint REFERENCE_FLAG_PIXEL_CENTRE = 2u;
 
 BOUNCE_CONST uint REFERENCE_SKY_CONSTANT = 0u;
 BOUNCE_CONST uint REFERENCE_SKY_DAYLIGHT = 1u;  // Preetham et al. 1999, shaders/common/sky.glsl

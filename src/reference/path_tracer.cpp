@@ -81,7 +81,8 @@ gpu::ReferenceSettings ReferencePathTracer::makeSettings(const Camera& camera,
   s.resolution = {options.width, options.height};
   s.maxBounces = options.maxBounces;
   s.seed = options.seed;
-  s.flags = options.lambert ? gpu::REFERENCE_FLAG_LAMBERT : 0u;
+  s.flags = (options.lambert ? gpu::REFERENCE_FLAG_LAMBERT : 0u) |
+            (options.pixelCentre ? gpu::REFERENCE_FLAG_PIXEL_CENTRE : 0u);
   s.emissiveTriangleCount = uint32_t(lights_.emissiveTriangles.size());
   s.localLightCount = lights_.localLightCount();
   s.distantLightCount = uint32_t(lights_.distantLights.size());

@@ -33,6 +33,9 @@ struct ReferenceOptions {
   uint32_t seed = 1;     // same seed, same device: the same image, bit for bit
   bool lambert = false;  // every material pure Lambert with its base colour (textures, emission
                          // and alpha kept): the mode for comparisons with other renderers
+  // Camera rays through pixel centres only, no anti-aliasing: the mode for comparing with the
+  // real-time frame, which takes one sample at each pixel centre.
+  bool pixelCentre = false;
   // Stop after the batch during which this many seconds have passed (0 = no limit); the result
   // then has fewer samples than samplesPerPixel.
   double timeLimitSeconds = 0.0;

@@ -1,6 +1,10 @@
 #include "render/gpu_scene.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstring>
+
+#include "core/error.h"
 
 #include "vk/check.h"
 
@@ -57,11 +61,23 @@ void GpuScene::uploadArrays() {
     buffers_.push_back(vk::uploadVector(context_, std::span(vec), usage, std::string("scene.") + name));
     return buffers_.back().address();
   };
+  // A TLAS over n instance leaves has at most max(1, n - 1) nodes; room for n so that any
+  // later placement's rebuild fits the buffer made now.
+  tlasCapacity_ = std::max<uint32_t>(1, uint32_t(bvh_.instances.size()));
+  std::vector<gpu::GpuBvhNode> tlasRoom = bvh_.tlasNodes;
+  tlasRoom.resize(std::max<size_t>(tlasRoom.size(), tlasCapacity_));
   gpu::GpuSceneRefs refs{};
   refs.blasNodes = upload(bvh_.blasNodes, "blas-nodes");
   refs.triangles = upload(bvh_.triangles, "triangles");
-  refs.tlasNodes = upload(bvh_.tlasNodes, "tlas-nodes");
+  refs.tlasNodes = upload(tlasRoom, "tlas-nodes");
+  tlasBufferIndex_ = buffers_.size() - 1;
   refs.instances = upload(bvh_.instances, "instances");
+  instanceBufferIndex_ = buffers_.size() - 1;
+  previousInstances_ = vk::uploadVector(
+      context_, std::span<const gpu::GpuInstance>(bvh_.instances), usage, "scene.previous-instances");
+  instanceStaging_ = vk::Buffer(
+      context_, 2 * bytesOf(bvh_.instances) + tlasCapacity_ * sizeof(gpu::GpuBvhNode) + 16,
+      VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload, "scene.instance-staging");
   refs.geometries = upload(bvh_.geometries, "geometries");
   refs.materials = upload(textures_.materials, "materials");
   refs.indices = upload(bvh_.indices, "indices");
@@ -143,6 +159,47 @@ void GpuScene::writeDescriptors() {
     writes.push_back(t);
   }
   vkUpdateDescriptorSets(context_.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
+}
+
+void GpuScene::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
+  if (objectToWorld.size() != bvh_.instances.size())
+    fail("setInstanceTransforms: {} transforms for {} instances", objectToWorld.size(),
+         bvh_.instances.size());
+  if (bvh_.instances.empty()) return;
+  std::byte* staging = static_cast<std::byte*>(instanceStaging_.mapped());
+  const size_t instanceBytes = bytesOf(bvh_.instances);
+  std::memcpy(staging + instanceBytes, bvh_.instances.data(), instanceBytes);  // previous
+  for (size_t i = 0; i < objectToWorld.size(); ++i)
+    rt::setInstanceTransform(bvh_.instances[i], objectToWorld[i]);
+  bvh_.tlasNodes = rt::buildTlas(bvh_.instances, bvh_.meshBounds);
+  if (bvh_.tlasNodes.size() > tlasCapacity_)
+    fail("setInstanceTransforms: TLAS of {} nodes exceeds the {} allocated", bvh_.tlasNodes.size(),
+         tlasCapacity_);
+  std::memcpy(staging, bvh_.instances.data(), instanceBytes);
+  std::memcpy(staging + 2 * instanceBytes, bvh_.tlasNodes.data(), bytesOf(bvh_.tlasNodes));
+  uploadPending_ = true;
+}
+
+void GpuScene::recordInstanceUpload(VkCommandBuffer cmd) {
+  const VkDeviceSize instanceBytes = bytesOf(bvh_.instances);
+  if (!uploadPending_) {
+    // Nothing moved since the last upload: the previous placement becomes the current one
+    // (still in the staging buffer), so a stopped object has no motion vectors.
+    if (previousDiffers_) {
+      VkBufferCopy settle{0, 0, instanceBytes};
+      vkCmdCopyBuffer(cmd, instanceStaging_.handle(), previousInstances_.handle(), 1, &settle);
+      previousDiffers_ = false;
+    }
+    return;
+  }
+  VkBufferCopy current{0, 0, instanceBytes};
+  VkBufferCopy previous{instanceBytes, 0, instanceBytes};
+  VkBufferCopy tlas{2 * instanceBytes, 0, bytesOf(bvh_.tlasNodes)};
+  vkCmdCopyBuffer(cmd, instanceStaging_.handle(), instanceBuffer().handle(), 1, &current);
+  vkCmdCopyBuffer(cmd, instanceStaging_.handle(), previousInstances_.handle(), 1, &previous);
+  vkCmdCopyBuffer(cmd, instanceStaging_.handle(), tlasBuffer().handle(), 1, &tlas);
+  uploadPending_ = false;
+  previousDiffers_ = true;
 }
 
 bool GpuScene::alphaAccepts(uint32_t globalGeometry, uint32_t primitive, float b1, float b2) const {

@@ -4,6 +4,7 @@
 // CPU reference tracer and tests.
 #pragma once
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "rt/scene_bvh.h"
@@ -40,6 +41,24 @@ class GpuScene {
   // Accepts or rejects an alpha-tested candidate hit exactly as the GPU alpha test does.
   bool alphaAccepts(uint32_t globalGeometry, uint32_t primitive, float b1, float b2) const;
 
+  // ---- moving instances (issue 4) ----
+  // Places every instance (objectToWorld, one per Scene::instances entry), rebuilds the TLAS on
+  // the CPU and stages both, with the placement before this call as the "previous" one, in a
+  // mapped upload buffer made at construction. Nothing reaches the GPU until
+  // recordInstanceUpload(). No Vulkan allocation. The caller must not call it while a
+  // recorded upload is still executing (the hybrid frame submits and waits).
+  void setInstanceTransforms(std::span<const glm::mat4> objectToWorld);
+  // Copies the staged instances, previous instances and TLAS into the device buffers below
+  // (transfer writes; the caller declares them, e.g. on the frame graph). Call once per frame:
+  // in the first frame without a new placement it sets previous = current, so motion vectors
+  // of objects that stopped return to zero.
+  void recordInstanceUpload(VkCommandBuffer cmd);
+  // GpuInstance[] as the tracer reads them (refs.instances), last placement's GpuInstance[]
+  // (for object motion vectors), and the TLAS nodes (refs.tlasNodes).
+  const vk::Buffer& instanceBuffer() const { return buffers_[instanceBufferIndex_]; }
+  const vk::Buffer& previousInstanceBuffer() const { return previousInstances_; }
+  const vk::Buffer& tlasBuffer() const { return buffers_[tlasBufferIndex_]; }
+
  private:
   void uploadArrays();
   void uploadTextures();
@@ -51,6 +70,13 @@ class GpuScene {
   PackedTextures textures_;
   GpuSceneStats stats_;
   std::vector<vk::Buffer> buffers_;
+  size_t instanceBufferIndex_ = 0;  // in buffers_
+  size_t tlasBufferIndex_ = 0;      // in buffers_, room for tlasCapacity_ nodes
+  vk::Buffer previousInstances_;
+  vk::Buffer instanceStaging_;  // [instances | previous instances | TLAS nodes], mapped
+  uint32_t tlasCapacity_ = 0;
+  bool uploadPending_ = false;
+  bool previousDiffers_ = false;  // the device's previous instances differ from the current
   vk::Buffer refs_;
   std::vector<vk::Image> textureImages_;  // one per binding slot (1x1 placeholder when unused)
   VkSampler sampler_ = VK_NULL_HANDLE;

@@ -43,7 +43,7 @@ glm::mat4 viewProjection(const gpu::GpuCamera& camera, float nearPlane) {
                   {f, -glm::dot(f, p)});
 }
 
-HybridFrame::HybridFrame(vk::Context& context, const GpuScene& gpuScene, const Scene& scene,
+HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
                          const HybridSettings& settings)
     : context_(context),
       gpuScene_(gpuScene),
@@ -82,6 +82,8 @@ HybridFrame::HybridFrame(vk::Context& context, const GpuScene& gpuScene, const S
   Aabb bounds = gpuScene.bounds();
   float radius = bounds.empty() ? 1.0f : 0.5f * glm::length(bounds.extent());
   nearPlane_ = std::max(1e-4f, 1e-4f * radius);
+
+  gi_ = makeDiffuseGi(context, gpuScene, scene, settings);
 
   ReferenceLightTable lights = buildReferenceLights(scene, bvh);
   punctualLightCount_ = uint32_t(lights.punctualLights.size());
@@ -122,11 +124,16 @@ gpu::FrameConstants HybridFrame::makeFrameConstants(const Camera& camera) const 
   c.directionalLightCount = directionalLightCount_;
   c.shadowMaxHistory = settings_.shadowMaxHistory;
   c.nearPlane = nearPlane_;
+  c.previousInstances = gpuScene_.previousInstanceBuffer().address();
   return c;
 }
 
 gpu::HybridPassConstants HybridFrame::passConstants(bool historyValid) const {
   return {frameConstantsBuffer_.address(), historyValid ? 1u : 0u, 0u};
+}
+
+void HybridFrame::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
+  gpuScene_.setInstanceTransforms(objectToWorld);
 }
 
 std::vector<vk::PassTiming> HybridFrame::render(const Camera& camera) {
@@ -137,6 +144,7 @@ std::vector<vk::PassTiming> HybridFrame::render(const Camera& camera) {
     timer_.reset(cmd);
     graph_.execute(cmd, &timer_);
   });
+  if (gi_) gi_->afterFrame();
   previousViewProjection_ = constants_.viewProjection;
   hasPreviousFrame_ = true;
   return timer_.available() ? timer_.read() : std::vector<vk::PassTiming>{};
@@ -184,6 +192,14 @@ void HybridFrame::recordFrame() {
   graph_.beginFrame();
   graph::BufferHandle frame =
       graph_.importBuffer("frame-constants", graph::ImportedBuffer::from(frameConstantsBuffer_));
+  // The scene arrays that move (GpuScene::setInstanceTransforms); declared so that the graph
+  // orders this frame's upload after last frame's readers and before this frame's.
+  graph::BufferHandle instances = graph_.importBuffer(
+      "scene.instances", graph::ImportedBuffer::from(gpuScene_.instanceBuffer()));
+  graph::BufferHandle previousInstances = graph_.importBuffer(
+      "scene.previous-instances", graph::ImportedBuffer::from(gpuScene_.previousInstanceBuffer()));
+  graph::BufferHandle tlas =
+      graph_.importBuffer("scene.tlas-nodes", graph::ImportedBuffer::from(gpuScene_.tlasBuffer()));
   graph::ImageHandle ids = graph_.createImage("vbuffer.ids", {kIdsFormat});
   graph::ImageHandle zbuffer = graph_.createImage("vbuffer.depth", {kZBufferFormat});
   graph::ImageHandle baseColor = graph_.createImage("gbuffer.base-color", {rgba16f});
@@ -198,8 +214,10 @@ void HybridFrame::recordFrame() {
   graph::HistoryImage shadows =
       graph_.createHistoryImage("shadows.visibility", {VK_FORMAT_R16G16_SFLOAT});
   graph::ImageHandle sky = graph_.createImage("sky.radiance", {rgba16f});
-  // Input slots of the GI and reflection systems; nothing writes them yet, so they stay zero.
-  graph::ImageHandle giDiffuse = graph_.createPersistentImage("gi.diffuse", {rgba16f});
+  // Input slots of the GI and reflection systems: the GI system (src/gi/diffuse_gi.h) writes
+  // gi.diffuse; without one, and for reflections (nothing writes them yet), they stay zero.
+  graph::ImageHandle giDiffuse = gi_ ? graph_.createImage("gi.diffuse", {rgba16f})
+                                     : graph_.createPersistentImage("gi.diffuse", {rgba16f});
   graph::ImageHandle reflections = graph_.createPersistentImage("reflections", {rgba16f});
   graph::ImageHandle hdr = graph_.createImage("composite.hdr", {rgba16f});
   graph::ImageHandle display = graph_.createImage("tonemap.display", {rgba16f});
@@ -208,11 +226,16 @@ void HybridFrame::recordFrame() {
 
   graph_.addPass("scene-update", QueueKind::Compute)
       .write(frame, Access::TransferDst)
+      .write(instances, Access::TransferDst)
+      .write(previousInstances, Access::TransferDst)
+      .write(tlas, Access::TransferDst)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
         vkCmdUpdateBuffer(cmd, r.buffer(frame).buffer, 0, sizeof(constants_), &constants_);
+        gpuScene_.recordInstanceUpload(cmd);  // nothing when no instance moved
       });
   graph_.addPass("vbuffer", QueueKind::Graphics)
       .read(frame, Access::StorageRead)
+      .read(instances, Access::StorageRead)
       .write(ids, Access::ColorAttachmentWrite)
       .write(zbuffer, Access::DepthAttachmentWrite)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
@@ -220,6 +243,8 @@ void HybridFrame::recordFrame() {
       });
   graph_.addPass("gbuffer", QueueKind::Compute)
       .read(frame, Access::StorageRead)
+      .read(instances, Access::StorageRead)
+      .read(previousInstances, Access::StorageRead)
       .read(ids, Access::StorageRead)
       .write(baseColor, Access::StorageWrite)
       .write(normals, Access::StorageWrite)
@@ -242,6 +267,8 @@ void HybridFrame::recordFrame() {
       });
   graph_.addPass("shadows-trace", QueueKind::Compute)
       .read(frame, Access::StorageRead)
+      .read(instances, Access::StorageRead)
+      .read(tlas, Access::StorageRead)
       .read(normals, Access::StorageRead)
       .read(depth.current, Access::StorageRead)
       .read(flags, Access::StorageRead)
@@ -288,6 +315,25 @@ void HybridFrame::recordFrame() {
             {{gpu::SKY_BINDING_FLAGS, r.image(flags)}, {gpu::SKY_BINDING_RADIANCE, r.image(sky)}},
             passConstants(), full);
       });
+  if (gi_) {
+    FrameInputs inputs;
+    inputs.frameConstants = frame;
+    inputs.frameConstantsAddress = frameConstantsBuffer_.address();
+    inputs.constants = &constants_;
+    inputs.instances = instances;
+    inputs.previousInstances = previousInstances;
+    inputs.tlas = tlas;
+    inputs.baseColor = baseColor;
+    inputs.normals = normals;
+    inputs.depth = depth;
+    inputs.uv = uv;
+    inputs.velocity = velocity;
+    inputs.emissive = emissive;
+    inputs.flags = flags;
+    inputs.sunVisibility = shadows.current;
+    inputs.resolution = full;
+    gi_->declare(graph_, inputs, giDiffuse);
+  }
   graph_.addPass("composite", QueueKind::Compute)
       .read(frame, Access::StorageRead)
       .read(baseColor, Access::StorageRead)

@@ -8,11 +8,15 @@
 //   for (...) frame.render(camera);           // submits and waits; returns per-pass timings
 //   ImageRGBA32F hdr = frame.debugViewImage("composite");
 #pragma once
+#include <span>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include <memory>
+
+#include "gi/diffuse_gi.h"
 #include "graph/frame_graph.h"
 #include "passes/image_pass.h"
 #include "render/gpu_scene.h"
@@ -32,8 +36,19 @@ glm::mat4 viewProjection(const gpu::GpuCamera& camera, float nearPlane);
 class HybridFrame {
  public:
   // `scene` must be the one `gpuScene` was built from.
-  HybridFrame(vk::Context& context, const GpuScene& gpuScene, const Scene& scene,
+  HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
               const HybridSettings& settings);
+
+  // Time-varying scene state for the next render() (issue 4; scene/animation.h evaluates it).
+  // Instances: one objectToWorld per scene instance; `scene-update` uploads them and the
+  // rebuilt TLAS into buffers made at init, keeping this frame's placement as the previous one
+  // for object motion vectors. Call it every frame while anything moves. No Vulkan allocation.
+  void setInstanceTransforms(std::span<const glm::mat4> objectToWorld);
+  // The sun and sky from now on (a moving sun, day and night).
+  void setSunAndSky(const Sun& sun, const Sky& sky) {
+    sun_ = sun;
+    sky_ = sky;
+  }
 
   // Declares, records, submits and waits for one frame seen from `camera`. Returns the GPU
   // time of each pass (debug-view copies included), in recording order.
@@ -47,7 +62,14 @@ class HybridFrame {
   // The view as captured by the last frame (linear values; see graph/debug_view_image.h).
   ImageRGBA32F debugViewImage(const std::string& name) const;
   // Forgets temporal history (a camera cut).
-  void resetHistory() { graph_.resetHistory(); }
+  void resetHistory() {
+    graph_.resetHistory();
+    if (gi_) gi_->resetHistory();
+  }
+  // Facts about the last frame from the GI system (empty without one).
+  std::vector<GiStatistic> giStatistics() const {
+    return gi_ ? gi_->statistics() : std::vector<GiStatistic>{};
+  }
 
   const HybridSettings& settings() const { return settings_; }
   const graph::FrameGraph& graph() const { return graph_; }
@@ -66,7 +88,7 @@ class HybridFrame {
   gpu::HybridPassConstants passConstants(bool historyValid = false) const;
 
   vk::Context& context_;
-  const GpuScene& gpuScene_;
+  GpuScene& gpuScene_;
   HybridSettings settings_;
   Sun sun_;
   Sky sky_;
@@ -79,6 +101,7 @@ class HybridFrame {
   vk::GraphicsPipeline vbuffer_;
   ImageComputePass gbuffer_, shadowsTrace_, shadowsDenoise_, skyPass_, composite_, tonemap_;
   vk::GpuTimer timer_;
+  std::unique_ptr<DiffuseGi> gi_;  // nullptr for --gi none
   graph::FrameGraph graph_;  // after what it imports: destroyed first
 
   gpu::FrameConstants constants_{};

@@ -26,6 +26,17 @@ std::string describe(const char* kind, int index, const std::string& name);
 // primitives we do not render (points, lines, empty). `material` is left for the caller.
 std::optional<Geometry> loadPrimitive(const Source& src, int mesh, int primitive);
 
+// A mesh instance made from a node, for animations: the node, the instance, and the node's
+// parent-to-world transform (static: animated parents are not supported).
+struct AnimatedInstance {
+  int node = -1;
+  uint32_t instance = 0;
+  glm::mat4 parent{1.0f};
+};
+// Reads the file's animations into `out` (src/scene/gltf_animation.cpp).
+void loadAnimations(const Source& src, const std::vector<AnimatedInstance>& instances,
+                    SceneAnimation& out);
+
 // Applies a 2D affine UV transform (KHR_texture_transform, as a 3x3 matrix) to every UV.
 void transformUvs(Geometry& geometry, const glm::mat3& uvTransform);
 

@@ -235,6 +235,7 @@ class SceneBuilder {
   Scene build(const std::string& name) {
     nodeState_.assign(src_.model.nodes.size(), NodeState::Unvisited);
     for (int root : rootNodes()) visitNode(root, glm::mat4(1.0f), 0, "the scene");
+    gltf::loadAnimations(src_, animatedInstances_, scene_.animation);
     materials_.ensureNotEmpty();
     materials_.decodeImages();
     scene_.name = name;
@@ -284,7 +285,12 @@ class SceneBuilder {
     if (!isFinite(toWorld))
       fail("{}: {} has a non-finite world transform", src_.path,
            gltf::describe("node", index, node.name));
-    if (node.mesh >= 0) addInstance(index, toWorld);
+    if (node.mesh >= 0) {
+      size_t before = scene_.instances.size();
+      addInstance(index, toWorld);
+      if (scene_.instances.size() > before)
+        animatedInstances_.push_back({index, uint32_t(before), parentToWorld});
+    }
     if (node.camera >= 0) addCamera(index, toWorld);
     addLight(index, toWorld);
     for (int child : node.children)
@@ -470,6 +476,7 @@ class SceneBuilder {
   Scene scene_;
   gltf::MaterialTable materials_;  // refers to scene_, so declared after it
   std::vector<NodeState> nodeState_;
+  std::vector<gltf::AnimatedInstance> animatedInstances_;
   std::map<int, std::optional<uint32_t>> meshes_;
   bool warnedSkin_ = false;
   uint64_t loadedElements_ = 0;

@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/animation.h"
+
 namespace bounce {
 
 struct Aabb {
@@ -140,6 +142,9 @@ struct Scene {
   std::optional<Camera> camera;  // from the file or the procedural scene; else a default framing
   Sun sun;
   Sky sky;
+  // What moves over time (glTF animations, a built-in scene's scripted motion and default
+  // camera path); empty for a still scene. Played by `bounce render --animate`.
+  SceneAnimation animation;
 
   Aabb bounds() const;
   uint64_t triangleCount() const;  // over instances, i.e. what a ray can hit

@@ -1,5 +1,6 @@
 #include "tools/compare.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -135,13 +136,67 @@ std::string compareReportJson(const CompareReport& r) {
   return report.dump(2) + "\n";
 }
 
-CompareReport runCompare(const CompareOptions& options) {
-  if (!options.heatmapPath.empty() && imageExtension(options.heatmapPath) != "png") {
-    fail("{}: the heat map is written as PNG; give it a .png name", options.heatmapPath);
+float autoExposure(const ImageRGBA32F& image) {
+  std::vector<float> luminance;
+  luminance.reserve(image.pixelCount());
+  for (size_t i = 0; i < image.pixelCount(); ++i) {
+    const float* p = image.pixels.data() + 4 * i;
+    luminance.push_back(0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]);
   }
+  if (luminance.empty()) return 1.0f;
+  const size_t rank = std::min(luminance.size() - 1, size_t(0.99 * double(luminance.size())));
+  std::nth_element(luminance.begin(), luminance.begin() + rank, luminance.end());
+  const float high = luminance[rank];
+  return high > 0.0f && std::isfinite(high) ? 1.0f / high : 1.0f;
+}
+
+namespace {
+
+// Copies `source` into `target` at column offset `x0`, each pixel a zoom x zoom block.
+void pasteZoomed(ImageRGBA32F& target, const ImageRGBA32F& source, int x0, int zoom) {
+  for (int y = 0; y < source.height * zoom; ++y)
+    for (int x = 0; x < source.width * zoom; ++x)
+      target.set(x0 + x, y, source.at(x / zoom, y / zoom));
+}
+
+void writeSideBySide(const CompareOptions& options, const CompareReport& report) {
+  ImageRGBA32F test = readImage(options.testPath);
+  ImageRGBA32F reference = readImage(options.referencePath);
+  if (report.hdr) {  // scale radiance; PNG pairs are already display-referred
+    const float scale = std::isnan(options.exposureStops) ? autoExposure(reference)
+                                                          : std::exp2(options.exposureStops);
+    for (ImageRGBA32F* image : {&test, &reference})
+      for (size_t i = 0; i < image->pixels.size(); ++i)
+        if (i % 4 != 3) image->pixels[i] *= scale;
+  }
+  ImageRGBA32F heat(report.width, report.height);
+  for (int y = 0; y < report.height; ++y)
+    for (int x = 0; x < report.width; ++x) {
+      const glm::vec3 c = heatmapColor(report.flip.errorMap[size_t(y) * report.width + x]);
+      heat.set(x, y, glm::vec4(srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z), 1.0f));
+    }
+  const int zoom = options.zoom;
+  const int gap = 4;
+  ImageRGBA32F out(3 * report.width * zoom + 2 * gap, report.height * zoom, glm::vec4(1.0f));
+  pasteZoomed(out, test, 0, zoom);
+  pasteZoomed(out, reference, report.width * zoom + gap, zoom);
+  pasteZoomed(out, heat, 2 * (report.width * zoom + gap), zoom);
+  writePng(options.sideBySidePath, out);
+}
+
+}  // namespace
+
+CompareReport runCompare(const CompareOptions& options) {
+  for (const std::string* path : {&options.heatmapPath, &options.sideBySidePath}) {
+    if (!path->empty() && imageExtension(*path) != "png") {
+      fail("{}: this picture is written as PNG; give it a .png name", *path);
+    }
+  }
+  if (options.zoom < 1 || options.zoom > 16) fail("--zoom {}: expected 1 to 16", options.zoom);
   CompareReport report =
       compareImages(options.testPath, options.referencePath, options.pixelsPerDegree);
   if (!options.heatmapPath.empty()) writeHeatmap(options.heatmapPath, report.flip);
+  if (!options.sideBySidePath.empty()) writeSideBySide(options, report);
   if (!options.jsonPath.empty()) {
     std::ofstream file(options.jsonPath);
     file << compareReportJson(report);

@@ -3,11 +3,14 @@
 // two is refused, because an sRGB picture and scene-referred radiance are not comparable without
 // choosing a tone mapping first.
 #pragma once
+#include <cmath>
 #include <string>
 
 #include "tools/flip.h"
 
 namespace bounce {
+
+struct ImageRGBA32F;
 
 struct CompareOptions {
   std::string testPath;
@@ -15,6 +18,12 @@ struct CompareOptions {
   float pixelsPerDegree = kDefaultPixelsPerDegree;
   std::string jsonPath;     // empty: no JSON report
   std::string heatmapPath;  // empty: no heat map (.png)
+  // Test | reference | FLIP heat map in one PNG, each enlarged `zoom` times (nearest), for
+  // looking at a pair. HDR pairs are scaled by 2^exposureStops; NaN = pick the exposure that puts
+  // the reference's 99th-percentile luminance at white.
+  std::string sideBySidePath;
+  float exposureStops = NAN;
+  int zoom = 1;
 };
 
 struct CompareReport {
@@ -41,7 +50,10 @@ std::string formatCompareTable(const CompareReport& report);
 // The same fields as JSON text (see compare.cpp for the keys).
 std::string compareReportJson(const CompareReport& report);
 
-// compareImages, then the JSON report and heat map the options ask for.
+// The exposure (a multiplier) that maps the 99th-percentile luminance of `image` to 1.
+float autoExposure(const ImageRGBA32F& image);
+
+// compareImages, then the JSON report, heat map and side-by-side picture the options ask for.
 CompareReport runCompare(const CompareOptions& options);
 
 }  // namespace bounce

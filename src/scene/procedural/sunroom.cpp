@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "core/error.h"
 #include "scene/procedural/builtin_scenes.h"
 #include "scene/procedural/mesh_builder.h"
 
@@ -138,6 +139,37 @@ void placeOnFloor(Scene& scene, Mesh mesh, const glm::vec2& xz, float yawDegrees
               std::move(name));
 }
 
+// The default motion (issue 4): the blue panel swings 80 degrees about its vertical axis and
+// back over 4 s, and the yellow cube in the sun patch slides 0.6 m towards the window and back,
+// so both moving shadows and object motion vectors show; the camera sways and dollies in.
+void addSunroomAnimation(Scene& scene) {
+  auto restTrack = [&](const std::string& name) {
+    for (uint32_t i = 0; i < scene.instances.size(); ++i)
+      if (scene.instances[i].name == name) {
+        const glm::mat4& m = scene.instances[i].transform;
+        TransformTrack track;
+        track.instance = i;
+        track.restTranslation = glm::vec3(m[3]);
+        track.restRotation = glm::quat_cast(glm::mat3(m));  // placeOnFloor: rotation only
+        return track;
+      }
+    fail("sunroom: no instance named '{}' to animate", name);
+  };
+  TransformTrack panel = restTrack("movable_panel");
+  glm::quat open = glm::angleAxis(glm::radians(80.0f), glm::vec3(0, 1, 0)) * panel.restRotation;
+  panel.rotation.times = {0.0f, 2.0f, 4.0f};
+  panel.rotation.values = {panel.restRotation, open, panel.restRotation};
+  scene.animation.transforms.push_back(panel);
+
+  TransformTrack cube = restTrack("cube_yellow");
+  glm::vec3 moved = cube.restTranslation + glm::vec3(0.0f, 0.0f, -0.6f);
+  cube.translation.times = {0.0f, 2.0f, 4.0f};
+  cube.translation.values = {cube.restTranslation, moved, cube.restTranslation};
+  scene.animation.transforms.push_back(cube);
+
+  scene.animation.camera = swayCameraPath(*scene.camera, 4.0f, 0.3f, 8.0f);
+}
+
 }  // namespace
 
 Scene makeSunroomScene() {
@@ -169,6 +201,7 @@ Scene makeSunroomScene() {
   camera.target = {2.5f, 0.6f, 2.4f};
   camera.verticalFovDegrees = 65.0f;
   scene.camera = camera;
+  addSunroomAnimation(scene);
   return scene;
 }
 

@@ -1,0 +1,42 @@
+#include "render/animation_player.h"
+
+#include "scene/scene_options.h"
+#include "scene/time_of_day.h"
+
+namespace bounce {
+
+AnimationPlayer::AnimationPlayer(const Scene& scene, SceneAnimation animation)
+    : scene_(scene), animation_(std::move(animation)) {
+  transforms_.reserve(scene.instances.size());
+  for (const Instance& instance : scene.instances) transforms_.push_back(instance.transform);
+}
+
+Camera AnimationPlayer::apply(HybridFrame& frame, float t) {
+  if (!animation_.transforms.empty()) {
+    evaluateTransforms(animation_, t, transforms_);
+    frame.setInstanceTransforms(transforms_);
+  }
+  if (animation_.timeOfDay) {
+    Sun sun;
+    Sky sky;
+    applyTimeOfDay(animation_.timeOfDay->hoursAt(t), scene_.sun, scene_.sky, sun, sky);
+    frame.setSunAndSky(sun, sky);
+  }
+  Camera camera =
+      animation_.camera ? evaluateCameraPath(*animation_.camera, t) : effectiveCamera(scene_);
+  lastWasCut_ = false;
+  if (lastTime_ && lastCamera_) {
+    bool pathCut = animation_.camera && cameraCutBetween(*animation_.camera, *lastTime_, t);
+    float reach = glm::length(lastCamera_->position - lastCamera_->target);
+    bool jump = glm::length(camera.position - lastCamera_->position) > kCutJumpFraction * reach;
+    if (pathCut || jump) {
+      frame.resetHistory();
+      lastWasCut_ = true;
+    }
+  }
+  lastTime_ = t;
+  lastCamera_ = camera;
+  return camera;
+}
+
+}  // namespace bounce

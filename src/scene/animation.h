@@ -1,0 +1,116 @@
+// Time-varying scene state (issue 4, "Motion and time"): per-instance transform tracks, a
+// camera path and a time-of-day track, evaluated at a time t in seconds. Evaluation allocates
+// nothing on the GPU side: the renderer uploads the evaluated transforms into buffers it made
+// at init (render/gpu_scene.h, GpuScene::setInstanceTransforms).
+//
+// Transform tracks follow glTF animation semantics (glTF 2.0 §3.11): each of translation,
+// rotation (unit quaternion, slerp) and scale is a separate channel of keyframes; a missing
+// channel keeps the instance's rest value; LINEAR or STEP interpolation; outside the key range
+// the end values hold. Looping wraps t into the animation's [0, duration) instead.
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+namespace bounce {
+
+struct Camera;
+struct Sun;
+
+enum class Interpolation { Linear, Step };
+
+template <typename T>
+struct Channel {
+  std::vector<float> times;  // seconds, strictly increasing
+  std::vector<T> values;     // one per time
+  Interpolation interpolation = Interpolation::Linear;
+  bool empty() const { return times.empty(); }
+};
+
+struct TransformTrack {
+  uint32_t instance = 0;
+  // Rest pose: the value of a channel that has no keys (from the node or the instance).
+  glm::vec3 restTranslation{0.0f};
+  glm::quat restRotation{1.0f, 0.0f, 0.0f, 0.0f};
+  glm::vec3 restScale{1.0f};
+  // Applied after the animated TRS: world = parent x TRS (a glTF node's animated parents are
+  // not tracked; the loader bakes a static parent chain here).
+  glm::mat4 parent{1.0f};
+  Channel<glm::vec3> translation;
+  Channel<glm::quat> rotation;
+  Channel<glm::vec3> scale;
+};
+
+struct CameraKeyframe {
+  float time = 0.0f;
+  glm::vec3 position{0.0f};
+  glm::vec3 target{0.0f, 0.0f, -1.0f};
+  float verticalFovDegrees = 45.0f;
+  // The view jumps here: no interpolation from the previous key, and temporal history is reset
+  // when playback crosses this key.
+  bool cut = false;
+};
+
+// A camera path through keyframes: Catmull-Rom (uniform in key index: the slow, evenly keyed
+// paths this serves need no centripetal parametrisation) so the motion has no kinks, or linear.
+struct CameraPath {
+  std::vector<CameraKeyframe> keys;  // times strictly increasing
+  bool loop = false;
+  bool catmullRom = true;  // smooth through the keys; else piecewise linear
+  float duration() const { return keys.empty() ? 0.0f : keys.back().time; }
+};
+
+// The sun follows the time of day (scene/time_of_day.h): `hours` at t = 0, advancing by 24 h
+// every `dayCycleSeconds` (0 = a fixed time).
+struct TimeOfDayTrack {
+  float hours = 12.0f;
+  float dayCycleSeconds = 0.0f;
+  float hoursAt(float t) const;
+};
+
+struct SceneAnimation {
+  std::vector<TransformTrack> transforms;
+  std::optional<CameraPath> camera;
+  std::optional<TimeOfDayTrack> timeOfDay;
+  bool loop = true;  // transform tracks wrap at duration()
+
+  bool empty() const { return transforms.empty() && !camera && !timeOfDay; }
+  // The end of the last transform key (0 without transform tracks).
+  float transformDuration() const;
+};
+
+// Evaluates one channel at t (glTF rules above; rotations slerp along the shorter arc).
+glm::vec3 sampleChannel(const Channel<glm::vec3>& channel, float t, const glm::vec3& rest);
+glm::quat sampleChannel(const Channel<glm::quat>& channel, float t, const glm::quat& rest);
+// parent x T x R x S at t.
+glm::mat4 evaluateTrack(const TransformTrack& track, float t);
+// Writes the object-to-world transform of every instance at time t into `transforms` (sized to
+// the scene's instance count by the caller; untracked instances keep their value).
+void evaluateTransforms(const SceneAnimation& animation, float t,
+                        std::vector<glm::mat4>& transforms);
+
+// The camera on the path at t (looping paths wrap at duration()). `up` is +Y.
+Camera evaluateCameraPath(const CameraPath& path, float t);
+// True when playback from t0 to t1 (t0 < t1) crosses a key marked `cut`, or wraps a looping
+// path whose end and start differ by a jump (a cut by construction).
+bool cameraCutBetween(const CameraPath& path, float t0, float t1);
+
+// Checks keys (at least one, times finite and strictly increasing, fov in (0, 180), position
+// != target). Throws bounce::Error naming `source` and the offending key and field.
+void validateCameraPath(const CameraPath& path, const std::string& source);
+// Reads {"keyframes":[{"time":0,"position":[x,y,z],"target":[x,y,z],"vfov":45,"cut":false},
+// ...], "loop": true, "interpolation": "catmull-rom"|"linear"}. Throws bounce::Error naming the
+// file and the field for unreadable files, bad JSON, missing or mistyped fields.
+CameraPath loadCameraPath(const std::string& path);
+CameraPath parseCameraPathJson(const std::string& text, const std::string& source);
+
+// A slow sway of the camera around the point it looks at: +-`degrees` of yaw while dollying in
+// by up to `dolly` (a fraction of the distance to the target) and back, over `seconds`,
+// looping. Moving towards the target keeps an interior camera inside its room, where a pure
+// orbit would pass through walls. The default camera motion of built-in scenes (--animate).
+CameraPath swayCameraPath(const Camera& camera, float degrees, float dolly, float seconds);
+
+}  // namespace bounce
