@@ -14,8 +14,9 @@ build: deps
 
 demo: build
 	mkdir -p out
-	./$(BUILD)/bounce render --scene sunroom --view primary-albedo --res 640x360 --out out/demo.png
-	@echo "demo: wrote out/demo.png"
+	./$(BUILD)/bounce render --scene sunroom --sky daylight --res 960x540 --frames 16 \
+		--timings out/demo-timings.json --out out/demo.png
+	@echo "demo: wrote out/demo.png and the per-pass GPU times out/demo-timings.json"
 
 test: build
 	ctest --preset $(PRESET) -j $(JOBS)

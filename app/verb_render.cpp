@@ -35,6 +35,7 @@ struct RenderOptions {
   std::string out = "out/render.png";
   uint32_t frames = 8;
   std::string gi = "none";
+  std::string vbuffer = "raster";
   std::string preset;
   std::string timings;
   float exposure = HybridSettings{}.exposure;
@@ -92,6 +93,9 @@ HybridSettings settingsFrom(const RenderOptions& options) {
   std::optional<GiMode> gi = giModeFromName(options.gi);
   if (!gi) fail("--gi '{}': expected one of {}", options.gi, giModeNames());
   settings.gi = *gi;
+  std::optional<VBufferMode> vbuffer = vbufferModeFromName(options.vbuffer);
+  if (!vbuffer) fail("--vbuffer '{}': expected raster or trace", options.vbuffer);
+  settings.vbuffer = *vbuffer;
   if (!(options.exposure > 0.0f)) fail("--exposure {}: must be positive", options.exposure);
   settings.exposure = options.exposure;
   if (!(options.skyAmbient >= 0.0f)) fail("--sky-ambient {}: must be >= 0", options.skyAmbient);
@@ -249,6 +253,11 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                   std::string("Settings preset: ") + presetNames() +
                       " (1170x540 / 1920x1080, shadows at half res); --res overrides its size");
   cmd->add_option("--frames", options->frames, "Frames to render (temporal passes converge)")
+      ->capture_default_str();
+  cmd->add_option("--vbuffer", options->vbuffer,
+                  "How the vbuffer finds each pixel's triangle: raster (default) or trace (one "
+                  "camera ray per pixel centre; faster on GPUs with little raster hardware such "
+                  "as the H100/H200)")
       ->capture_default_str();
   cmd->add_option("--gi", options->gi, std::string("Diffuse GI mode: ") + giModeNames())
       ->capture_default_str();

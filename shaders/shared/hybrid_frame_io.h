@@ -89,6 +89,7 @@ struct VBufferDrawConstants {
 BOUNCE_CHECK_SIZE(VBufferDrawConstants, 16);
 
 // Set 1 bindings (storage images), per pass.
+BOUNCE_CONST uint VBUFFER_TRACE_BINDING_IDS = 0u;
 BOUNCE_CONST uint GBUFFER_BINDING_IDS = 0u;
 BOUNCE_CONST uint GBUFFER_BINDING_BASE_COLOR = 1u;
 BOUNCE_CONST uint GBUFFER_BINDING_NORMALS = 2u;

@@ -22,6 +22,18 @@ float srgbToLinear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
+// A colour per id, so that neighbouring ids differ visibly: the id hashed (a 32-bit integer
+// mix), three bytes of the hash as sRGB. 0xFFFFFFFF (no id) is black.
+glm::vec4 idColor(uint32_t id) {
+  if (id == 0xFFFFFFFFu) return {0.0f, 0.0f, 0.0f, 1.0f};
+  uint32_t h = id * 0x9E3779B1u;
+  h ^= h >> 15;
+  h *= 0x85EBCA77u;
+  h ^= h >> 13;
+  auto channel = [&](int shift) { return srgbToLinear(0.25f + 0.75f * float((h >> shift) & 255u) / 255.0f); };
+  return {channel(0), channel(8), channel(16), 1.0f};
+}
+
 // Red, green, blue, alpha of one texel; channels a format lacks read as 0 (alpha as 1).
 glm::vec4 decodeTexel(VkFormat format, const std::byte* t) {
   switch (format) {
@@ -52,6 +64,11 @@ glm::vec4 decodeTexel(VkFormat format, const std::byte* t) {
       return glm::vec4(float(load<uint8_t>(t, 0)), float(load<uint8_t>(t, 1)),
                        float(load<uint8_t>(t, 2)), float(load<uint8_t>(t, 3))) /
              255.0f;
+    case VK_FORMAT_R32G32B32A32_UINT: {  // ids (vbuffer: instance, geometry, primitive)
+      uint32_t first = load<uint32_t>(t, 0);
+      if (first == 0xFFFFFFFFu) return idColor(first);
+      return idColor(first * 0x01000193u ^ load<uint32_t>(t, 1) * 0x27D4EB2Du ^ load<uint32_t>(t, 2));
+    }
     case VK_FORMAT_R8G8B8A8_SRGB: {
       glm::vec4 c = decodeTexel(VK_FORMAT_R8G8B8A8_UNORM, t);
       return {srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z), c.w};

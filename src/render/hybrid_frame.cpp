@@ -7,6 +7,7 @@
 #include "graph/debug_view_image.h"
 #include "passes/primary_view.h"
 #include "reference/light_table.h"
+#include "rt/scene_bvh.h"
 
 namespace bounce {
 
@@ -26,6 +27,37 @@ glm::mat4 fromRows(const glm::vec4& r0, const glm::vec4& r1, const glm::vec4& r2
 vk::Buffer uploadOrPlaceholder(vk::Context& context, std::span<const std::byte> bytes,
                                const std::string& name) {
   return vk::uploadBuffer(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, name);
+}
+
+vk::GraphicsPipelineDesc vbufferPipeline(const GpuScene& gpuScene, const char* fragmentShader) {
+  return {.vertexShader = "passes/vbuffer.vert",
+          .fragmentShader = fragmentShader,
+          .setLayouts = {&gpuScene.setLayout()},
+          .pushConstantBytes = sizeof(gpu::VBufferDrawConstants),
+          .colorFormats = {kIdsFormat},
+          .depthFormat = kZBufferFormat};
+}
+
+bool alphaTested(const Scene& scene, uint32_t material) {
+  return material < scene.materials.size() &&
+         scene.materials[material].alphaMode != AlphaMode::Opaque;
+}
+
+// Whether the box is entirely outside one of the frustum's planes, the planes taken from the
+// clip-space conditions -w <= x <= w, -w <= y <= w, z <= w (Gribb and Hartmann 2001); with
+// reversed Z and an infinite far plane there is no far plane to test.
+bool outsideFrustum(const glm::mat4& viewProjection, const Aabb& box) {
+  const glm::mat4 rows = glm::transpose(viewProjection);
+  const glm::vec4 planes[5] = {rows[3] + rows[0], rows[3] - rows[0], rows[3] + rows[1],
+                               rows[3] - rows[1], rows[3] - rows[2]};
+  for (const glm::vec4& plane : planes) {
+    // The box corner furthest along the plane's normal.
+    glm::vec3 corner(plane.x >= 0.0f ? box.max.x : box.min.x,
+                     plane.y >= 0.0f ? box.max.y : box.min.y,
+                     plane.z >= 0.0f ? box.max.z : box.min.z);
+    if (glm::dot(glm::vec3(plane), corner) + plane.w < 0.0f) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -53,12 +85,9 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
       frameConstantsBuffer_(context, sizeof(gpu::FrameConstants),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             vk::MemoryUse::DeviceOnly, "frame-constants"),
-      vbuffer_(context, {.vertexShader = "passes/vbuffer.vert",
-                         .fragmentShader = "passes/vbuffer.frag",
-                         .setLayouts = {&gpuScene.setLayout()},
-                         .pushConstantBytes = sizeof(gpu::VBufferDrawConstants),
-                         .colorFormats = {kIdsFormat},
-                         .depthFormat = kZBufferFormat}),
+      vbufferOpaque_(context, vbufferPipeline(gpuScene, "passes/vbuffer_opaque.frag")),
+      vbufferAlphaTest_(context, vbufferPipeline(gpuScene, "passes/vbuffer_alpha_test.frag")),
+      vbufferTrace_(context, gpuScene, "passes/vbuffer_trace", 1),
       gbuffer_(context, gpuScene, "passes/gbuffer", 8),
       shadowsTrace_(context, gpuScene, "passes/shadows_trace", 4),
       shadowsDenoise_(context, gpuScene, "passes/shadows_denoise", 8),
@@ -75,7 +104,10 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
     uint32_t geometryCount = uint32_t(scene.meshes[instance.mesh].geometries.size());
     for (uint32_t g = instance.geometryBase; g < instance.geometryBase + geometryCount; ++g)
       if (bvh.geometries[g].triangleCount > 0)
-        draws_.push_back({i, g, bvh.geometries[g].triangleCount});
+        (alphaTested(scene, bvh.geometries[g].material) ? alphaTestedDraws_ : opaqueDraws_)
+            .push_back({i, g, bvh.geometries[g].triangleCount});
+  visibleOpaque_.reserve(opaqueDraws_.size());
+  visibleAlphaTested_.reserve(alphaTestedDraws_.size());
   }
   // Reversed Z keeps float depth precise far away; the near plane only has to sit in front of
   // everything the camera should see.
@@ -138,6 +170,7 @@ void HybridFrame::setInstanceTransforms(std::span<const glm::mat4> objectToWorld
 
 std::vector<vk::PassTiming> HybridFrame::render(const Camera& camera) {
   constants_ = makeFrameConstants(camera);
+  if (settings_.vbuffer == VBufferMode::Raster) cullDraws(constants_.viewProjection);
   recordFrame();
   graph_.allocate(context_, {settings_.width, settings_.height});  // a no-op after frame 0
   context_.submitAndWait([&](VkCommandBuffer cmd) {
@@ -175,13 +208,31 @@ void HybridFrame::drawVBuffer(VkCommandBuffer cmd, const graph::ResolvedImage& i
   info.pColorAttachments = &color;
   info.pDepthAttachment = &zbuffer;
   vkCmdBeginRendering(cmd, &info);
-  vbuffer_.bind(cmd, {gpuScene_.descriptorSet()}, ids.extent);
-  for (const Draw& d : draws_) {
-    vbuffer_.push(
-        cmd, gpu::VBufferDrawConstants{frameConstantsBuffer_.address(), d.instance, d.geometry});
-    vkCmdDraw(cmd, 3 * d.triangles, 1, 0, 0);
+  for (const auto& [pipeline, draws] : {std::pair{&vbufferOpaque_, &visibleOpaque_},
+                                        std::pair{&vbufferAlphaTest_, &visibleAlphaTested_}}) {
+    if (draws->empty()) continue;
+    pipeline->bind(cmd, {gpuScene_.descriptorSet()}, ids.extent);
+    for (const Draw& d : *draws) {
+      pipeline->push(cmd, gpu::VBufferDrawConstants{frameConstantsBuffer_.address(), d.instance,
+                                                    d.geometry});
+      vkCmdDraw(cmd, 3 * d.triangles, 1, 0, 0);
+    }
   }
   vkCmdEndRendering(cmd);
+}
+
+void HybridFrame::cullDraws(const glm::mat4& viewProjection) {
+  const rt::SceneBvh& bvh = gpuScene_.bvh();
+  for (auto [all, visible] : {std::pair{&opaqueDraws_, &visibleOpaque_},
+                              std::pair{&alphaTestedDraws_, &visibleAlphaTested_}}) {
+    visible->clear();  // keeps the capacity: no allocation per frame
+    for (const Draw& d : *all) {
+      const gpu::GpuInstance& instance = bvh.instances[d.instance];
+      if (!outsideFrustum(viewProjection,
+                          rt::instanceWorldBounds(instance, bvh.meshBounds[instance.mesh])))
+        visible->push_back(d);
+    }
+  }
 }
 
 // The frame, top to bottom (DESIGN.md §4 without GI). Resources first, then the passes in the
@@ -201,7 +252,6 @@ void HybridFrame::recordFrame() {
   graph::BufferHandle tlas =
       graph_.importBuffer("scene.tlas-nodes", graph::ImportedBuffer::from(gpuScene_.tlasBuffer()));
   graph::ImageHandle ids = graph_.createImage("vbuffer.ids", {kIdsFormat});
-  graph::ImageHandle zbuffer = graph_.createImage("vbuffer.depth", {kZBufferFormat});
   graph::ImageHandle baseColor = graph_.createImage("gbuffer.base-color", {rgba16f});
   graph::ImageHandle normals = graph_.createImage("gbuffer.normals", {rgba16f});
   graph::HistoryImage depth = graph_.createHistoryImage("gbuffer.depth", {VK_FORMAT_R32_SFLOAT});
@@ -233,14 +283,27 @@ void HybridFrame::recordFrame() {
         vkCmdUpdateBuffer(cmd, r.buffer(frame).buffer, 0, sizeof(constants_), &constants_);
         gpuScene_.recordInstanceUpload(cmd);  // nothing when no instance moved
       });
-  graph_.addPass("vbuffer", QueueKind::Graphics)
-      .read(frame, Access::StorageRead)
-      .read(instances, Access::StorageRead)
-      .write(ids, Access::ColorAttachmentWrite)
-      .write(zbuffer, Access::DepthAttachmentWrite)
-      .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-        drawVBuffer(cmd, r.image(ids), r.image(zbuffer));
-      });
+  if (settings_.vbuffer == VBufferMode::Raster) {
+    graph::ImageHandle zbuffer = graph_.createImage("vbuffer.depth", {kZBufferFormat});
+    graph_.addPass("vbuffer", QueueKind::Graphics)
+        .read(frame, Access::StorageRead)
+        .read(instances, Access::StorageRead)
+        .write(ids, Access::ColorAttachmentWrite)
+        .write(zbuffer, Access::DepthAttachmentWrite)
+        .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
+          drawVBuffer(cmd, r.image(ids), r.image(zbuffer));
+        });
+  } else {
+    graph_.addPass("vbuffer", QueueKind::Compute)
+        .read(frame, Access::StorageRead)
+        .read(instances, Access::StorageRead)
+        .read(tlas, Access::StorageRead)
+        .write(ids, Access::StorageWrite)
+        .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
+          vbufferTrace_.record(cmd, {{gpu::VBUFFER_TRACE_BINDING_IDS, r.image(ids)}},
+                               passConstants(), full);
+        });
+  }
   graph_.addPass("gbuffer", QueueKind::Compute)
       .read(frame, Access::StorageRead)
       .read(instances, Access::StorageRead)

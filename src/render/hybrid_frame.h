@@ -80,6 +80,8 @@ class HybridFrame {
     uint32_t geometry;  // global
     uint32_t triangles;
   };
+  // The draws whose instance box meets the camera's frustum, opaque ones first.
+  void cullDraws(const glm::mat4& viewProjection);
 
   void recordFrame();
   gpu::FrameConstants makeFrameConstants(const Camera& camera) const;
@@ -93,13 +95,14 @@ class HybridFrame {
   Sun sun_;
   Sky sky_;
   float nearPlane_ = 1e-3f;
-  std::vector<Draw> draws_;
+  std::vector<Draw> opaqueDraws_, alphaTestedDraws_;  // every (instance, geometry) with triangles
+  std::vector<Draw> visibleOpaque_, visibleAlphaTested_;  // this frame's, capacity reserved once
   vk::Buffer frameConstantsBuffer_;
   vk::Buffer punctualLights_, directionalLights_;
   uint32_t punctualLightCount_ = 0, directionalLightCount_ = 0;
 
-  vk::GraphicsPipeline vbuffer_;
-  ImageComputePass gbuffer_, shadowsTrace_, shadowsDenoise_, skyPass_, composite_, tonemap_;
+  vk::GraphicsPipeline vbufferOpaque_, vbufferAlphaTest_;
+  ImageComputePass vbufferTrace_, gbuffer_, shadowsTrace_, shadowsDenoise_, skyPass_, composite_, tonemap_;
   vk::GpuTimer timer_;
   std::unique_ptr<DiffuseGi> gi_;  // nullptr for --gi none
   graph::FrameGraph graph_;  // after what it imports: destroyed first

@@ -2,6 +2,12 @@
 
 namespace bounce {
 
+std::optional<VBufferMode> vbufferModeFromName(const std::string& name) {
+  if (name == "raster") return VBufferMode::Raster;
+  if (name == "trace") return VBufferMode::Trace;
+  return std::nullopt;
+}
+
 std::optional<GiMode> giModeFromName(const std::string& name) {
   if (name == "none") return GiMode::None;
   return std::nullopt;

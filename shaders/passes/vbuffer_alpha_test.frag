@@ -1,6 +1,8 @@
-// vbuffer (fragment stage): writes which triangle covers the pixel. Alpha-tested materials run
-// the tracer's own test (base-colour alpha, nearest texel of mip 0, shaders/rt/trace.glsl) so
-// that raster and rays agree on what is cut out.
+// vbuffer (fragment stage, alpha-tested materials): writes which triangle covers the pixel
+// unless the tracer's own alpha test (base-colour alpha, nearest texel of mip 0,
+// shaders/rt/trace.glsl) cuts it out, so that raster and rays agree on what is cut out. A
+// shader that may discard loses early depth testing, hence the separate opaque pipeline
+// (vbuffer_opaque.frag) for everything else.
 #version 460
 #include "passes/hybrid_frame.glsl"
 #include "rt/scene.glsl"
