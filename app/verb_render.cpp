@@ -34,8 +34,14 @@ struct RenderOptions {
   std::string view = "tonemap";
   std::string out = "out/render.png";
   uint32_t frames = 8;
-  std::string gi = "none";
+  std::string gi = "evolve";  // seed 000's full diffuse GI (issue 6)
   std::string vbuffer = "raster";
+  // ReSTIR GI overrides (0 / empty: the preset's value).
+  uint32_t giDivisor = 0;
+  std::string restirSecondVertex;
+  bool restirUnbiased = false;
+  int restirValidationPeriod = -1;
+  bool noGiDenoise = false;
   std::string preset;
   std::string timings;
   float exposure = HybridSettings{}.exposure;
@@ -73,6 +79,30 @@ int renderPrimaryView(const RenderOptions& options, PrimaryViewKind view) {
   return exitCodeFor(*context);
 }
 
+std::optional<RestirGiSecondVertex> secondVertexFromName(const std::string& name) {
+  if (name == "nee") return RestirGiSecondVertex::Nee;
+  if (name == "path") return RestirGiSecondVertex::Path;
+  if (name == "cache") return RestirGiSecondVertex::Cache;
+  return std::nullopt;
+}
+
+// The --restir-* and --gi-* overrides, after the preset (RestirGiSettings documents each).
+void applyRestirOptions(const RenderOptions& options, RestirGiSettings& gi) {
+  if (options.restirUnbiased) gi = RestirGiSettings::unbiased();
+  if (options.giDivisor != 0) {
+    if (options.giDivisor != 1 && options.giDivisor != 2 && options.giDivisor != 4)
+      fail("--gi-divisor {}: expected 1, 2 or 4", options.giDivisor);
+    gi.divisor = options.giDivisor;
+  }
+  if (!options.restirSecondVertex.empty()) {
+    std::optional<RestirGiSecondVertex> v = secondVertexFromName(options.restirSecondVertex);
+    if (!v) fail("--restir-second-vertex '{}': expected nee, path or cache", options.restirSecondVertex);
+    gi.secondVertex = *v;
+  }
+  if (options.restirValidationPeriod >= 0) gi.validationPeriod = uint32_t(options.restirValidationPeriod);
+  if (options.noGiDenoise) gi.temporalDenoise = gi.spatialDenoise = false;
+}
+
 // Preset first, then --res, then the rest of the options.
 HybridSettings settingsFrom(const RenderOptions& options) {
   HybridSettings settings;
@@ -96,6 +126,7 @@ HybridSettings settingsFrom(const RenderOptions& options) {
   std::optional<VBufferMode> vbuffer = vbufferModeFromName(options.vbuffer);
   if (!vbuffer) fail("--vbuffer '{}': expected raster or trace", options.vbuffer);
   settings.vbuffer = *vbuffer;
+  applyRestirOptions(options, settings.restirGi);
   if (!(options.exposure > 0.0f)) fail("--exposure {}: must be positive", options.exposure);
   settings.exposure = options.exposure;
   if (!(options.skyAmbient >= 0.0f)) fail("--sky-ambient {}: must be >= 0", options.skyAmbient);
@@ -261,6 +292,18 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
       ->capture_default_str();
   cmd->add_option("--gi", options->gi, std::string("Diffuse GI mode: ") + giModeNames())
       ->capture_default_str();
+  cmd->add_option("--gi-divisor", options->giDivisor,
+                  "ReSTIR GI resolution = render resolution / N (1, 2 or 4; default: the "
+                  "preset's, 4 mobile, 2 desktop)");
+  cmd->add_option("--restir-second-vertex", options->restirSecondVertex,
+                  "What the 2nd path vertex adds besides NEE: nee, path (a continued path: "
+                  "unbiased, slow) or cache (the clipmap cache, default)");
+  cmd->add_flag("--restir-unbiased", options->restirUnbiased,
+                "The unbiased configuration: full-resolution GI, temporal reuse only, a "
+                "continued path at the 2nd vertex, no denoisers");
+  cmd->add_option("--restir-validation-period", options->restirValidationPeriod,
+                  "Validation rays every N frames (0 off, the default: see README, known gaps)");
+  cmd->add_flag("--no-gi-denoise", options->noGiDenoise, "Turn the GI denoisers off");
   cmd->add_option("--view", options->view,
                   std::string("What to write: a pass of the frame (scene-update, vbuffer, gbuffer, "
                               "shadows-trace, shadows-denoise, sky, composite, tonemap) or a "

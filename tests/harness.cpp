@@ -1,6 +1,7 @@
 #include "harness.h"
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -38,6 +39,25 @@ CommandResult runCommand(const std::string& command, int timeoutSeconds) {
   int status = ::pclose(pipe);
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return result;
+}
+
+double meanLuminance(const ImageRGBA32F& image) {
+  double sum = 0.0;
+  for (size_t i = 0; i < image.pixelCount(); ++i)
+    sum += 0.2126 * image.pixels[4 * i] + 0.7152 * image.pixels[4 * i + 1] +
+           0.0722 * image.pixels[4 * i + 2];
+  return sum / double(image.pixelCount());
+}
+
+glm::vec3 decodeOctahedral(glm::vec2 e) {
+  glm::vec3 n(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
+  if (n.z < 0.0f) {
+    glm::vec2 folded = (1.0f - glm::abs(glm::vec2(n.y, n.x))) *
+                       glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
+    n.x = folded.x;
+    n.y = folded.y;
+  }
+  return glm::normalize(n);
 }
 
 }  // namespace bounce::test

@@ -1,7 +1,11 @@
-// Helpers shared by the tests: where the shared data and the `bounce` program are, and running
-// the program as a subprocess to check its exit code and error text.
+// Helpers shared by the tests: where the shared data and the `bounce` program are, running
+// the program as a subprocess to check its exit code and error text, and small image helpers.
 #pragma once
 #include <string>
+
+#include <glm/glm.hpp>
+
+#include "tools/image_io.h"
 
 namespace bounce::test {
 
@@ -19,5 +23,10 @@ struct CommandResult {
 // Runs `command` through the shell with a time limit (seconds); a hang counts as failure with
 // exitCode 124.
 CommandResult runCommand(const std::string& command, int timeoutSeconds = 120);
+
+// Mean Rec. 709 luminance of an image's RGB.
+double meanLuminance(const ImageRGBA32F& image);
+// A unit normal from the GBuffer's octahedral encoding (encodeOctahedral, shaders/passes/hybrid_frame.glsl).
+glm::vec3 decodeOctahedral(glm::vec2 e);
 
 }  // namespace bounce::test

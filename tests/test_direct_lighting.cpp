@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "harness.h"
+
 #include "reference/path_tracer.h"
 #include "render/gpu_scene.h"
 #include "render/hybrid_frame.h"
@@ -22,6 +24,8 @@
 namespace bounce {
 namespace {
 
+using test::meanLuminance;
+
 struct DirectLightComparison {
   double relMse = 0.0;
   double meanRatio = 0.0;  // mean radiance, hybrid / reference
@@ -30,14 +34,6 @@ struct DirectLightComparison {
   // of the comparison. Only computed when the case asks for it.
   double referenceNoiseRelMse = 0.0;
 };
-
-double meanLuminance(const ImageRGBA32F& image) {
-  double sum = 0.0;
-  for (size_t i = 0; i < image.pixelCount(); ++i)
-    sum += 0.2126 * image.pixels[4 * i] + 0.7152 * image.pixels[4 * i + 1] +
-           0.0722 * image.pixels[4 * i + 2];
-  return sum / double(image.pixelCount());
-}
 
 struct DirectLightCase {
   std::string scene;

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include "harness.h"
 #include <glm/gtc/packing.hpp>
 
 #include "passes/primary_view.h"
@@ -26,22 +28,13 @@
 namespace bounce {
 namespace {
 
+using test::decodeOctahedral;
+
 template <typename T>
 std::vector<T> texels(const graph::DebugView& view) {
   std::vector<T> out(view.bytes.size() / sizeof(T));
   std::memcpy(out.data(), view.bytes.data(), out.size() * sizeof(T));
   return out;
-}
-
-glm::vec3 decodeOctahedral(glm::vec2 e) {
-  glm::vec3 n(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
-  if (n.z < 0.0f) {
-    glm::vec2 folded = (1.0f - glm::abs(glm::vec2(n.y, n.x))) *
-                       glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
-    n.x = folded.x;
-    n.y = folded.y;
-  }
-  return glm::normalize(n);
 }
 
 glm::vec3 rowTransform(const glm::vec4 (&rows)[3], const glm::vec3& p) {

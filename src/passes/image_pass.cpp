@@ -12,31 +12,42 @@ std::vector<vk::Binding> storageImageBindings(uint32_t count) {
   return bindings;
 }
 
+std::vector<const vk::DescriptorSetLayout*> setLayouts(
+    const GpuScene& scene, const std::optional<vk::DescriptorSetLayout>& images) {
+  std::vector<const vk::DescriptorSetLayout*> layouts{&scene.setLayout()};
+  if (images) layouts.push_back(&*images);
+  return layouts;
+}
+
 }  // namespace
 
-ImageComputePass::ImageComputePass(vk::Context& context, const GpuScene& scene,
-                                   const std::string& shader, uint32_t imageCount)
-    : context_(context),
-      scene_(scene),
-      imageCount_(imageCount),
-      layout_(context, storageImageBindings(imageCount)),
-      pool_(context, 1, imageCount),
-      pipeline_(context, shader, {&scene.setLayout(), &layout_}, sizeof(gpu::HybridPassConstants)),
-      set_(pool_.allocate(layout_)) {
+ComputePass::ComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
+                         uint32_t imageCount, uint32_t pushConstantBytes)
+    : context_(context), scene_(scene), imageCount_(imageCount) {
+  if (imageCount > 64) fail("pass '{}': {} storage images, at most 64", shader, imageCount);
+  if (imageCount > 0) {
+    layout_.emplace(context, storageImageBindings(imageCount));
+    pool_.emplace(context, 1, imageCount);
+    set_ = pool_->allocate(*layout_);
+  }
+  pipeline_ = vk::ComputePipeline(context, shader, setLayouts(scene, layout_), pushConstantBytes);
   infos_.resize(imageCount);
   writes_.resize(imageCount);
 }
 
-void ImageComputePass::record(VkCommandBuffer cmd, const std::vector<ImageBinding>& images,
-                              const gpu::HybridPassConstants& constants, VkExtent2D extent) {
+void ComputePass::bindSets(VkCommandBuffer cmd, const std::vector<ImageBinding>& images) {
   if (images.size() != imageCount_)
     fail("pass '{}': {} images bound, {} expected", pipeline_.name(), images.size(), imageCount_);
-  std::vector<bool> seen(imageCount_, false);
+  if (imageCount_ == 0) {
+    pipeline_.bind(cmd, {scene_.descriptorSet()});
+    return;
+  }
+  uint64_t seen = 0;  // bit per binding (a pass has far fewer than 64 images)
   for (size_t i = 0; i < images.size(); ++i) {
     auto [binding, image] = images[i];
-    if (binding >= imageCount_ || seen[binding])
+    if (binding >= imageCount_ || (seen >> binding) & 1u)
       fail("pass '{}': binding {} out of range or bound twice", pipeline_.name(), binding);
-    seen[binding] = true;
+    seen |= uint64_t(1) << binding;
     infos_[i] = {VK_NULL_HANDLE, image.view, image.layout};
     VkWriteDescriptorSet& w = writes_[i];
     w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -48,7 +59,11 @@ void ImageComputePass::record(VkCommandBuffer cmd, const std::vector<ImageBindin
   }
   vkUpdateDescriptorSets(context_.device(), uint32_t(writes_.size()), writes_.data(), 0, nullptr);
   pipeline_.bind(cmd, {scene_.descriptorSet(), set_});
-  pipeline_.push(cmd, constants);
+}
+
+void ImageComputePass::record(VkCommandBuffer cmd, const std::vector<ImageBinding>& images,
+                              const gpu::HybridPassConstants& constants, VkExtent2D extent) {
+  bind(cmd, constants, images);
   vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, gpu::HYBRID_GROUP_SIZE,
                                         gpu::HYBRID_GROUP_SIZE);
 }

@@ -1,9 +1,11 @@
-// The shape shared by the hybrid frame's compute passes: the scene at set 0, storage images at
-// set 1 (bindings named by the pass's constants in shared/hybrid_frame_io.h), the frame
-// constants' address in push constants, one thread per pixel of an image. Each pass owns one
-// of these; its descriptor set is rewritten every time it records, because history images swap
-// every frame (the frame waits for the previous one, so the set is never in flight then).
+// The shape shared by Bounce's compute passes: the scene at set 0 (shaders/rt/scene.glsl),
+// optionally storage images at set 1 (bindings named by the pass's constants in the shared
+// headers), and a push-constant struct that carries the frame's and the pass's buffer addresses.
+// Each pass owns one of these; its descriptor set is rewritten every time it records, because
+// history images swap every frame (the frame waits for the previous one, so the set is never in
+// flight then).
 #pragma once
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,28 +19,46 @@ namespace bounce {
 
 using ImageBinding = std::pair<uint32_t, graph::ResolvedImage>;
 
-class ImageComputePass {
+class ComputePass {
  public:
-  // `shader`: embedded name, e.g. "passes/composite"; bindings 0 .. imageCount - 1 are storage
-  // images.
-  ImageComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
-                   uint32_t imageCount);
+  // `shader`: embedded name, e.g. "gi/evolve/cache_build_sh"; bindings 0 .. imageCount - 1 of
+  // set 1 are storage images (no set 1 when imageCount is 0).
+  ComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
+              uint32_t imageCount, uint32_t pushConstantBytes);
 
-  // Binds every image (each binding exactly once), pushes the constants and covers `extent`
-  // with HYBRID_GROUP_SIZE^2 groups.
-  void record(VkCommandBuffer cmd, const std::vector<ImageBinding>& images,
-              const gpu::HybridPassConstants& constants, VkExtent2D extent);
+  // Binds the pipeline, the scene and `images` (each binding exactly once) and pushes
+  // `constants`; the caller dispatches.
+  template <typename T>
+  void bind(VkCommandBuffer cmd, const T& constants, const std::vector<ImageBinding>& images = {}) {
+    bindSets(cmd, images);
+    pipeline_.push(cmd, constants);
+  }
+  const vk::ComputePipeline& pipeline() const { return pipeline_; }
 
  private:
+  void bindSets(VkCommandBuffer cmd, const std::vector<ImageBinding>& images);
+
   vk::Context& context_;
   const GpuScene& scene_;
   uint32_t imageCount_;
-  vk::DescriptorSetLayout layout_;
-  vk::DescriptorPool pool_;
+  std::optional<vk::DescriptorSetLayout> layout_;
+  std::optional<vk::DescriptorPool> pool_;
   vk::ComputePipeline pipeline_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
-  std::vector<VkDescriptorImageInfo> infos_;  // scratch, reused
+  std::vector<VkDescriptorImageInfo> infos_;  // scratch, reused: no per-frame allocation
   std::vector<VkWriteDescriptorSet> writes_;
+};
+
+// The hybrid frame's per-pixel passes: gpu::HybridPassConstants, one thread per pixel.
+class ImageComputePass : public ComputePass {
+ public:
+  ImageComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
+                   uint32_t imageCount)
+      : ComputePass(context, scene, shader, imageCount, sizeof(gpu::HybridPassConstants)) {}
+
+  // bind(), then covers `extent` with HYBRID_GROUP_SIZE^2 groups.
+  void record(VkCommandBuffer cmd, const std::vector<ImageBinding>& images,
+              const gpu::HybridPassConstants& constants, VkExtent2D extent);
 };
 
 }  // namespace bounce

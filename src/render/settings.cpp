@@ -10,11 +10,13 @@ std::optional<VBufferMode> vbufferModeFromName(const std::string& name) {
 
 std::optional<GiMode> giModeFromName(const std::string& name) {
   if (name == "none") return GiMode::None;
+  if (name == "cache") return GiMode::Cache;
+  if (name == "evolve") return GiMode::Evolve;
   return std::nullopt;
 }
 
 const char* giModeNames() {
-  return "none";
+  return "none, evolve, cache";
 }
 
 std::optional<Preset> presetFromName(const std::string& name) {
@@ -34,11 +36,16 @@ HybridSettings presetSettings(Preset preset) {
       s.width = 1170;
       s.height = 540;
       s.shadowDivisor = 2;
+      s.restirGi = RestirGiSettings::mobilePreset();
       break;
     case Preset::Desktop:
       s.width = 1920;
       s.height = 1080;
       s.shadowDivisor = 2;
+      s.cache.raysPerCell = 4;
+      s.cache.validationRaysPerCell = 4;
+      s.cache.alphaTest = true;
+      s.restirGi = RestirGiSettings::desktopPreset();
       break;
   }
   return s;

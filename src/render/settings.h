@@ -5,12 +5,16 @@
 #include <optional>
 #include <string>
 
+#include "gi/evolve/restir_gi_settings.h"
+
 namespace bounce {
 
-// Which diffuse GI the composite receives. Only `None` exists yet: the GI slot reads zero, so
-// the frame shows direct light (plus the optional placeholder ambient below).
-enum class GiMode { None };
-std::optional<GiMode> giModeFromName(const std::string& name);  // "none"
+// Which diffuse GI the composite receives. `None`: the GI slot reads zero, so the frame shows
+// direct light (plus the optional placeholder ambient below). `Evolve`: seed 000's ReSTIR GI
+// chain (src/gi/evolve/restir_gi.h, settings in `restirGi`). `Cache`: Evolve's clipmap
+// irradiance cache alone (src/gi/evolve/cache_gi.h): irradiance at the primary hit.
+enum class GiMode { None, Evolve, Cache };
+std::optional<GiMode> giModeFromName(const std::string& name);  // "none", "evolve", "cache"
 const char* giModeNames();
 
 // How the vbuffer finds the triangle at each pixel: rasterisation (seed 000) or one camera ray
@@ -21,6 +25,33 @@ std::optional<VBufferMode> vbufferModeFromName(const std::string& name);  // "ra
 enum class Preset { Mobile, Desktop };
 std::optional<Preset> presetFromName(const std::string& name);  // "mobile", "desktop"
 const char* presetNames();
+
+// Evolve's clipmap irradiance cache (seed 000; src/gi/evolve/clipmap_cache.h). The defaults are
+// the mobile preset's; presetSettings(Desktop) sets the desktop column of DESIGN.md §4.
+struct ClipmapCacheSettings {
+  // Side of a cell of the finest cascade, metres; cascade c has cells 2^c times larger (12
+  // cascades of 32^3 cells). Smaller cells resolve more detail near the camera but need more
+  // live cells (and rays) for the same view.
+  float finestCellSize = 0.04f;
+  // New candidates per cell per frame (1, 2, 4, 8 or 16): every entry of a cell is refreshed
+  // each 16 / raysPerCell frames. Mobile 1, desktop 4. Cost is linear in it.
+  uint32_t raysPerCell = 1;
+  // Rays per cell per frame that re-trace kept samples so that entries follow lighting changes
+  // at once (at most raysPerCell). Mobile 0, desktop 4.
+  uint32_t validationRaysPerCell = 0;
+  // Alpha-tested cache rays: exact cut-outs (foliage) at the cost of texture reads in
+  // traversal. Mobile off (cut-outs count as solid: some darkening), desktop on.
+  bool alphaTest = false;
+  // Largest candidate count M a reservoir keeps: more averages out noise over more frames
+  // (x 16 / raysPerCell) but reacts more slowly when light changes without validation.
+  float historyCap = 16.0f;
+  // Frames without a lookup after which a cell is freed (seed 000: 4).
+  uint32_t maxStaleFrames = 4;
+  // Most live cells: seed 000's hard cap of 65,535 (the buffers are sized for it). Lower values
+  // exist for tests of what happens when the pool runs dry (lookups then fall back to coarser
+  // cells and count an allocation failure).
+  uint32_t maxLiveCells = 65535;
+};
 
 struct HybridSettings {
   // Render resolution in pixels. Presets: mobile 1170x540, desktop 1920x1080 (seed 000).
@@ -45,9 +76,12 @@ struct HybridSettings {
   // Raster is seed 000's choice and the default; Trace gives the same ids (pixel centres, same
   // alpha test) and is ~3-10x faster on the H200 (README, "The hybrid frame").
   VBufferMode vbuffer = VBufferMode::Raster;
+  RestirGiSettings restirGi;  // --gi evolve
+  ClipmapCacheSettings cache;  // --gi cache (and the cache ReSTIR GI reads)
 };
 
-// The preset's settings (resolution and shadow resolution); other fields keep their defaults.
+// The preset's settings (resolution, shadow resolution, cache rays); other fields keep their
+// defaults.
 HybridSettings presetSettings(Preset preset);
 
 }  // namespace bounce

@@ -1,0 +1,126 @@
+// gi-resolve-diffuse-rays: the radiance at each 2nd vertex (what the trace found + the NEE
+// sample where its shadow ray is unoccluded) becomes a candidate reservoir of one sample drawn
+// from the uniform hemisphere, pdf 1 / (2 pi): W = 2 pi, M = 1 (M = 0 where no surface is
+// seen). Also writes the candidate's own estimate (for the debug view and the variance test).
+// Validation rays (gi-prepare-diffuse-rays, every 3rd frame; seed 000 "resolve-diffuse-rays")
+// re-traced a history reservoir's direction: that reservoir becomes the candidate instead,
+// with the re-traced hit and radiance, and its confidence is lowered by what changed:
+//   hit moved (by more than validationDistance x the old hit distance): the sample points at
+//     geometry that is gone: M and W scaled by validity 0.2 (it loses most of its weight in
+//     every later merge and its estimate fades);
+//   radiance changed (relative luminance change c above validationRadiance): M scaled by
+//     1 - c, the new radiance replaces the old with W rescaled to it (see validatedHistory).
+// The *reservoir validity* written here (1 = unchanged) shortens gi-temporal-denoise's history.
+#version 460
+#include "gi/evolve/restir_gi_common.glsl"
+
+layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
+layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
+
+layout(set = 1, binding = GI_CANDIDATES_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_DEPTH, r32f) uniform readonly image2D depths;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_RAYS, rgba32f) uniform readonly image2D rays;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_HIT, rgba32f) uniform readonly image2D hits;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_HIT_NORMAL, rgba16f) uniform readonly image2D hitNormals;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_HIT_RADIANCE, rgba32f) uniform readonly image2D hitRadiance;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_NEE_RADIANCE, rgba32f) uniform readonly image2D neeRadiance;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_VISIBILITY, r16f) uniform readonly image2D neeVisibility;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_SAMPLE, rgba32f) uniform writeonly image2D sampleOut;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_RADIANCE, rgba32f) uniform writeonly image2D radianceOut;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_ORIGIN, rgba32f) uniform writeonly image2D originOut;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_RESERVOIR_NORMALS, rgba16f) uniform writeonly image2D normalsOut;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_ESTIMATE, rgba16f) uniform writeonly image2D estimateOut;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_PREVIOUS + GI_RESERVOIR_SAMPLE, rgba32f) uniform readonly image2D previousSample;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_PREVIOUS + GI_RESERVOIR_RADIANCE, rgba32f) uniform readonly image2D previousRadiance;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_PREVIOUS + GI_RESERVOIR_ORIGIN, rgba32f) uniform readonly image2D previousOrigin;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_PREVIOUS + GI_RESERVOIR_NORMALS, rgba16f) uniform readonly image2D previousNormals;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_VALIDITY, rg16f) uniform writeonly image2D validityOut;
+
+const float MOVED_VALIDITY = 0.2;
+
+// The history reservoir a validation ray re-traced, updated with the re-traced sample `fresh`;
+// `validity` says how much of it still holds.
+Reservoir validatedHistory(RestirGiConstants gi, float rayW, PrimaryVertex x1, Reservoir fresh,
+                           out float validity) {
+  int index = int(rayW - GI_RAY_VALIDATION + 0.5);
+  ivec2 q = ivec2(index % int(gi.giResolution.x), index / int(gi.giResolution.x));
+  Reservoir h = unpackReservoir(imageLoad(previousSample, q), imageLoad(previousRadiance, q),
+                                imageLoad(previousOrigin, q), imageLoad(previousNormals, q));
+  validity = 1.0;
+  if (h.M <= 0.0) return h;
+  float oldDistance = length(h.samplePosition - x1.position);
+  bool moved = fresh.kind != h.kind ||
+               (fresh.kind == RESTIR_GI_KIND_SURFACE &&
+                length(fresh.samplePosition - h.samplePosition) > gi.validationDistance * oldDistance);
+  float oldLuminance = max(brdfLuminance(h.radiance), 0.0);
+  float newLuminance = max(brdfLuminance(fresh.radiance), 0.0);
+  float change = abs(newLuminance - oldLuminance) / max(max(newLuminance, oldLuminance), 1e-6);
+  if (moved) {
+    validity = MOVED_VALIDITY;
+  } else if (change > gi.validationRadiance) {
+    validity = 1.0 - change;
+  } else {
+    // Unchanged within the noise of one re-traced estimate: keep the stored radiance. Replacing
+    // it would darken: the reservoir was chosen for a high radiance (p_hat), W holds 1/p_hat, and
+    // a fresh estimate of the same path is on average lower.
+    return h;
+  }
+  // W = weightSum / (M p_hat) belongs to the old target value: keep it consistent with the new
+  // radiance (W p_hat unchanged), else a brighter re-trace would be multiplied by the old, large
+  // 1 / p_hat (fireflies while the cache converges). The estimate thus changes only through the
+  // lowered M, which lets the next candidates take over within a few frames, except where the
+  // radiance fell to zero (light gone): W = 0 and the estimate follows at once.
+  float oldTarget = targetFunction(x1, h);
+  float newTarget = targetFunction(x1, fresh);
+  h.W = newTarget > 0.0 ? h.W * oldTarget / newTarget : 0.0;
+  if (moved) h.W *= MOVED_VALIDITY;
+  h.M = max(h.M * validity, 1.0);
+  h.samplePosition = fresh.samplePosition;
+  h.sampleNormal = fresh.sampleNormal;
+  h.kind = fresh.kind;
+  h.radiance = fresh.radiance;
+  if (fresh.kind == RESTIR_GI_KIND_NONE) h = emptyReservoir();
+  return h;
+}
+
+void main() {
+  FrameConstants f = FrameBlock(pc.frame).v;
+  RestirGiConstants gi = RestirGiBlock(pc.gi).v;
+  ivec2 g = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(g), gi.giResolution))) return;
+  ivec2 pixel = giRepresentativePixel(f, gi, g);
+  PrimaryVertex x1 = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
+  Reservoir r = emptyReservoir();
+  if (imageLoad(rays, g).w != 0.0) {
+    vec4 hit = imageLoad(hits, g);
+    r.kind = uint(hit.w + 0.5);
+    r.samplePosition = hit.xyz;
+    r.sampleNormal = decodeOctahedral(imageLoad(hitNormals, g).xy);
+    r.radiance = imageLoad(hitRadiance, g).rgb + imageLoad(neeRadiance, g).rgb * imageLoad(neeVisibility, g).x;
+    r.origin = x1.position;
+    r.originNormal = x1.shadingNormal;
+    r.M = 1.0;
+    // One candidate: W = (1 / p_hat) * p_hat / p_source = 2 pi where p_hat > 0.
+    r.W = targetFunction(x1, r) > 0.0 ? 2.0 * PI : 0.0;
+  }
+  float rayW = imageLoad(rays, g).w;
+  vec2 validity = vec2(1.0, 0.0);
+  if (rayW >= GI_RAY_VALIDATION) {
+    float v;
+    Reservoir h = validatedHistory(gi, rayW, x1, r, v);
+    if (h.M > 0.0) {
+      r = h;
+      r.origin = x1.position;
+      r.originNormal = x1.shadingNormal;
+      validity = vec2(v, 1.0);
+    }
+  }
+  imageStore(validityOut, g, vec4(validity, 0.0, 0.0));
+  vec4 a, b, c, d;
+  packReservoir(r, a, b, c, d);
+  imageStore(sampleOut, g, finiteOrZero(a));
+  imageStore(radianceOut, g, finiteOrZero(b));
+  imageStore(originOut, g, finiteOrZero(c));
+  imageStore(normalsOut, g, d);
+  imageStore(estimateOut, g, finiteOrZero(vec4(reservoirEstimate(x1, r), 1.0)));
+}

@@ -1,0 +1,157 @@
+// gi-restir-temporal: temporal reuse of ReSTIR GI (Ouyang et al. 2021, Alg. 3 and §4.2). The
+// candidate reservoir is merged with last frame's reservoir of the same surface: the pixel is
+// reprojected with gbuffer.velocity, and last frame's reservoir counts only when its primary
+// vertex lies on this pixel's tangent plane (relative plane distance) with a similar normal.
+// History M is capped at temporalMaxM (the cap bounds how long stale samples persist). The
+// history sample is shifted to this frame's primary vertex by reconnection, so its weight
+// carries the Jacobian (restir_gi_common.glsl); shifts with a Jacobian above maxJacobian are
+// rejected (they come from grazing or near-contact geometry and would be fireflies).
+// The merged reservoir is this frame's history (the only reservoir fed back). Where the
+// candidate is a validated history reservoir (gi-resolve-diffuse-rays), it replaces history
+// without a merge (merging would count that history twice).
+#version 460
+#include "gi/evolve/restir_gi_common.glsl"
+#include "common/random.glsl"
+
+layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
+layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
+
+layout(set = 1, binding = GI_TEMPORAL_BINDING_CANDIDATE + GI_RESERVOIR_SAMPLE, rgba32f) uniform readonly image2D candidateSample;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_CANDIDATE + GI_RESERVOIR_RADIANCE, rgba32f) uniform readonly image2D candidateRadiance;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_CANDIDATE + GI_RESERVOIR_ORIGIN, rgba32f) uniform readonly image2D candidateOrigin;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_CANDIDATE + GI_RESERVOIR_NORMALS, rgba16f) uniform readonly image2D candidateNormals;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_PREVIOUS + GI_RESERVOIR_SAMPLE, rgba32f) uniform readonly image2D previousSample;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_PREVIOUS + GI_RESERVOIR_RADIANCE, rgba32f) uniform readonly image2D previousRadiance;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_PREVIOUS + GI_RESERVOIR_ORIGIN, rgba32f) uniform readonly image2D previousOrigin;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_PREVIOUS + GI_RESERVOIR_NORMALS, rgba16f) uniform readonly image2D previousNormals;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_CURRENT + GI_RESERVOIR_SAMPLE, rgba32f) uniform writeonly image2D currentSample;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_CURRENT + GI_RESERVOIR_RADIANCE, rgba32f) uniform writeonly image2D currentRadiance;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_CURRENT + GI_RESERVOIR_ORIGIN, rgba32f) uniform writeonly image2D currentOrigin;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_CURRENT + GI_RESERVOIR_NORMALS, rgba16f) uniform writeonly image2D currentNormals;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_DEPTH, r32f) uniform readonly image2D depths;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_VELOCITY, rg16f) uniform readonly image2D velocities;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_ESTIMATE, rgba16f) uniform writeonly image2D estimateOut;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_VALIDITY, rg16f) uniform readonly image2D validity;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_OCCLUSION_VALIDITY, r16f) uniform readonly image2D occlusionValidity;
+
+const uint RANDOM_GI_PERMUTATION = 0x47490006u;
+
+Reservoir loadPrevious(ivec2 q) {
+  return unpackReservoir(imageLoad(previousSample, q), imageLoad(previousRadiance, q),
+                         imageLoad(previousOrigin, q), imageLoad(previousNormals, q));
+}
+
+bool insideGi(RestirGiConstants gi, ivec2 q) {
+  return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(gi.giResolution)));
+}
+
+// The canonical history reservoir by sub-pixel-aware reprojection (Area ReSTIR, Zhang et al.
+// 2024, §5): the reprojected point falls between last frame's GI pixel centres; one of the four
+// around it is picked with probability equal to its bilinear weight (renormalised over those on
+// this surface), so that over frames the reuse follows the sub-pixel position instead of always
+// snapping to one pixel (which makes reprojection drift and blur on moving views). With a
+// static view the point is a pixel centre and this is that pixel. Returns q = (-1, -1) when no
+// neighbour lies on x1's surface.
+ivec2 canonicalHistoryPixel(FrameConstants f, RestirGiConstants gi, ivec2 pixel, ivec2 g,
+                            PrimaryVertex x1, out Reservoir history) {
+  history = emptyReservoir();
+  vec2 previousPixel = vec2(pixel) + 0.5 - imageLoad(velocities, pixel).xy;
+  // GI pixel g sits at its representative pixel's centre, g d + d / 2 + 0.5 (restir_gi_io.h).
+  vec2 p = (previousPixel - 0.5 - float(gi.divisor / 2u)) / float(gi.divisor);
+  ivec2 base = ivec2(floor(p));
+  vec2 t = p - vec2(base);
+  float weights[4] = float[4]((1.0 - t.x) * (1.0 - t.y), t.x * (1.0 - t.y), (1.0 - t.x) * t.y, t.x * t.y);
+  Reservoir candidates[4];
+  float total = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    ivec2 q = base + ivec2(i & 1, i >> 1);
+    candidates[i] = emptyReservoir();
+    if (weights[i] <= 1e-4 || !insideGi(gi, q)) continue;
+    Reservoir r = loadPrevious(q);
+    if (r.M <= 0.0 || !sameSurface(gi, x1, r.origin, r.originNormal)) continue;
+    candidates[i] = r;
+    total += weights[i];
+  }
+  if (total <= 0.0) return ivec2(-1);
+  float u = random2(uvec2(g), f.frameIndex, RANDOM_GI_TEMPORAL + 1u).x * total;
+  for (int i = 0; i < 4; ++i) {
+    if (candidates[i].M <= 0.0) continue;
+    u -= weights[i];
+    if (u <= 0.0 || i == 3) {
+      history = candidates[i];
+      return base + ivec2(i & 1, i >> 1);
+    }
+  }
+  return ivec2(-1);
+}
+
+// Extra history reservoir k (1 .. temporalHistorySamples - 1) by permutation sampling (seed
+// 000; after Wyman & Panteleev 2021): last frame's GI pixel q displaced by a per-frame
+// permutation of a small neighbourhood (an XOR of the coordinates with a frame hash, so that
+// every history pixel is used once per frame), accepted when it lies on x1's surface and last
+// frame's spatial occlusion validity there says that spatial reuse holds (>= 0.5): under
+// occluders, neighbours' samples would blur indirect shadows.
+Reservoir permutedHistory(FrameConstants f, RestirGiConstants gi, ivec2 q, uint k, PrimaryVertex x1) {
+  uvec3 h = pcg3d(uvec3(f.frameIndex, k, RANDOM_GI_PERMUTATION));
+  ivec2 mask = ivec2(1 + h.x % 3u, 1 + h.y % 3u);  // 1..3: neighbours up to 3 GI pixels away
+  ivec2 p = q ^ mask;
+  if (!insideGi(gi, p)) return emptyReservoir();
+  if ((gi.flags & RESTIR_GI_FLAG_SPATIAL_VALIDATION) != 0u && imageLoad(occlusionValidity, p).x < 0.5)
+    return emptyReservoir();
+  Reservoir r = loadPrevious(p);
+  if (r.M <= 0.0 || !sameSurface(gi, x1, r.origin, r.originNormal)) return emptyReservoir();
+  return r;
+}
+
+// Caps a history reservoir's confidence (temporalMaxM x the candidate's M).
+Reservoir capped(RestirGiConstants gi, Reservoir r, float candidateM) {
+  r.M = min(r.M, gi.temporalMaxM * max(candidateM, 1.0));
+  return r;
+}
+
+void main() {
+  FrameConstants f = FrameBlock(pc.frame).v;
+  RestirGiConstants gi = RestirGiBlock(pc.gi).v;
+  ivec2 g = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(g), gi.giResolution))) return;
+  ivec2 pixel = giRepresentativePixel(f, gi, g);
+  PrimaryVertex x1 = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
+  Reservoir candidate = unpackReservoir(imageLoad(candidateSample, g), imageLoad(candidateRadiance, g),
+                                        imageLoad(candidateOrigin, g), imageLoad(candidateNormals, g));
+  bool validated = imageLoad(validity, g).y > 0.5;
+  Reservoir result = candidate;
+  bool reuse = pc.historyValid != 0u && (gi.flags & RESTIR_GI_FLAG_TEMPORAL) != 0u;
+  if (candidate.M > 0.0 && reuse && !validated) {
+    // Candidate first (canonical), then the canonical history, then permuted ones until the
+    // confidence threshold (temporalMaxM) is reached or temporalHistorySamples were tried.
+    ReservoirStream s = beginStream(x1, candidate);
+    Reservoir history;
+    ivec2 q = canonicalHistoryPixel(f, gi, pixel, g, x1, history);
+    if (q.x >= 0) {
+      float u = random2(uvec2(g), f.frameIndex, RANDOM_GI_TEMPORAL).x;
+      Reservoir h = capped(gi, history, candidate.M);
+      streamReservoir(s, x1, h, reconnectionJacobian(h.origin, x1.position, h), gi.maxJacobian, u);
+      for (uint k = 1u; k < gi.temporalHistorySamples && s.M < gi.temporalMaxM; ++k) {
+        Reservoir r = permutedHistory(f, gi, q, k, x1);
+        if (r.M <= 0.0) continue;
+        r = capped(gi, r, candidate.M);
+        r.M = min(r.M, gi.temporalMaxM - s.M);
+        float uk = random2(uvec2(g), f.frameIndex * 8u + k, RANDOM_GI_TEMPORAL + 2u).x;
+        streamReservoir(s, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, uk);
+      }
+    }
+    result = endStream(s, x1);
+  }
+  if (validated) result.M = min(result.M, gi.temporalMaxM);
+  result.origin = x1.position;
+  result.originNormal = x1.shadingNormal;
+  if (candidate.M <= 0.0) result = emptyReservoir();
+  vec4 a, b, c, d;
+  packReservoir(result, a, b, c, d);
+  imageStore(currentSample, g, finiteOrZero(a));
+  imageStore(currentRadiance, g, finiteOrZero(b));
+  imageStore(currentOrigin, g, finiteOrZero(c));
+  imageStore(currentNormals, g, d);
+  imageStore(estimateOut, g, finiteOrZero(vec4(reservoirEstimate(x1, result), 1.0)));
+}

@@ -1,0 +1,216 @@
+// ReSTIR GI (seed 000's diffuse GI chain; Ouyang et al. 2021, "ReSTIR GI: Path Resampling for
+// Real-Time Path Tracing"): the constants block, push constants, reservoir encoding and the
+// bindings of each pass (src/gi/evolve/restir_gi.cpp declares them on the frame graph).
+//
+// GI resolution = render resolution / divisor (1 full, 2 half on desktop, 4 quarter on mobile).
+// GI pixel g traces from the full-res pixel g * divisor + divisor / 2 (clamped), the
+// "representative" pixel, whose GBuffer gives the primary vertex x1.
+//
+// A reservoir holds one sample, the path's 2nd vertex x2 seen from x1, in four images:
+//   *.sample    RGBA32F  x2 (xyz; for a sky sample x1 + direction * RESTIR_GI_SKY_DISTANCE),
+//                        W, the unbiased contribution weight (solid angle at x1, 1/sr)
+//   *.radiance  RGBA32F  outgoing radiance at x2 towards x1 (rgb), M (confidence, samples seen)
+//   *.origin    RGBA32F  x1, the primary vertex the sample belongs to (xyz), RESTIR_GI_KIND_*
+//   *.normals   RGBA16F  octahedral shading normal at x1 (xy), geometric normal at x2 (zw)
+// The target function is p_hat(x2) = luminance(radiance) * max(0, cos(n1, x2 - x1)), zero
+// where x2 lies below x1's geometric surface; the estimate of gi.diffuse (irradiance / pi per
+// unit albedo) is radiance * cos / pi * W.
+#ifndef BOUNCE_SHARED_RESTIR_GI_IO_H
+#define BOUNCE_SHARED_RESTIR_GI_IO_H
+#include "shared/compat.h"
+
+BOUNCE_BEGIN_SHARED
+
+BOUNCE_CONST uint RESTIR_GI_KIND_NONE = 0u;     // no sample (sky pixel, invalid ray)
+BOUNCE_CONST uint RESTIR_GI_KIND_SURFACE = 1u;  // x2 is a surface point
+BOUNCE_CONST uint RESTIR_GI_KIND_SKY = 2u;      // the ray escaped: x2 is a direction
+
+// Sky samples are stored as a point this far along their direction (scene units): far enough
+// that moving x1 within the scene changes the direction negligibly, near enough for float.
+BOUNCE_CONST float RESTIR_GI_SKY_DISTANCE = 1.0e5f;
+
+// What the radiance at x2 includes besides its emission (RestirGiSettings::secondVertex).
+BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_NEE = 0u;    // + one NEE sample: one bounce only
+BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_PATH = 1u;   // + NEE + a path traced on from x2
+BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_CACHE = 2u;  // + NEE + the clipmap cache (issue 5)
+
+BOUNCE_CONST uint RESTIR_GI_FLAG_TEMPORAL = 1u;             // gi-restir-temporal merges history
+BOUNCE_CONST uint RESTIR_GI_FLAG_DENOISE = 2u;              // gi-temporal-denoise runs
+BOUNCE_CONST uint RESTIR_GI_FLAG_RESOLVE_REUSE = 4u;        // resolve averages neighbour reservoirs
+BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL = 8u;              // gi-restir-spatial-0/1 run
+BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_VALIDATION = 16u;  // gi-trace-spatial-validation-rays
+BOUNCE_CONST uint RESTIR_GI_FLAG_PATCH = 32u;               // gi-restir-patch-reservoir
+BOUNCE_CONST uint RESTIR_GI_FLAG_VALIDATION = 64u;  // validation traces every validationPeriod
+BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_DENOISE = 128u;  // gi-spatial-denoise
+
+// Constants of the whole chain, uploaded once (RestirGi's constructor).
+struct RestirGiConstants {
+  // A ReferenceSettings block (shared/reference_io.h) with the scene's light tables for NEE
+  // from x2; its distant lights exclude the sun, which comes from the frame constants (it
+  // moves). Only the light fields are meaningful.
+  DeviceAddress lights;
+  uvec2 giResolution;
+  uint divisor;
+  uint secondVertex;         // RESTIR_GI_SECOND_VERTEX_*
+  uint flags;                // RESTIR_GI_FLAG_*
+  uint maxPathBounces;       // PATH: scattering events after x2 (Russian roulette from the 3rd)
+  float temporalMaxM;        // M cap of the history reservoir
+  float planeTolerance;      // reprojection: |n1 . (x1' - x1)| / view depth
+  float normalTolerance;     // reprojection: minimum n1 . n1'
+  float maxJacobian;         // reconnection shifts with a larger Jacobian are rejected
+  float denoiseMaxHistory;   // frames the temporal denoiser averages at most
+  float denoiseClipSigma;    // colour clipping box: mean +- sigma * standard deviation
+  float resolveRadius;       // resolve: neighbour reservoirs within this many GI pixels
+  uint resolveSamples;       // resolve: reservoirs averaged per pixel (own one included)
+  DeviceAddress cache;       // ClipmapCacheConstants (CACHE second vertex), else 0
+  uint spatialSamples[2];    // gi-restir-spatial-0 / -1: neighbours per pixel
+  float spatialRadius[2];    // their largest radius, GI pixels
+  float spatialMinRadius;    // their smallest radius (the spiral's first sample), GI pixels
+  float validityBlend;       // spatial occlusion validity: weight of this frame in the running mean
+  uint validationPeriod;     // gi-prepare-diffuse-rays re-traces history every N frames (0 = never)
+  float validationDistance;  // validation: hit moved by more than this x ray length -> M cut
+  float validationRadiance;  // validation: relative radiance change above this -> M and W cut
+  uint temporalHistorySamples;  // history reservoirs gi-restir-temporal may merge (1 to 5)
+  uint spatialDenoiseRadius;    // gi-spatial-denoise: half-width of the blur, pixels
+  uint pad0;
+};
+BOUNCE_CHECK_SIZE(RestirGiConstants, 120);
+
+// Push constants of every ReSTIR GI pass.
+struct RestirGiPassConstants {
+  DeviceAddress frame;  // FrameConstants (shared/hybrid_frame_io.h)
+  DeviceAddress gi;     // RestirGiConstants
+  uint historyValid;    // 0 in the first frame and after a reset
+  uint variant;         // which of a shared shader's passes (gi-restir-spatial-0 / -1)
+};
+BOUNCE_CHECK_SIZE(RestirGiPassConstants, 24);
+
+BOUNCE_CONST uint RESTIR_GI_GROUP_SIZE = 8u;
+
+// Set 1 bindings (storage images) per pass.
+// gi-prepare-diffuse-rays
+BOUNCE_CONST uint GI_PREPARE_BINDING_NORMALS = 0u;
+BOUNCE_CONST uint GI_PREPARE_BINDING_DEPTH = 1u;
+BOUNCE_CONST uint GI_PREPARE_BINDING_FLAGS = 2u;
+// RGBA32F direction (xyz); w: 0 = no ray, 1 = a fresh candidate, >= 2: a validation ray that
+// re-traces the history reservoir of GI pixel q = (w - 2) % width, (w - 2) / width
+BOUNCE_CONST uint GI_PREPARE_BINDING_RAYS = 3u;
+BOUNCE_CONST uint GI_PREPARE_BINDING_PREVIOUS_SAMPLE = 4u;   // gi.reservoir.sample (previous)
+BOUNCE_CONST uint GI_PREPARE_BINDING_PREVIOUS_ORIGIN = 5u;   // gi.reservoir.origin (previous)
+BOUNCE_CONST uint GI_PREPARE_BINDING_PREVIOUS_NORMALS = 6u;  // gi.reservoir.normals (previous)
+BOUNCE_CONST uint GI_PREPARE_BINDING_VELOCITY = 7u;
+BOUNCE_CONST uint GI_PREPARE_BINDING_COUNT = 8u;
+BOUNCE_CONST float GI_RAY_FRESH = 1.0f;
+BOUNCE_CONST float GI_RAY_VALIDATION = 2.0f;
+
+// gi-trace-diffuse-rays
+BOUNCE_CONST uint GI_TRACE_BINDING_NORMALS = 0u;
+BOUNCE_CONST uint GI_TRACE_BINDING_DEPTH = 1u;
+BOUNCE_CONST uint GI_TRACE_BINDING_RAYS = 2u;
+BOUNCE_CONST uint GI_TRACE_BINDING_HIT = 3u;           // RGBA32F x2, RESTIR_GI_KIND_*
+BOUNCE_CONST uint GI_TRACE_BINDING_HIT_NORMAL = 4u;    // RGBA16F oct geometric normal at x2
+BOUNCE_CONST uint GI_TRACE_BINDING_HIT_RADIANCE = 5u;  // RGBA32F radiance at x2 without NEE
+BOUNCE_CONST uint GI_TRACE_BINDING_NEE_RAY = 6u;       // RGBA32F direction (unnormalised), tMax
+BOUNCE_CONST uint GI_TRACE_BINDING_NEE_RADIANCE = 7u;  // RGBA32F NEE radiance if unoccluded
+BOUNCE_CONST uint GI_TRACE_BINDING_COUNT = 8u;
+
+// gi-trace-diffuse-nee-rays
+BOUNCE_CONST uint GI_NEE_BINDING_HIT = 0u;
+BOUNCE_CONST uint GI_NEE_BINDING_HIT_NORMAL = 1u;
+BOUNCE_CONST uint GI_NEE_BINDING_NEE_RAY = 2u;
+BOUNCE_CONST uint GI_NEE_BINDING_VISIBILITY = 3u;  // R16F 1 = unoccluded
+BOUNCE_CONST uint GI_NEE_BINDING_COUNT = 4u;
+
+// gi-resolve-diffuse-rays (writes the candidate reservoirs)
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_NORMALS = 0u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_DEPTH = 1u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_RAYS = 2u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_HIT = 3u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_HIT_NORMAL = 4u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_HIT_RADIANCE = 5u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_NEE_RADIANCE = 6u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_VISIBILITY = 7u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_SAMPLE = 8u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_RADIANCE = 9u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_ORIGIN = 10u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_RESERVOIR_NORMALS = 11u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_ESTIMATE = 12u;  // RGBA16F the candidate's own estimate
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_PREVIOUS = 13u;  // 13-16 history reservoir (previous)
+// RG16F *reservoir validity*: x in [0, 1] (1 = nothing changed; lower where a validation ray
+// found the hit moved or its radiance changed), y = 1 where the candidate is the validated
+// history reservoir rather than a fresh sample (gi-restir-temporal then does not merge)
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_VALIDITY = 17u;
+BOUNCE_CONST uint GI_CANDIDATES_BINDING_COUNT = 18u;
+
+// gi-restir-temporal: candidate (0-3), previous reservoir (4-7), current reservoir (8-11)
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_CANDIDATE = 0u;
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_PREVIOUS = 4u;
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_CURRENT = 8u;
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_NORMALS = 12u;
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_DEPTH = 13u;
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_VELOCITY = 14u;
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_ESTIMATE = 15u;  // RGBA16F the reservoir's own estimate
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_VALIDITY = 16u;  // gi.reservoir-validity
+// last frame's spatial occlusion validity (R16F; read only with RESTIR_GI_FLAG_SPATIAL_VALIDATION)
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_OCCLUSION_VALIDITY = 17u;
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_COUNT = 18u;
+// offsets within a reservoir's four images
+BOUNCE_CONST uint GI_RESERVOIR_SAMPLE = 0u;
+BOUNCE_CONST uint GI_RESERVOIR_RADIANCE = 1u;
+BOUNCE_CONST uint GI_RESERVOIR_ORIGIN = 2u;
+BOUNCE_CONST uint GI_RESERVOIR_NORMALS = 3u;
+
+// gi-restir-resolve (GI resolution -> render resolution)
+BOUNCE_CONST uint GI_RESOLVE_BINDING_RESERVOIR = 0u;  // 0-3
+BOUNCE_CONST uint GI_RESOLVE_BINDING_NORMALS = 4u;
+BOUNCE_CONST uint GI_RESOLVE_BINDING_DEPTH = 5u;
+BOUNCE_CONST uint GI_RESOLVE_BINDING_FLAGS = 6u;
+BOUNCE_CONST uint GI_RESOLVE_BINDING_OUTPUT = 7u;  // RGBA16F irradiance / pi per unit albedo
+BOUNCE_CONST uint GI_RESOLVE_BINDING_COUNT = 8u;
+
+// gi-restir-spatial-0 / -1 and gi-restir-patch-reservoir: a reservoir in, a reservoir out
+BOUNCE_CONST uint GI_SPATIAL_BINDING_INPUT = 0u;   // 0-3
+BOUNCE_CONST uint GI_SPATIAL_BINDING_OUTPUT = 4u;  // 4-7
+BOUNCE_CONST uint GI_SPATIAL_BINDING_NORMALS = 8u;
+BOUNCE_CONST uint GI_SPATIAL_BINDING_DEPTH = 9u;
+BOUNCE_CONST uint GI_SPATIAL_BINDING_ESTIMATE = 10u;  // RGBA16F the output reservoir's estimate
+BOUNCE_CONST uint GI_SPATIAL_BINDING_COUNT = 11u;
+
+// gi-trace-spatial-validation-rays
+BOUNCE_CONST uint GI_VALIDATION_BINDING_INPUT = 0u;  // 0-3, gi-restir-spatial-1's reservoir
+BOUNCE_CONST uint GI_VALIDATION_BINDING_TEMPORAL_SAMPLE = 4u;  // gi.reservoir.sample (own)
+BOUNCE_CONST uint GI_VALIDATION_BINDING_NORMALS = 5u;
+BOUNCE_CONST uint GI_VALIDATION_BINDING_DEPTH = 6u;
+BOUNCE_CONST uint GI_VALIDATION_BINDING_VELOCITY = 7u;
+BOUNCE_CONST uint GI_VALIDATION_BINDING_VALIDITY_PREVIOUS = 8u;  // R16F history
+BOUNCE_CONST uint GI_VALIDATION_BINDING_VALIDITY_CURRENT = 9u;   // R16F spatial occlusion validity
+BOUNCE_CONST uint GI_VALIDATION_BINDING_SAMPLE_OUT = 10u;        // RGBA32F x2, W (0 when occluded)
+BOUNCE_CONST uint GI_VALIDATION_BINDING_ESTIMATE = 11u;
+BOUNCE_CONST uint GI_VALIDATION_BINDING_COUNT = 12u;
+
+// gi-temporal-denoise
+BOUNCE_CONST uint GI_DENOISE_BINDING_INPUT = 0u;
+BOUNCE_CONST uint GI_DENOISE_BINDING_NORMALS = 1u;
+BOUNCE_CONST uint GI_DENOISE_BINDING_DEPTH = 2u;
+BOUNCE_CONST uint GI_DENOISE_BINDING_PREVIOUS_DEPTH = 3u;
+BOUNCE_CONST uint GI_DENOISE_BINDING_FLAGS = 4u;
+BOUNCE_CONST uint GI_DENOISE_BINDING_VELOCITY = 5u;
+BOUNCE_CONST uint GI_DENOISE_BINDING_PREVIOUS = 6u;  // RGBA16F rgb, frames accumulated (a)
+BOUNCE_CONST uint GI_DENOISE_BINDING_CURRENT = 7u;
+BOUNCE_CONST uint GI_DENOISE_BINDING_OUTPUT = 8u;    // gi.diffuse
+BOUNCE_CONST uint GI_DENOISE_BINDING_VALIDITY = 9u;  // gi.reservoir-validity (GI resolution)
+// this frame's spatial occlusion validity (GI resolution; read only with
+// RESTIR_GI_FLAG_SPATIAL_VALIDATION)
+BOUNCE_CONST uint GI_DENOISE_BINDING_OCCLUSION_VALIDITY = 10u;
+BOUNCE_CONST uint GI_DENOISE_BINDING_COUNT = 11u;
+
+// gi-spatial-denoise (render resolution)
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_INPUT = 0u;  // gi-temporal-denoise's output
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_NORMALS = 1u;
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_DEPTH = 2u;
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_FLAGS = 3u;
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_OUTPUT = 4u;  // gi.diffuse
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_COUNT = 5u;
+
+BOUNCE_END_SHARED
+#endif

@@ -1,0 +1,29 @@
+// `--gi cache`: Evolve's clipmap irradiance cache alone as the frame's diffuse GI (issue 5), so
+// the cache can be seen and measured before ReSTIR GI uses it. After the cache's own passes,
+// `gi-cache-lookup` writes gi.diffuse = irradiance / pi at each pixel's surface point (the mean
+// of four jittered lookups); composite multiplies it by the albedo. Multi-bounce light comes
+// from the cache's recursive lookups.
+#pragma once
+#include "gi/diffuse_gi.h"
+#include "gi/evolve/clipmap_cache.h"
+
+namespace bounce {
+
+class CacheGi final : public DiffuseGi {
+ public:
+  CacheGi(vk::Context& context, GpuScene& gpuScene, const HybridSettings& settings);
+
+  void declare(graph::FrameGraph& graph, const FrameInputs& inputs,
+               graph::ImageHandle output) override;
+  void afterFrame() override { cache_.afterFrame(); }
+  std::vector<GiStatistic> statistics() const override { return cache_.statistics(); }
+  void resetHistory() override { cache_.resetHistory(); }
+
+  ClipmapCache& cache() { return cache_; }
+
+ private:
+  ClipmapCache cache_;
+  ComputePass lookup_;
+};
+
+}  // namespace bounce

@@ -1,0 +1,78 @@
+// Evolve's ReSTIR GI chain (seed 000; DESIGN.md §4 step 5; issue 6): `--gi evolve`.
+//
+//   (cache-*)                  the clipmap cache's update (ClipmapCache::declareUpdate), when the
+//                              2nd vertex continues into the cache (RestirGiSecondVertex::Cache)
+//   gi-prepare-diffuse-rays    a uniform hemisphere direction per GI pixel (R2 + rotation); every
+//                              3rd frame a validation ray along the history reservoir's sample
+//   gi-trace-diffuse-rays      closest hit; sky on a miss; emission, NEE set-up, the cache lookup
+//                              (Cache) or a continued path (Path) at the 2nd vertex
+//   gi-trace-diffuse-nee-rays  visibility of the NEE rays
+//   gi-resolve-diffuse-rays    candidate reservoirs (one sample, W = 2 pi, M = 1), or on
+//                              validation rays the checked history reservoir; reservoir validity
+//   gi-restir-temporal         sub-pixel-aware reprojection + up to 5 history reservoirs
+//                              (permutation sampling); the only reservoir fed back (history)
+//   gi-restir-spatial-0/-1     spatial reuse, 8 samples / large radius then 5 / small radius
+//   gi-trace-spatial-validation-rays  visibility of reused samples (W = 0 when occluded); the
+//                              spatial occlusion validity mask (history)
+//   gi-restir-patch-reservoir  rejected reservoirs take the first valid one of their 2x2 patch
+//   gi-restir-resolve          reservoirs -> L1 SH -> gi.diffuse at render resolution
+//   gi-temporal-denoise        running mean with variance clipping (when enabled)
+//   gi-spatial-denoise         edge-aware blur (desktop preset)
+//
+// Resources (frame graph): gi.rays, gi.hit, gi.hit-normal, gi.hit-radiance, gi.nee-ray,
+// gi.nee-radiance, gi.nee-visibility, gi.candidate.{sample,radiance,origin,normals},
+// gi.candidate-estimate, gi.reservoir-validity, history gi.reservoir.{sample,radiance,origin,
+// normals}, gi.reservoir-estimate, gi.spatial-{0,1}.{...}, gi.spatial-{0,1}-estimate,
+// gi.validated.sample, gi.validated-estimate, history gi.spatial-occlusion-validity,
+// gi.patched.{...}, gi.patched-estimate, gi.resolved, history gi.denoised,
+// gi.temporal-denoised. Formats: shared/restir_gi_io.h. Every pass and resource is a debug view
+// by name (`bounce render --gi evolve --view ...`; a pass shows its estimate image).
+#pragma once
+#include <array>
+#include <memory>
+#include <optional>
+
+#include "gi/diffuse_gi.h"
+#include "gi/evolve/clipmap_cache.h"
+#include "gi/evolve/restir_gi_pass.h"
+#include "gi/evolve/restir_gi_settings.h"
+#include "shared/restir_gi_io.h"
+#include "vk/resources.h"
+
+namespace bounce {
+
+class RestirGi final : public DiffuseGi {
+ public:
+  RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+           const HybridSettings& settings);
+  void declare(graph::FrameGraph& graph, const FrameInputs& inputs,
+               graph::ImageHandle output) override;
+  // The clipmap cache (CACHE second vertex) has state outside the frame graph.
+  void afterFrame() override;
+  std::vector<GiStatistic> statistics() const override;
+  void resetHistory() override;
+
+ private:
+  using ReservoirImages = std::array<graph::ImageHandle, 4>;  // sample, radiance, origin, normals
+  gpu::RestirGiPassConstants passConstants(const FrameInputs& inputs, bool historyValid,
+                                           uint32_t variant = 0) const;
+  void declareReservoirPass(graph::FrameGraph& graph, const FrameInputs& in, const char* name,
+                            RestirGiPass& pass, uint32_t variant, const ReservoirImages& input,
+                            const ReservoirImages& output, graph::ImageHandle estimate);
+  ReservoirImages declareSpatialChain(graph::FrameGraph& graph, const FrameInputs& in,
+                                      const ReservoirImages& temporal,
+                                      const std::optional<graph::HistoryImage>& occlusionValidity);
+
+  RestirGiSettings settings_;
+  std::unique_ptr<ClipmapCache> cache_;  // only with RestirGiSecondVertex::Cache
+  VkExtent2D giResolution_{};
+  // The light tables for NEE at the 2nd vertex (a gpu::ReferenceSettings block and its arrays).
+  vk::Buffer emissiveTriangles_, punctualLights_, lightAlias_, distantLights_,
+      materialLightAreaPdf_;
+  vk::Buffer lights_;
+  vk::Buffer constants_;  // gpu::RestirGiConstants
+  RestirGiPass prepare_, trace_, traceNee_, candidates_, temporal_, spatial0_, spatial1_,
+      spatialValidation_, patch_, resolve_, spatialDenoise_, denoise_;
+};
+
+}  // namespace bounce

@@ -1,0 +1,135 @@
+// Settings of Evolve's ReSTIR GI chain (`--gi evolve`; seed 000, DESIGN.md §4 step 5). Every
+// threshold with its unit and what changing it trades. The shader-side copy is
+// gpu::RestirGiConstants (shaders/shared/restir_gi_io.h).
+#pragma once
+#include <cstdint>
+
+namespace bounce {
+
+// What the radiance stored with a 2nd vertex x2 includes besides its emission.
+enum class RestirGiSecondVertex : uint32_t {
+  Nee = 0,    // + one NEE sample at x2: one bounce of indirect light, cheapest, biased dark
+  Path = 1,   // + NEE + a path traced on from x2 like the reference's: unbiased, a path per pixel
+  Cache = 2,  // + NEE + the clipmap irradiance cache at x2 (issue 5, seed 000's choice): all
+              //   bounces for the price of one lookup; biased by the cache's coarseness (cells
+              //   of 4 cm near the camera, growing x2 per cascade) and its lag (16 frames/entry).
+};
+
+struct RestirGiSettings {
+  // GI resolution = render resolution / divisor: 4 quarter (mobile preset), 2 half (desktop
+  // preset), 1 full (tests: no upsampling between reservoirs and pixels). Each step down is 4x
+  // fewer rays and reservoirs and a blurrier upsample at edges.
+  uint32_t divisor = 2;
+  RestirGiSecondVertex secondVertex = RestirGiSecondVertex::Cache;
+  // Scattering events of a path counted like `bounce reference --max-bounces` (x1 is the 1st, x2
+  // the 2nd): 1 leaves only x2's emission, 2 adds NEE at x2, more continues the path (Path).
+  // Russian roulette ends most paths well before 16.
+  uint32_t maxBounces = 16;
+  // gi-restir-temporal merges last frame's reservoir. Off: raw candidates (for comparisons).
+  bool temporalReuse = true;
+  // Cap on history M, in units of the candidate's M (1). Higher: less noise on static views but
+  // slower reaction to changed lighting (a sample lives ~maxM frames); ReSTIR GI uses 20-30.
+  float temporalMaxM = 20.0f;
+  // History reservoirs gi-restir-temporal may merge (seed 000: up to 5): the reprojected one
+  // (sub-pixel-aware, Area ReSTIR) and up to 4 more by permutation sampling around it, until
+  // the confidence reaches temporalMaxM. More: disocclusions fill in within a frame or two
+  // (blurry rather than noisy) at up to 4 extra reservoir reads per pixel; 1 is plain
+  // temporal reuse (the unbiased configuration: neighbours' samples carry a Jacobian and no
+  // visibility test).
+  uint32_t temporalHistorySamples = 5;
+  // Validation rays (gi-prepare-diffuse-rays): every validationPeriod-th frame (seed 000: 3)
+  // each pixel with history re-traces its reservoir's direction instead of a fresh candidate.
+  // Smaller: faster reaction to moved geometry and changed light, fewer new candidates (slower
+  // convergence). 0 = never. validationDistance: the re-traced hit counts as moved when it is
+  // farther than this fraction of the old hit distance from the old hit (lower: more samples
+  // dropped on slightly moving foliage). validationRadiance: a relative luminance change above
+  // this lowers M by the change (lower: more reaction to noise in the re-traced radiance, which
+  // with the cache and one NEE sample is itself noisy).
+  // Off by default for now (0): with it on, the mean of the full chain rises by 15-70 %
+  // (cornell, temporal reuse only, Path: mean ratio to the reference 0.94 -> 1.15; with the
+  // cache 0.87 -> 1.6); pass-through validation (nothing changed) is neutral with Path, so the
+  // radiance-change handling (gi_resolve_diffuse_rays.comp, validatedHistory) is the suspect,
+  // and cache lookups at the re-traced (bright, selected) 2nd vertices make the cache gain
+  // energy. Set 3 (seed 000) to experiment.
+  uint32_t validationPeriod = 0;
+  float validationDistance = 0.1f;
+  float validationRadiance = 0.5f;
+  // Reprojection and reuse accept another primary vertex when it lies within this relative
+  // distance (of view depth) of this pixel's tangent plane and its normal's cosine to this one
+  // is at least normalTolerance. Looser: more reuse across edges (leaks); tighter: more
+  // disocclusion noise on curved or sloped surfaces.
+  float planeTolerance = 0.02f;
+  float normalTolerance = 0.9f;
+  // Reconnection shifts with a Jacobian above this are rejected: they come from grazing or
+  // close-contact geometry and make fireflies; rejecting them darkens such corners slightly
+  // (bias). Static views never reach it (J = 1).
+  float maxJacobian = 10.0f;
+  // gi-restir-spatial-0 / -1 (seed 000: 8 samples over a large radius, then 5 over a small
+  // one). Each neighbour is shifted by reconnection without a visibility test, so this reuse is
+  // biased (blurs indirect shadows; gi-trace-spatial-validation-rays repairs most) and never fed
+  // back. More samples: less noise after disocclusion and in rarely-lit regions (small lights),
+  // cost linear; a larger radius: faster convergence of dark regions, more blur and leaking
+  // across nearby surfaces. Radii in GI pixels, spiral radii growing exponentially from
+  // spatialMinRadius.
+  bool spatialReuse = true;
+  uint32_t spatialSamples[2] = {8, 5};
+  float spatialRadius[2] = {24.0f, 6.0f};
+  float spatialMinRadius = 1.0f;
+  // gi-trace-spatial-validation-rays: a shadow ray per GI pixel whose final sample came from a
+  // neighbour; W = 0 when occluded. Off: cheaper, indirect shadows blur over the spatial radius.
+  bool spatialValidation = true;
+  // Weight of this frame in the running mean of the spatial occlusion validity mask: higher
+  // reacts faster to moving occluders, lower gives a steadier mask (fewer flickering edges).
+  float validityBlend = 0.2f;
+  // gi-restir-patch-reservoir: rejected reservoirs take the first valid one of their 2x2 patch.
+  // Off: pepper noise at indirect shadow edges (then averaged by the denoiser).
+  bool patchReservoir = true;
+  // gi-restir-resolve: reservoirs evaluated per pixel (own GI pixel first, then a golden-angle
+  // spiral within resolveRadius GI pixels). More: smoother and blurrier. 1 with divisor 1 is the
+  // unbiased estimate of the pixel's own reservoir.
+  uint32_t resolveSamples = 4;
+  float resolveRadius = 2.0f;
+  // gi-temporal-denoise: running mean of up to denoiseMaxHistory frames with the history clipped
+  // to mean +- denoiseClipSigma standard deviations of the 3x3 neighbourhood. More frames or a
+  // wider box: smoother, more ghosting after a change. Off for unbiased measurements.
+  bool temporalDenoise = true;
+  float denoiseMaxHistory = 16.0f;
+  float denoiseClipSigma = 2.0f;
+  // gi-spatial-denoise after the temporal denoiser (seed 000: desktop only): an edge-aware
+  // (same-surface) Gaussian blur of half-width spatialDenoiseRadius pixels. Larger: smoother,
+  // loses contact shadows and small indirect detail; cost grows with the square.
+  bool spatialDenoise = false;
+  uint32_t spatialDenoiseRadius = 2;
+
+  // The unbiased configuration of issue 6's first test: full resolution, temporal reuse only,
+  // a continued path at x2, the biased passes (neighbour reuse in the resolve, denoising) off.
+  // The presets' columns of DESIGN.md §4 (settings.cpp, presetSettings()).
+  static RestirGiSettings mobilePreset() {
+    RestirGiSettings s;
+    s.divisor = 4;  // quarter-resolution diffuse GI (seed 000)
+    s.secondVertex = RestirGiSecondVertex::Cache;
+    return s;
+  }
+  static RestirGiSettings desktopPreset() {
+    RestirGiSettings s;
+    s.divisor = 2;  // half-resolution diffuse GI (seed 000)
+    s.secondVertex = RestirGiSecondVertex::Cache;
+    s.spatialDenoise = true;  // seed 000: "additional spatial denoising step" on desktop
+    return s;
+  }
+
+  static RestirGiSettings unbiased() {
+    RestirGiSettings s;
+    s.divisor = 1;
+    s.secondVertex = RestirGiSecondVertex::Path;
+    s.resolveSamples = 1;
+    s.temporalDenoise = false;
+    s.spatialReuse = false;
+    s.spatialValidation = false;
+    s.temporalHistorySamples = 1;
+    s.patchReservoir = false;
+    return s;
+  }
+};
+
+}  // namespace bounce
