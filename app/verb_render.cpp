@@ -306,8 +306,9 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
   cmd->add_flag("--no-gi-denoise", options->noGiDenoise, "Turn the GI denoisers off");
   cmd->add_option("--view", options->view,
                   std::string("What to write: a pass of the frame (scene-update, vbuffer, gbuffer, "
-                              "shadows-trace, shadows-denoise, sky, composite, tonemap) or a "
-                              "resource (gbuffer.normals, ...), or a ray-cast view: ") +
+                              "shadows-trace, shadows-denoise, sky, composite, tonemap; with GI "
+                              "the cache-* and gi-* passes, e.g. cache, gi-restir-temporal) or a "
+                              "resource (gbuffer.normals, gi.diffuse, ...), or a ray-cast view: ") +
                       primaryViewNames())
       ->capture_default_str();
   cmd->add_option("--out", options->out,

@@ -46,6 +46,9 @@ TEST(Cli, BadInputGetsAClearError) {
       {"render --scene cornell --sky 1,nan,1", "--sky"},
       {"render --scene cornell --view nosuchview --res 8x8", "nosuchview"},
       {"render --scene cornell --device 99 --res 8x8", "--device 99"},
+      {"render --scene cornell --gi foo --res 8x8", "--gi 'foo'"},
+      {"render --scene cornell --gi-divisor 3 --res 8x8", "--gi-divisor 3"},
+      {"render --scene cornell --restir-second-vertex foo --res 8x8", "--restir-second-vertex"},
       {"compare " + dir + "/a.png " + dir + "/b.png", "a.png"},
   };
   for (const BadInvocation& c : cases) {
