@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The README's GI tables on the GPU machine (../shared/device/README.md): per-pass GPU times of
+# the diffuse GI chain (--gi evolve) and of the cache alone (--gi cache), both presets, 240
+# animated frames each, plus a validation run. Pack first, from the project root:
+#   ../shared/device/pack.sh --validation build/bounce ../shared/scenes/glass_vase_flowers/glTF
+#   cp scripts/device/gi_bench.sh .devicepack/
+# then run `bash .devicepack/gi_bench.sh` there (carry .devicepack); $OUT/timings.tgz holds the
+# --timings files for scripts/plot_pass_times.py.
+set -u
+R="bash .devicepack/run.sh bounce"
+VASE=.devicepack/data/glTF/GlassVaseFlowers.gltf
+run() {  # label, then render arguments
+  local label=$1; shift
+  echo "== $label"
+  $R render --vbuffer trace --frames 240 --animate --timings "$OUT/$label.json" \
+    --out "/tmp/$label.png" "$@" 2>&1 | grep -E "^  (cache|gi-|composite|frame)" | grep -v cascade
+}
+for scene in sunroom city vase; do
+  path=$scene; [ "$scene" = vase ] && path=$VASE
+  for preset in mobile desktop; do run "$scene-$preset-evolve" --scene "$path" --preset $preset --gi evolve; done
+done
+run sunroom-1440p-evolve --scene sunroom --preset desktop --res 2560x1440 --gi evolve
+run city-1440p-evolve --scene city --preset desktop --res 2560x1440 --gi evolve
+for preset in mobile desktop; do
+  run "sunroom-$preset-cache" --scene sunroom --preset $preset --gi cache
+  run "city-$preset-cache" --scene city --preset $preset --gi cache
+done
+VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation $R render --scene city --preset desktop \
+  --vbuffer trace --gi evolve --frames 20 --animate --validate --out /tmp/validate.png \
+  > /tmp/validate.log 2>&1
+echo "validation run: exit code $? (non-zero on any validation message)"
+cd "$OUT" && tar czf timings.tgz ./*.json && rm ./*.json
