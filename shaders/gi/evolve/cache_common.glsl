@@ -4,6 +4,7 @@
 #define BOUNCE_GI_EVOLVE_CACHE_COMMON_GLSL
 #include "common/random.glsl"
 #include "common/sampling.glsl"
+#include "common/sh.glsl"
 #include "shared/clipmap_cache_io.h"
 
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer ClipmapConstantsRef {
@@ -115,17 +116,6 @@ const vec3 CLIPMAP_ENTRY_MEAN_DIRECTION[CLIPMAP_ENTRIES] = vec3[](
     vec3(0.42398, 0.42398, 0.70834), vec3(0.87340, 0.27872, 0.0),
     vec3(-0.42398, 0.42398, -0.70834), vec3(-0.27872, 0.87340, 0.0),
     vec3(0.27872, 0.87340, 0.0), vec3(0.42398, 0.42398, -0.70834));
-
-// L1 SH basis (Y00, Y1-1, Y10, Y11) at unit direction d.
-vec4 shBasisL1(vec3 d) {
-  return vec4(0.282095, 0.488603 * d.y, 0.488603 * d.z, 0.488603 * d.x);
-}
-
-// Irradiance / pi for normal n from L1 SH of radiance: the clamped-cosine convolution
-// (Ramamoorthi & Hanrahan 2001: A0 = pi, A1 = 2 pi / 3), divided by pi.
-float shIrradianceOverPi(vec4 sh, vec3 n) {
-  return max(0.0, dot(sh * vec4(1.0, 2.0 / 3.0, 2.0 / 3.0, 2.0 / 3.0), shBasisL1(n)));
-}
 
 float clipmapLuminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 

@@ -10,6 +10,7 @@
 #version 460
 #include "gi/evolve/restir_gi_common.glsl"
 #include "common/random.glsl"
+#include "common/sh.glsl"
 
 layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
@@ -25,29 +26,23 @@ layout(set = 1, binding = GI_RESOLVE_BINDING_OUTPUT, rgba16f) uniform writeonly 
 
 const uint RANDOM_GI_RESOLVE = 0x47490004u;
 
-// L1 spherical harmonics of incoming radiance, one vec4 (Y00, Y1-1, Y10, Y11 weights) per
-// colour channel, in world axes (y, z, x order folded into xyz below).
+// L1 spherical harmonics of incoming radiance (common/sh.glsl), one vec4 per colour channel.
 struct ShL1 {
   vec4 r, g, b;
 };
 
-const float SH_Y0 = 0.282095;  // 1 / (2 sqrt pi)
-const float SH_Y1 = 0.488603;  // sqrt(3 / (4 pi))
-
 // Adds a radiance sample L from direction w with weight W (a reservoir's estimate of the
 // radiance integral over directions: L W, Ouyang et al. 2021 Eq. 6) to the projection.
 void shAdd(inout ShL1 sh, vec3 w, vec3 radianceTimesW) {
-  vec4 basis = vec4(SH_Y0, SH_Y1 * w);
+  vec4 basis = shBasisL1(w);
   sh.r += radianceTimesW.r * basis;
   sh.g += radianceTimesW.g * basis;
   sh.b += radianceTimesW.b * basis;
 }
 
-// Irradiance / pi at normal n: the projection convolved with the clamped cosine (zonal
-// coefficients pi and 2 pi / 3; Ramamoorthi & Hanrahan 2001), clamped at zero (L1 rings).
+// Irradiance / pi at normal n, per channel.
 vec3 shIrradianceOverPiAt(ShL1 sh, vec3 n) {
-  vec4 lobe = vec4(PI * SH_Y0, (2.0 * PI / 3.0) * SH_Y1 * n) / PI;
-  return max(vec3(dot(sh.r, lobe), dot(sh.g, lobe), dot(sh.b, lobe)), vec3(0.0));
+  return vec3(shIrradianceOverPi(sh.r, n), shIrradianceOverPi(sh.g, n), shIrradianceOverPi(sh.b, n));
 }
 
 // The reservoir r shifted to x (reconnection; its W carries the Jacobian), as radiance x W and
