@@ -277,10 +277,10 @@ Agreement measureAgreement(const std::string& sceneName, uint32_t width, uint32_
 // wide and L1 SH smooths the directional distribution, so a point's value is the cell's local
 // average, which differs from the point's own irradiance where light changes fast within a
 // cell. So: 90 % of the points within 25 % of their value (with a floor of 15 % of the mean over
-// points, so near-black points do not dominate), every point within 50 % (measured on
+// points, so near-black points do not dominate), every point within 60 % (measured on
 // `sunroom`: most points under 20 %, the worst, a ceiling point beside the window wall next to
-// the brightly lit patch, 21-44 % over runs: the cells' allocation order, and so their exact
-// samples, depends on lavapipe's thread timing); the mean over points, where these errors
+// the brightly lit patch, 21-47 % over six runs: the cells' allocation order, and so their
+// exact samples, depends on lavapipe's thread timing, so the bound keeps a margin over that); the mean over points, where these errors
 // largely cancel, within 12 %. The cache must also hold at least half of the light that
 // bounces more than once (reference with 16 bounces minus reference with 1).
 void checkAgreement(const std::string& sceneName, const Agreement& a) {
@@ -300,7 +300,7 @@ void checkAgreement(const std::string& sceneName, const Agreement& a) {
     std::printf("  %s point %2zu (%s): cache %.4f  path-traced %.4f (single bounce %.4f)  error %.1f%%\n",
                 sceneName.c_str(), i, a.sunlit[i] ? "sunlit  " : "shadowed", a.cache[i],
                 a.multi[i], a.single[i], 100.0 * error);
-    EXPECT_LT(error, 0.5) << sceneName << " point " << i;
+    EXPECT_LT(error, 0.6) << sceneName << " point " << i;
     within25 += error < 0.25 ? 1 : 0;
   }
   std::printf("%s: %zu points (%d sunlit): mean cache %.4f, path-traced %.4f, single bounce %.4f; "
