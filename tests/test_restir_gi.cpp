@@ -430,15 +430,18 @@ TEST(RestirGiDiag, Configurations) {
     const std::string name = configs.substr(start, comma - start);
     start = comma + 1;
     RestirGiSettings gi = diagnosticSettings(name);
-    HybridFrame frame(context, gpuScene, scene, giSettings(width, height, gi));
+    HybridSettings hybrid = giSettings(width, height, gi);
+    if (name.find("stale64") != std::string::npos) hybrid.cache.maxStaleFrames = 64;
+    HybridFrame frame(context, gpuScene, scene, hybrid);
     frame.requestDebugView("composite");
     frame.requestDebugView("gi-restir-temporal");
     frame.requestDebugView("gi-resolve-diffuse-rays");
     ImageRGBA32F sum;
-    for (int i = 0; i < 64; ++i) {
+    const int frames = std::getenv("RESTIR_FRAMES") ? std::atoi(std::getenv("RESTIR_FRAMES")) : 64;
+    for (int i = 0; i < frames; ++i) {
       frame.render(camera);
-      if (i >= 32) accumulate(sum, frame.debugViewImage("composite"));
-      if (i >= 48 && std::getenv("RESTIR_TRACE"))
+      if (i >= frames - 32) accumulate(sum, frame.debugViewImage("composite"));
+      if (i >= frames - 16 && std::getenv("RESTIR_TRACE"))
         std::printf("  frame %d: candidates %.4f temporal %.4f composite %.4f\n", i,
                     meanLuminance(frame.debugViewImage("gi-resolve-diffuse-rays")),
                     meanLuminance(frame.debugViewImage("gi-restir-temporal")),

@@ -32,4 +32,12 @@ vec3 sampleCone(vec3 axis, float cosThetaMax, vec2 u) {
   return normalize(sinTheta * cos(phi) * t + sinTheta * sin(phi) * b + cosTheta * axis);
 }
 
+// Multiple importance sampling weight of strategy A against B, power heuristic with beta = 2
+// (Veach 1997, "Robust Monte Carlo Methods for Light Transport Simulation", §9.2.3).
+float powerHeuristic(float pdfA, float pdfB) {
+  float a = pdfA * pdfA;
+  float b = pdfB * pdfB;
+  return a + b > 0.0 ? a / (a + b) : 0.0;
+}
+
 #endif

@@ -43,12 +43,6 @@ vec2 pixelJitter(uvec4 pixelKey, uint sampleIndex) {
   return vec2((sampleIndex * r2Step + rotation) >> 8u) * (1.0 / 16777216.0);
 }
 
-float powerHeuristic(float pdfA, float pdfB) {
-  float a = pdfA * pdfA;
-  float b = pdfB * pdfB;
-  return a + b > 0.0 ? a / (a + b) : 0.0;
-}
-
 vec3 skyRadiance(vec3 direction) {
   if (settings.skyModel == REFERENCE_SKY_DAYLIGHT)
     return daylightSky(direction, settings.skyTowardSun, settings.skyTurbidity) * settings.skyScale;

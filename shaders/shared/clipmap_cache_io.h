@@ -67,7 +67,9 @@ struct ClipmapCell {
   vec4 shB;
   uint flags;  // CLIPMAP_CELL_*
   uint validEntries;
-  uint pad0;
+  // Exact / SH irradiance at `normal` (cache-build-sh): what lookups with that normal scale the
+  // SH's irradiance by (less for other normals; cache_lookup.glsl).
+  float irradianceScale;
   uint pad1;
 };
 BOUNCE_CHECK_SIZE(ClipmapCell, 112);
@@ -125,6 +127,7 @@ BOUNCE_CHECK_SIZE(ClipmapCacheAddresses, 56);
 // (shaders/gi/evolve/cache_lookup.glsl, clipmapCacheView()).
 struct ClipmapCacheConstants {
   ClipmapCacheAddresses buffers;
+  DeviceAddress lights;  // ReferenceSettings with the light tables (src/gi/gi_light_tables.h)
   ivec4 cascadeOrigin[CLIPMAP_CASCADES];  // xyz: first cell of the window; w unused
   vec3 cameraPosition;
   float finestCellSize;  // metres
@@ -137,7 +140,7 @@ struct ClipmapCacheConstants {
   uint poolCapacity;  // live cells at most: CLIPMAP_MAX_CELLS, or fewer for tests
   uint pad1;
 };
-BOUNCE_CHECK_SIZE(ClipmapCacheConstants, 56 + 192 + 48);
+BOUNCE_CHECK_SIZE(ClipmapCacheConstants, 56 + 8 + 192 + 48);
 
 // Push constants of the cache passes.
 struct ClipmapPassConstants {
@@ -176,12 +179,13 @@ struct ReferenceIrradianceConstants {
   DeviceAddress frame;   // FrameConstants
   DeviceAddress probes;  // IrradianceProbe[probeCount]
   DeviceAddress sums;    // vec4[probeCount * CLIPMAP_GROUP_SIZE]: per thread (sum rgb, samples)
+  DeviceAddress lights;  // ReferenceSettings with the light tables (src/gi/gi_light_tables.h)
   uint probeCount;
   uint samplesPerThread;
   uint maxBounces;  // scattering events after the probe: 1 = light from directly lit surfaces
   uint seed;
 };
-BOUNCE_CHECK_SIZE(ReferenceIrradianceConstants, 40);
+BOUNCE_CHECK_SIZE(ReferenceIrradianceConstants, 48);
 
 BOUNCE_END_SHARED
 #endif

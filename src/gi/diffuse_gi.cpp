@@ -13,7 +13,7 @@ std::unique_ptr<DiffuseGi> makeDiffuseGi(vk::Context& context, GpuScene& gpuScen
     case GiMode::Evolve:
       return std::make_unique<RestirGi>(context, gpuScene, scene, settings);
     case GiMode::Cache:
-      return std::make_unique<CacheGi>(context, gpuScene, settings);
+      return std::make_unique<CacheGi>(context, gpuScene, scene, settings);
   }
   return nullptr;
 }

@@ -183,13 +183,19 @@ std::vector<gpu::ReferenceLightAlias> buildAliasTable(std::span<const double> we
   return table;
 }
 
-ReferenceLightTable buildReferenceLights(const Scene& scene, const rt::SceneBvh& bvh) {
+ReferenceLightTable buildReferenceLights(const Scene& scene, const rt::SceneBvh& bvh,
+                                         const std::vector<bool>& unsampledMaterials) {
   ReferenceLightTable table;
   std::vector<float> materialLuminance;
-  for (const Material& m : scene.materials)
-    materialLuminance.push_back(luminance(meanEmission(scene, m)));
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    bool unsampled = m < unsampledMaterials.size() && unsampledMaterials[m];
+    materialLuminance.push_back(unsampled ? 0.0f : luminance(meanEmission(scene, scene.materials[m])));
+  }
 
   LocalLights emissive = gatherEmissiveTriangles(scene, bvh, materialLuminance);
+  table.materialEmissiveArea.assign(scene.materials.size(), 0.0);
+  for (const gpu::ReferenceEmissiveTriangle& t : emissive.triangles)
+    table.materialEmissiveArea[bvh.geometries.at(t.geometry).material] += t.area;
   table.emissiveTriangles = std::move(emissive.triangles);
   std::vector<double> power = std::move(emissive.trianglePower);
   for (const PunctualLight& l : scene.lights) {

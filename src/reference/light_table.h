@@ -22,6 +22,7 @@ struct ReferenceLightTable {
   std::vector<gpu::ReferenceLightAlias> alias;  // emissive triangles first, then punctual lights
   std::vector<gpu::ReferenceDistantLight> distantLights;
   std::vector<float> materialLightAreaPdf;  // per Scene::materials entry, see reference_io.h
+  std::vector<double> materialEmissiveArea;  // per Scene::materials entry: m^2 of its emitters
   double totalLocalPower = 0.0;             // W (luminance-weighted), the alias table's sum
 
   uint32_t localLightCount() const { return uint32_t(alias.size()); }
@@ -49,7 +50,10 @@ std::vector<gpu::ReferenceLightAlias> buildAliasTable(std::span<const double> we
 
 // Everything above for a scene whose BVH arrays (instance transforms, vertex streams) are
 // `bvh`, exactly as the GPU sees them. Throws bounce::Error when the scene has more distant
-// lights than REFERENCE_MAX_DISTANT_LIGHTS.
-ReferenceLightTable buildReferenceLights(const Scene& scene, const rt::SceneBvh& bvh);
+// lights than REFERENCE_MAX_DISTANT_LIGHTS. Materials flagged in `unsampledMaterials` (indexed
+// like Scene::materials; empty = none) are left out of the local lights: their triangles are
+// never picked and their materialLightAreaPdf is 0, so MIS counts BRDF hits on them in full.
+ReferenceLightTable buildReferenceLights(const Scene& scene, const rt::SceneBvh& bvh,
+                                         const std::vector<bool>& unsampledMaterials = {});
 
 }  // namespace bounce

@@ -5,11 +5,35 @@
 // sampling noise; with a noisy direction a cell's SH could point anywhere and its irradiance
 // clamp to zero for some normals. Entries without a sample yet are left out and the rest
 // scaled up to the whole sphere.
+// L1 SH loses the higher-order part of the clamped-cosine kernel (A2 = pi / 4, Ramamoorthi &
+// Hanrahan 2001): for light arriving from a small solid angle its irradiance is 1/4 + cos / 2
+// of the exact cos, 25 % dark where the light faces the surface (the Cornell box's lamp seen
+// from the floor: the cache was 23 % dark there). So each cell also stores the factor that
+// makes its SH irradiance at the normal of the surface that allocated it (the normal its
+// lookups mostly use) equal the irradiance of the same 16 bin integrals, each spread evenly
+// over its bin, with the exact clamped cosine (a quadrature of BIN_QUADRATURE^2 directions per
+// bin, fixed, so it adds no noise). Lookups apply it in full for that normal and less for
+// others (cache_lookup.glsl). For radiance even over the sphere both agree (factor 1); the
+// factor is bounded by NORMALISATION_LIMIT.
 #version 460
 #include "gi/evolve/cache_common.glsl"
 
 layout(local_size_x = CLIPMAP_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { ClipmapPassConstants pc; };
+
+const uint BIN_QUADRATURE = 4u;
+const float NORMALISATION_LIMIT = 4.0;
+
+// The mean of max(0, n . w) over the directions w of bin e.
+float binMeanCosine(uint e, vec3 n) {
+  float sum = 0.0;
+  for (uint j = 0u; j < BIN_QUADRATURE; ++j)
+    for (uint i = 0u; i < BIN_QUADRATURE; ++i) {
+      vec2 u = (vec2(float(i), float(j)) + 0.5) / float(BIN_QUADRATURE);
+      sum += max(dot(n, clipmapEntryDirection(e, u)), 0.0);
+    }
+  return sum / float(BIN_QUADRATURE * BIN_QUADRATURE);
+}
 
 void main() {
   uint index = gl_GlobalInvocationID.x;
@@ -18,6 +42,8 @@ void main() {
   ClipmapEntriesRef entries = ClipmapEntriesRef(pc.buffers.entries);
   ClipmapCellsRef cells = ClipmapCellsRef(pc.buffers.cells);
   vec4 r = vec4(0.0), g = vec4(0.0), b = vec4(0.0);
+  vec3 normal = cells.v[cell].normal;
+  vec3 exactOverPi = vec3(0.0);  // irradiance / pi at `normal` by the quadrature
   uint valid = 0u;
   for (uint e = 0u; e < CLIPMAP_ENTRIES; ++e) {
     ClipmapEntry entry = entries.v[cell * CLIPMAP_ENTRIES + e];
@@ -28,14 +54,20 @@ void main() {
     r += integral.r * y;
     g += integral.g * y;
     b += integral.b * y;
+    exactOverPi += integral * (binMeanCosine(e, normal) / PI);
     ++valid;
   }
   uint flags = cells.v[cell].flags;
   if (valid > 0u) {
+    float shOverPi = clipmapLuminance(vec3(shIrradianceOverPi(r, normal),
+                                           shIrradianceOverPi(g, normal),
+                                           shIrradianceOverPi(b, normal)));
+    float k = shOverPi > 1e-8 ? clipmapLuminance(exactOverPi) / shOverPi : 1.0;
     float scale = float(CLIPMAP_ENTRIES) / float(valid);
     cells.v[cell].shR = r * scale;
     cells.v[cell].shG = g * scale;
     cells.v[cell].shB = b * scale;
+    cells.v[cell].irradianceScale = clamp(k, 1.0 / NORMALISATION_LIMIT, NORMALISATION_LIMIT);
     flags |= CLIPMAP_CELL_SH_VALID;
   } else {
     flags &= ~CLIPMAP_CELL_SH_VALID;

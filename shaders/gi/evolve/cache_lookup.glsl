@@ -17,6 +17,16 @@
 #include "common/ray_offset.glsl"
 #include "gi/evolve/cache_common.glsl"
 
+// The factor a lookup with `normal` scales the cell's SH irradiance by (cache-build-sh): the
+// cell's scale for its own normal, fading to 1 as the normals part (cos^4: 0.7 at 25 degrees,
+// 0.25 at 45), since the SH's L1 error depends on the normal and a corner cell serves
+// surfaces of other orientations too.
+float clipmapIrradianceScale(float cellScale, vec3 cellNormal, vec3 normal) {
+  float agreement = clamp(dot(cellNormal, normal), 0.0, 1.0);
+  agreement *= agreement;
+  return mix(1.0, cellScale, agreement * agreement);
+}
+
 // The finest cascade for `position`; CLIPMAP_CASCADES when it lies beyond all of them.
 uint clipmapCascadeFor(ClipmapCacheView cache, vec3 position) {
   vec3 d = abs(position - cache.cameraPosition);
@@ -67,6 +77,7 @@ uint clipmapAllocate(ClipmapCacheView cache, uint slot, ivec3 coord, uint cascad
   cache.cells.v[cell].flags = CLIPMAP_CELL_ALIVE | (level << CLIPMAP_CELL_LEVEL_SHIFT) |
                               (level == 1u ? CLIPMAP_CELL_DIRECT : 0u);
   cache.cells.v[cell].validEntries = 0u;
+  cache.cells.v[cell].irradianceScale = 1.0;
   for (uint e = 0u; e < CLIPMAP_ENTRIES; ++e) {
     uint i = cell * CLIPMAP_ENTRIES + e;
     cache.entries.v[i].radiance = vec3(0.0);
@@ -111,7 +122,9 @@ bool clipmapQueryCell(ClipmapCacheView cache, vec3 position, vec3 normal, vec2 j
     if ((cache.cells.v[cell].flags & CLIPMAP_CELL_SH_VALID) == 0u) continue;
     vec3 e = vec3(shIrradianceOverPi(cache.cells.v[cell].shR, normal),
                   shIrradianceOverPi(cache.cells.v[cell].shG, normal),
-                  shIrradianceOverPi(cache.cells.v[cell].shB, normal));
+                  shIrradianceOverPi(cache.cells.v[cell].shB, normal)) *
+             clipmapIrradianceScale(cache.cells.v[cell].irradianceScale,
+                                    cache.cells.v[cell].normal, normal);
     irradianceOverPi = clipmapFinite(e) ? e : vec3(0.0);
     cascadeUsed = cascade;
     return true;

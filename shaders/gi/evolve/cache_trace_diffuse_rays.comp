@@ -59,6 +59,7 @@ void main() {
   uint cell = ClipmapLiveListRef(pc.buffers.liveList).v[index];
   ClipmapCacheView cache = clipmapCacheView(pc.cache);
   ClipmapCacheConstants k = cache.constants.v;
+  settings = ReferenceSettingsBlock(k.lights).v;
   FrameConstants f = FrameBlock(pc.frame).v;
   ClipmapCell c = cache.cells.v[cell];
   uint touch = rayTouch(c.flags);

@@ -4,7 +4,7 @@
 // continued path (restir_gi_second_vertex.glsl).
 #version 460
 #include "gi/evolve/restir_gi_second_vertex.glsl"
-#include "gi/evolve/cache_lookup.glsl"
+#include "gi/evolve/cache_radiance.glsl"
 
 layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
@@ -72,17 +72,18 @@ void main() {
     float localPick;
     LightSample l = sampleSecondVertexLight(f, s.position, key, localPick);
     bool continues = gi.secondVertex == RESTIR_GI_SECOND_VERTEX_PATH;
+    bool addsCache = gi.secondVertex == RESTIR_GI_SECOND_VERTEX_CACHE && gi.maxPathBounces > 2u;
     if (l.valid && dot(l.direction, s.geometricNormal) > 0.0) {
       vec3 brdf = brdfEvaluate(s.brdf, s.shadingNormal, wo, l.direction);
       neeRadiance = brdf * max(dot(s.shadingNormal, l.direction), 0.0) * l.radianceOverPdf;
-      // MIS against the continued path's BRDF ray, which can hit the same emitter.
+      // MIS against the continued path's BRDF ray, which can hit the same emitter. The cache
+      // never counts the emitters NEE samples (cache_radiance.glsl): no weight with it.
       if (continues && l.pdf > 0.0)
         neeRadiance *= powerHeuristic(l.pdf, brdfPdf(s.brdf, s.shadingNormal, wo, l.direction));
       neeRay = l.distant ? vec4(l.direction, 0.0) : vec4(l.shadowTarget, 1.0);
     }
     if (continues) radiance += continuedPath(f, s, wo, key, localPick, gi.maxPathBounces, lambert);
-    if (gi.secondVertex == RESTIR_GI_SECOND_VERTEX_CACHE && gi.maxPathBounces > 2u)
-      radiance += cacheBounce(s, key.x);
+    if (addsCache) radiance += cacheBounce(s, key.x);
   }
   writeResult(g, s.position, RESTIR_GI_KIND_SURFACE, s.geometricNormal, radiance, neeRay, neeRadiance);
 }

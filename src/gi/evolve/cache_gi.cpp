@@ -2,8 +2,10 @@
 
 namespace bounce {
 
-CacheGi::CacheGi(vk::Context& context, GpuScene& gpuScene, const HybridSettings& settings)
-    : cache_(context, gpuScene, settings.cache),
+CacheGi::CacheGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                 const HybridSettings& settings)
+    : lights_(context, gpuScene, scene),
+      cache_(context, gpuScene, lights_, settings.cache),
       lookup_(context, gpuScene, "gi/evolve/gi_cache_lookup", gpu::CACHE_LOOKUP_IMAGES,
               sizeof(gpu::ClipmapPassConstants)) {}
 

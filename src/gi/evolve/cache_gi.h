@@ -11,7 +11,8 @@ namespace bounce {
 
 class CacheGi final : public DiffuseGi {
  public:
-  CacheGi(vk::Context& context, GpuScene& gpuScene, const HybridSettings& settings);
+  CacheGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+          const HybridSettings& settings);
 
   void declare(graph::FrameGraph& graph, const FrameInputs& inputs,
                graph::ImageHandle output) override;
@@ -22,6 +23,7 @@ class CacheGi final : public DiffuseGi {
   ClipmapCache& cache() { return cache_; }
 
  private:
+  GiLightTables lights_;  // before cache_, which refers to them
   ClipmapCache cache_;
   ComputePass lookup_;
 };

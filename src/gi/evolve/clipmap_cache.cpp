@@ -48,8 +48,9 @@ void checkSettings(const ClipmapCacheSettings& s) {
 }  // namespace
 
 ClipmapCache::ClipmapCache(vk::Context& context, const GpuScene& gpuScene,
-                           const ClipmapCacheSettings& settings)
+                           const GiLightTables& lights, const ClipmapCacheSettings& settings)
     : context_(context),
+      lights_(lights),
       settings_((checkSettings(settings), settings)),
       constants_(deviceBuffer(context, sizeof(gpu::ClipmapCacheConstants), "cache.constants")),
       grid_(deviceBuffer(context, kTotalSlots * sizeof(uint32_t), "cache.grid")),
@@ -92,6 +93,7 @@ gpu::ClipmapCacheAddresses ClipmapCache::addresses() const {
 gpu::ClipmapCacheConstants ClipmapCache::makeConstants(const FrameInputs& inputs) const {
   gpu::ClipmapCacheConstants c{};
   c.buffers = addresses();
+  c.lights = lights_.address();
   glm::vec3 camera = inputs.constants ? inputs.constants->camera.position : glm::vec3(0.0f);
   for (uint32_t cascade = 0; cascade < gpu::CLIPMAP_CASCADES; ++cascade) {
     float cell = settings_.finestCellSize * float(1u << cascade);

@@ -5,7 +5,6 @@
 #include <span>
 
 #include "core/error.h"
-#include "reference/light_table.h"
 #include "render/gpu_scene.h"
 
 namespace bounce {
@@ -32,6 +31,7 @@ vk::Buffer upload(vk::Context& context, std::span<const T> items, const std::str
 RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
                    const HybridSettings& settings)
     : settings_(settings.restirGi),
+      lights_(context, gpuScene, scene),
       prepare_(context, gpuScene, "gi/evolve/gi_prepare_diffuse_rays",
                gpu::GI_PREPARE_BINDING_COUNT),
       trace_(context, gpuScene, "gi/evolve/gi_trace_diffuse_rays", gpu::GI_TRACE_BINDING_COUNT),
@@ -52,38 +52,11 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
       denoise_(context, gpuScene, "gi/evolve/gi_temporal_denoise", gpu::GI_DENOISE_BINDING_COUNT) {
   const RestirGiSettings& s = settings_;
   if (s.secondVertex == RestirGiSecondVertex::Cache)
-    cache_ = std::make_unique<ClipmapCache>(context, gpuScene, settings.cache);
+    cache_ = std::make_unique<ClipmapCache>(context, gpuScene, lights_, settings.cache);
   if (s.divisor == 0 || s.divisor > 16)
     fail("ReSTIR GI: resolution divisor {} must be 1 to 16", s.divisor);
   giResolution_ = {(settings.width + s.divisor - 1) / s.divisor,
                    (settings.height + s.divisor - 1) / s.divisor};
-
-  // NEE at the 2nd vertex samples the reference tracer's light tables; the sun is left out of
-  // the distant lights (it comes first when it shines), the shaders take it from the frame.
-  ReferenceLightTable lights = buildReferenceLights(scene, gpuScene.bvh());
-  std::span<const gpu::ReferenceDistantLight> distant(lights.distantLights);
-  if (scene.sun.irradiance > 0.0f && !distant.empty()) distant = distant.subspan(1);
-  emissiveTriangles_ =
-      upload(context, std::span<const gpu::ReferenceEmissiveTriangle>(lights.emissiveTriangles),
-             "gi.emissive-triangles");
-  punctualLights_ =
-      upload(context, std::span<const gpu::ReferencePunctualLight>(lights.punctualLights),
-             "gi.punctual-lights");
-  lightAlias_ =
-      upload(context, std::span<const gpu::ReferenceLightAlias>(lights.alias), "gi.light-alias");
-  distantLights_ = upload(context, distant, "gi.distant-lights");
-  materialLightAreaPdf_ = upload(context, std::span<const float>(lights.materialLightAreaPdf),
-                                 "gi.material-light-area-pdf");
-  gpu::ReferenceSettings block{};
-  block.emissiveTriangles = emissiveTriangles_.address();
-  block.punctualLights = punctualLights_.address();
-  block.lightAlias = lightAlias_.address();
-  block.distantLights = distantLights_.address();
-  block.materialLightAreaPdf = materialLightAreaPdf_.address();
-  block.emissiveTriangleCount = uint32_t(lights.emissiveTriangles.size());
-  block.localLightCount = lights.localLightCount();
-  block.distantLightCount = uint32_t(distant.size());
-  lights_ = upload(context, std::span<const gpu::ReferenceSettings>(&block, 1), "gi.lights");
 
   gpu::RestirGiConstants c{};
   c.lights = lights_.address();

@@ -36,6 +36,7 @@
 #include "gi/evolve/clipmap_cache.h"
 #include "gi/evolve/restir_gi_pass.h"
 #include "gi/evolve/restir_gi_settings.h"
+#include "gi/gi_light_tables.h"
 #include "shared/restir_gi_io.h"
 #include "vk/resources.h"
 
@@ -64,12 +65,10 @@ class RestirGi final : public DiffuseGi {
                                       const std::optional<graph::HistoryImage>& occlusionValidity);
 
   RestirGiSettings settings_;
+  // The light tables for NEE at the 2nd vertex (and in the cache, which shares them).
+  GiLightTables lights_;
   std::unique_ptr<ClipmapCache> cache_;  // only with RestirGiSecondVertex::Cache
   VkExtent2D giResolution_{};
-  // The light tables for NEE at the 2nd vertex (a gpu::ReferenceSettings block and its arrays).
-  vk::Buffer emissiveTriangles_, punctualLights_, lightAlias_, distantLights_,
-      materialLightAreaPdf_;
-  vk::Buffer lights_;
   vk::Buffer constants_;  // gpu::RestirGiConstants
   RestirGiPass prepare_, trace_, traceNee_, candidates_, temporal_, spatial0_, spatial1_,
       spatialValidation_, patch_, resolve_, spatialDenoise_, denoise_;

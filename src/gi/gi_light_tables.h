@@ -1,0 +1,38 @@
+// The light tables the GI techniques' next-event estimation samples: the reference tracer's
+// (reference/light_table.h: emissive triangles and KHR punctual lights picked by power through
+// an alias table, KHR directional lights) uploaded once, behind one gpu::ReferenceSettings
+// block whose address the shaders load into `settings` (shaders/reference/settings.glsl) and
+// sample with shaders/reference/lights.glsl. The sun is left out of the distant lights: it
+// moves, so the shaders take it from the frame constants.
+//
+// Emitters are split once, per material, between the two ways light reaches a point: small
+// emitters (a lamp) by next-event estimation only, large ones (emissive walls, a furnace) by
+// rays hitting them only, because NEE towards a large emitter close by is very noisy and rays
+// find it easily. A material is *large* when its emissive area exceeds kLargeEmitterFraction of
+// the surface area of the scene's bounding box; its triangles leave the light tables (their
+// area pdf is 0, so shaders count hits on them in full and never sample them). The split
+// depends on the light only, not on the point, so the two estimators add up exactly: this is
+// multiple importance sampling with weights 0 and 1, which stays unbiased where consumers
+// evaluate from different points (the clipmap cache's cells vs the points that look them up).
+#pragma once
+#include "vk/resources.h"
+
+namespace bounce {
+
+class GpuScene;
+struct Scene;
+
+class GiLightTables {
+ public:
+  GiLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene);
+
+  // A gpu::ReferenceSettings block with the light arrays set (camera and accumulation unset).
+  VkDeviceAddress address() const { return block_.address(); }
+
+ private:
+  vk::Buffer emissiveTriangles_, punctualLights_, lightAlias_, distantLights_,
+      materialLightAreaPdf_;
+  vk::Buffer block_;
+};
+
+}  // namespace bounce
