@@ -5,7 +5,8 @@
 #   ../shared/device/pack.sh --validation build/bounce ../shared/scenes/glass_vase_flowers/glTF
 #   cp scripts/device/gi_bench.sh .devicepack/
 # then run `bash .devicepack/gi_bench.sh` there (carry .devicepack); $OUT/timings.tgz holds the
-# --timings files for scripts/plot_pass_times.py.
+# --timings files for scripts/plot_pass_times.py, $OUT/pictures.tgz the README's pictures
+# (gi/ -> docs/images/gi, cache/ -> docs/images/cache).
 set -u
 R="bash .devicepack/run.sh bounce"
 VASE=.devicepack/data/glTF/GlassVaseFlowers.gltf
@@ -29,4 +30,19 @@ VK_INSTANCE_LAYERS=VK_LAYER_KHRONOS_validation $R render --scene city --preset d
   --vbuffer trace --gi evolve --frames 20 --animate --validate --out /tmp/validate.png \
   > /tmp/validate.log 2>&1
 echo "validation run: exit code $? (non-zero on any validation message)"
-cd "$OUT" && tar czf timings.tgz ./*.json && rm ./*.json
+# The README's pictures: the chain's passes on a static view, the final frame, the cache.
+mkdir -p "$OUT/gi" "$OUT/cache"
+for view in gi-resolve-diffuse-rays gi-restir-temporal gi-restir-spatial-1 \
+    gi-trace-spatial-validation-rays gi-spatial-denoise tonemap; do
+  $R render --scene sunroom --preset desktop --res 960x540 --vbuffer trace --gi evolve \
+    --frames 64 --view $view --out "$OUT/gi/$view.png" > /dev/null 2>&1
+done
+$R render --scene sunroom --preset desktop --vbuffer trace --gi evolve --frames 64 --animate \
+  --out "$OUT/gi/sunroom-desktop.png" > /dev/null 2>&1
+$R render --scene sunroom --preset desktop --res 480x270 --gi cache --frames 48 \
+  --out "$OUT/cache/sunroom-gi-cache-desktop.png" > /dev/null 2>&1
+$R render --scene sunroom --preset desktop --res 480x270 --gi cache --frames 48 --view cache \
+  --out "$OUT/cache/sunroom-cache-view-desktop.png" > /dev/null 2>&1
+# At most 8 files come back from the GPU machine: two archives.
+cd "$OUT" && tar czf timings.tgz ./*.json && rm ./*.json && tar czf pictures.tgz gi cache &&
+  rm -rf gi cache

@@ -69,7 +69,7 @@ struct RestirGiConstants {
   float validityBlend;       // spatial occlusion validity: weight of this frame in the running mean
   uint validationPeriod;     // gi-prepare-diffuse-rays re-traces history every N frames (0 = never)
   float validationDistance;  // validation: hit moved by more than this x ray length -> M cut
-  float validationRadiance;  // validation: relative radiance change above this -> M and W cut
+  float validationRadiance;  // validation: relative radiance change of a neighbourhood -> M cut
   uint temporalHistorySamples;  // history reservoirs gi-restir-temporal may merge (1 to 5)
   uint spatialDenoiseRadius;    // gi-spatial-denoise: half-width of the blur, pixels
   uint pad0;
@@ -136,9 +136,12 @@ BOUNCE_CONST uint GI_CANDIDATES_BINDING_ORIGIN = 10u;
 BOUNCE_CONST uint GI_CANDIDATES_BINDING_RESERVOIR_NORMALS = 11u;
 BOUNCE_CONST uint GI_CANDIDATES_BINDING_ESTIMATE = 12u;  // RGBA16F the candidate's own estimate
 BOUNCE_CONST uint GI_CANDIDATES_BINDING_PREVIOUS = 13u;  // 13-16 history reservoir (previous)
-// RG16F *reservoir validity*: x in [0, 1] (1 = nothing changed; lower where a validation ray
-// found the hit moved or its radiance changed), y = 1 where the candidate is the validated
-// history reservoir rather than a fresh sample (gi-restir-temporal then does not merge)
+// RGBA16F *reservoir validity*: x in [0, 1], the geometric validity (1, or lower where a
+// validation ray found the hit moved), y = 1 where the candidate is the validated history
+// reservoir rather than a fresh sample (gi-restir-temporal then does not merge), z and w the
+// luminance of the stored and of the re-traced radiance of a validated, unmoved sample (0
+// elsewhere), which gi-restir-temporal and gi-temporal-denoise compare over a neighbourhood
+// (restir_gi_common.glsl, radianceValidity)
 BOUNCE_CONST uint GI_CANDIDATES_BINDING_VALIDITY = 17u;
 BOUNCE_CONST uint GI_CANDIDATES_BINDING_COUNT = 18u;
 
@@ -202,7 +205,11 @@ BOUNCE_CONST uint GI_DENOISE_BINDING_VALIDITY = 9u;  // gi.reservoir-validity (G
 // this frame's spatial occlusion validity (GI resolution; read only with
 // RESTIR_GI_FLAG_SPATIAL_VALIDATION)
 BOUNCE_CONST uint GI_DENOISE_BINDING_OCCLUSION_VALIDITY = 10u;
-BOUNCE_CONST uint GI_DENOISE_BINDING_COUNT = 11u;
+// The fast history (gi.denoised-fast: rgb, frames accumulated), whose neighbourhood clips the
+// slow one.
+BOUNCE_CONST uint GI_DENOISE_BINDING_PREVIOUS_FAST = 11u;
+BOUNCE_CONST uint GI_DENOISE_BINDING_CURRENT_FAST = 12u;
+BOUNCE_CONST uint GI_DENOISE_BINDING_COUNT = 13u;
 
 // gi-spatial-denoise (render resolution)
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_INPUT = 0u;  // gi-temporal-denoise's output

@@ -2,15 +2,16 @@
 // sample where its shadow ray is unoccluded) becomes a candidate reservoir of one sample drawn
 // from the uniform hemisphere, pdf 1 / (2 pi): W = 2 pi, M = 1 (M = 0 where no surface is
 // seen). Also writes the candidate's own estimate (for the debug view and the variance test).
-// Validation rays (gi-prepare-diffuse-rays, every 3rd frame; seed 000 "resolve-diffuse-rays")
-// re-traced a history reservoir's direction: that reservoir becomes the candidate instead,
-// with the re-traced hit and radiance, and its confidence is lowered by what changed:
+// Validation rays (gi-prepare-diffuse-rays, every validationPeriod-th frame; seed 000
+// "resolve-diffuse-rays") re-traced a history reservoir's direction: that reservoir becomes the
+// candidate instead, and what the ray found is recorded in the *reservoir validity*
+// (shared/restir_gi_io.h):
 //   hit moved (by more than validationDistance x the old hit distance): the sample points at
-//     geometry that is gone: M and W scaled by validity 0.2 (it loses most of its weight in
-//     every later merge and its estimate fades);
-//   radiance changed (relative luminance change c above validationRadiance): M scaled by
-//     1 - c, the new radiance replaces the old with W rescaled to it (see validatedHistory).
-// The *reservoir validity* written here (1 = unchanged) shortens gi-temporal-denoise's history.
+//     geometry that is gone: M and W scaled by 0.2 here (it loses most of its weight in every
+//     later merge and its estimate fades), validity x = 0.2;
+//   otherwise the stored and the re-traced luminance, which gi-restir-temporal compares over a
+//     neighbourhood to lower M where the light changed (restir_gi_common.glsl,
+//     radianceValidity), and gi-temporal-denoise to shorten its history.
 #version 460
 #include "gi/evolve/restir_gi_common.glsl"
 
@@ -34,52 +35,53 @@ layout(set = 1, binding = GI_CANDIDATES_BINDING_PREVIOUS + GI_RESERVOIR_SAMPLE, 
 layout(set = 1, binding = GI_CANDIDATES_BINDING_PREVIOUS + GI_RESERVOIR_RADIANCE, rgba32f) uniform readonly image2D previousRadiance;
 layout(set = 1, binding = GI_CANDIDATES_BINDING_PREVIOUS + GI_RESERVOIR_ORIGIN, rgba32f) uniform readonly image2D previousOrigin;
 layout(set = 1, binding = GI_CANDIDATES_BINDING_PREVIOUS + GI_RESERVOIR_NORMALS, rgba16f) uniform readonly image2D previousNormals;
-layout(set = 1, binding = GI_CANDIDATES_BINDING_VALIDITY, rg16f) uniform writeonly image2D validityOut;
+layout(set = 1, binding = GI_CANDIDATES_BINDING_VALIDITY, rgba16f) uniform writeonly image2D validityOut;
 
 const float MOVED_VALIDITY = 0.2;
 
-// The history reservoir a validation ray re-traced, updated with the re-traced sample `fresh`;
-// `validity` says how much of it still holds.
+// The history reservoir a validation ray re-traced, with `fresh` the re-traced sample; x of
+// `validity` as in gi.reservoir-validity, z and w the stored and re-traced luminance.
 Reservoir validatedHistory(RestirGiConstants gi, float rayW, PrimaryVertex x1, Reservoir fresh,
-                           out float validity) {
+                           out vec4 validity) {
   int index = int(rayW - GI_RAY_VALIDATION + 0.5);
   ivec2 q = ivec2(index % int(gi.giResolution.x), index / int(gi.giResolution.x));
   Reservoir h = unpackReservoir(imageLoad(previousSample, q), imageLoad(previousRadiance, q),
                                 imageLoad(previousOrigin, q), imageLoad(previousNormals, q));
-  validity = 1.0;
+  validity = vec4(1.0, 1.0, 0.0, 0.0);
   if (h.M <= 0.0) return h;
   float oldDistance = length(h.samplePosition - x1.position);
   bool moved = fresh.kind != h.kind ||
                (fresh.kind == RESTIR_GI_KIND_SURFACE &&
                 length(fresh.samplePosition - h.samplePosition) > gi.validationDistance * oldDistance);
-  float oldLuminance = max(brdfLuminance(h.radiance), 0.0);
-  float newLuminance = max(brdfLuminance(fresh.radiance), 0.0);
-  float change = abs(newLuminance - oldLuminance) / max(max(newLuminance, oldLuminance), 1e-6);
-  if (moved) {
-    validity = MOVED_VALIDITY;
-  } else if (change > gi.validationRadiance) {
-    validity = 1.0 - change;
-  } else {
-    // Unchanged within the noise of one re-traced estimate: keep the stored radiance. Replacing
-    // it would darken: the reservoir was chosen for a high radiance (p_hat), W holds 1/p_hat, and
-    // a fresh estimate of the same path is on average lower.
+  if (!moved) {
+    // The re-traced radiance replaces the stored one. With the cache at x2 (or NEE alone) both
+    // are close estimates of the same point's radiance (measured: their sums agree within 1 %
+    // on a static view), so W is kept and the estimate follows what changed, the cache's
+    // convergence included. With Path at x2 the stored value was selected from a heavy-tailed
+    // distribution (about twice the re-traced one on average), and taking the re-trace would
+    // darken, so W p_hat is kept instead (W scaled by the luminance ratio, which is the target
+    // ratio: same direction): the estimate and the reservoir's weight in later merges stay.
+    float stored = max(brdfLuminance(h.radiance), 0.0);
+    float retraced = max(brdfLuminance(fresh.radiance), 0.0);
+    validity.zw = vec2(stored, retraced);
+    if (stored > 0.0 && retraced > 0.0) {
+      if (gi.secondVertex == RESTIR_GI_SECOND_VERTEX_PATH) h.W *= stored / retraced;
+      h.radiance = fresh.radiance;
+    }
     return h;
   }
-  // W = weightSum / (M p_hat) belongs to the old target value: keep it consistent with the new
-  // radiance (W p_hat unchanged), else a brighter re-trace would be multiplied by the old, large
-  // 1 / p_hat (fireflies while the cache converges). The estimate thus changes only through the
-  // lowered M, which lets the next candidates take over within a few frames, except where the
-  // radiance fell to zero (light gone): W = 0 and the estimate follows at once.
+  validity.x = MOVED_VALIDITY;
+  if (fresh.kind == RESTIR_GI_KIND_NONE) return emptyReservoir();
+  // W = weightSum / (M p_hat) belongs to the old target value: keep W p_hat, so the estimate
+  // changes only through the lowered weight and M.
   float oldTarget = targetFunction(x1, h);
   float newTarget = targetFunction(x1, fresh);
-  h.W = newTarget > 0.0 ? h.W * oldTarget / newTarget : 0.0;
-  if (moved) h.W *= MOVED_VALIDITY;
-  h.M = max(h.M * validity, 1.0);
+  h.W = newTarget > 0.0 ? h.W * oldTarget / newTarget * MOVED_VALIDITY : 0.0;
+  h.M = max(h.M * MOVED_VALIDITY, 1.0);
   h.samplePosition = fresh.samplePosition;
   h.sampleNormal = fresh.sampleNormal;
   h.kind = fresh.kind;
   h.radiance = fresh.radiance;
-  if (fresh.kind == RESTIR_GI_KIND_NONE) h = emptyReservoir();
   return h;
 }
 
@@ -104,18 +106,18 @@ void main() {
     r.W = targetFunction(x1, r) > 0.0 ? 2.0 * PI : 0.0;
   }
   float rayW = imageLoad(rays, g).w;
-  vec2 validity = vec2(1.0, 0.0);
+  vec4 validity = vec4(1.0, 0.0, 0.0, 0.0);
   if (rayW >= GI_RAY_VALIDATION) {
-    float v;
+    vec4 v;
     Reservoir h = validatedHistory(gi, rayW, x1, r, v);
     if (h.M > 0.0) {
       r = h;
       r.origin = x1.position;
       r.originNormal = x1.shadingNormal;
-      validity = vec2(v, 1.0);
+      validity = v;
     }
   }
-  imageStore(validityOut, g, vec4(validity, 0.0, 0.0));
+  imageStore(validityOut, g, finiteOrZero(min(validity, vec4(60000.0))));
   vec4 a, b, c, d;
   packReservoir(r, a, b, c, d);
   imageStore(sampleOut, g, finiteOrZero(a));

@@ -4,9 +4,18 @@
 // GI pixels (4 samples in all), each shifted to this pixel's primary vertex by reconnection
 // (W x Jacobian), keeps those whose primary vertex lies on this pixel's surface, projects their
 // radiance into L1 spherical harmonics (their average) and evaluates the SH irradiance with this
-// pixel's shading normal: normal-map detail at full resolution from GI-resolution samples, and
-// a smoother signal than the samples. With one sample (no reuse; the unbiased configuration)
-// the exact estimate L cos / pi W is used instead (L1 SH of one sample is not the cosine).
+// pixel's shading normal: normal-map detail at full resolution from GI-resolution samples.
+// L1 SH irradiance drops the clamped cosine's higher orders (Ramamoorthi & Hanrahan 2001): for
+// light from a small solid angle it gives 1/4 + cos/2 instead of cos, up to 25 % dark where a
+// bright patch faces the surface (sunroom's ceiling above the sunlit floor), and ReSTIR's
+// samples concentrate exactly there. So the SH only supplies the variation with the normal:
+// the result is the exact estimate at the geometric normal (the mean of L cos / pi W) times
+// SH(shading normal) / SH(geometric normal), which is the exact estimate on surfaces without a
+// normal map. With one sample (no reuse; the unbiased configuration) the exact estimate at the
+// shading normal is used.
+// The own reservoir is the one of the GI pixel under this pixel or, when that one lies on
+// another surface (an edge at reduced GI resolution), of the nearest GI pixel towards this pixel
+// that lies on this one (homeGiPixel), so that edges are not left to the fallback.
 #version 460
 #include "gi/evolve/restir_gi_common.glsl"
 #include "common/random.glsl"
@@ -45,6 +54,18 @@ vec3 shIrradianceOverPiAt(ShL1 sh, vec3 n) {
   return vec3(shIrradianceOverPi(sh.r, n), shIrradianceOverPi(sh.g, n), shIrradianceOverPi(sh.b, n));
 }
 
+const float NORMAL_VARIATION_LIMIT = 4.0;
+
+// SH irradiance at x's shading normal over that at its geometric normal (luminance), bounded;
+// 1 where the SH gives nothing at the geometric normal.
+float normalVariation(ShL1 sh, PrimaryVertex x) {
+  const vec3 toLuminance = vec3(0.2126, 0.7152, 0.0722);
+  float atGeometric = dot(shIrradianceOverPiAt(sh, x.geometricNormal), toLuminance);
+  if (!(atGeometric > 1e-8)) return 1.0;
+  float atShading = dot(shIrradianceOverPiAt(sh, x.shadingNormal), toLuminance);
+  return clamp(atShading / atGeometric, 0.0, NORMAL_VARIATION_LIMIT);
+}
+
 // The reservoir r shifted to x (reconnection; its W carries the Jacobian), as radiance x W and
 // its direction; false when it does not reach x's hemisphere or the Jacobian is rejected.
 bool shiftedSample(RestirGiConstants gi, PrimaryVertex x, Reservoir r, out vec3 direction,
@@ -53,6 +74,30 @@ bool shiftedSample(RestirGiConstants gi, PrimaryVertex x, Reservoir r, out vec3 
   float c = sampleCosine(x, r.samplePosition, direction);
   radianceTimesW = r.radiance * (r.W * jacobian);
   return c > 0.0 && jacobian > 0.0 && jacobian <= gi.maxJacobian && r.W > 0.0;
+}
+
+bool reservoirOnSurface(RestirGiConstants gi, PrimaryVertex x, ivec2 q) {
+  vec4 origin = imageLoad(reservoirOrigin, q);
+  vec3 originNormal = decodeOctahedral(imageLoad(reservoirNormals, q).xy);
+  return uint(origin.w + 0.5) != RESTIR_GI_KIND_NONE && sameSurface(gi, x, origin.xyz, originNormal);
+}
+
+// The GI pixel whose reservoir this pixel starts from: the one under it, else the first of its
+// neighbours towards this pixel (horizontal, vertical, diagonal) whose reservoir is on this
+// pixel's surface, else the one under it.
+ivec2 homeGiPixel(FrameConstants f, RestirGiConstants gi, ivec2 pixel, PrimaryVertex x) {
+  ivec2 home = min(pixel / int(gi.divisor), ivec2(gi.giResolution) - 1);
+  if (gi.divisor == 1u || reservoirOnSurface(gi, x, home)) return home;
+  ivec2 toward = ivec2(sign(vec2(pixel - giRepresentativePixel(f, gi, home))));
+  ivec2 steps[3] = ivec2[3](ivec2(toward.x, 0), ivec2(0, toward.y), toward);
+  for (int i = 0; i < 3; ++i) {
+    ivec2 q = home + steps[i];
+    if (steps[i] == ivec2(0) || any(lessThan(q, ivec2(0))) ||
+        any(greaterThanEqual(q, ivec2(gi.giResolution))))
+      continue;
+    if (reservoirOnSurface(gi, x, q)) return q;
+  }
+  return home;
 }
 
 void main() {
@@ -65,12 +110,13 @@ void main() {
     return;
   }
   PrimaryVertex x = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
-  ivec2 home = min(pixel / int(gi.divisor), ivec2(gi.giResolution) - 1);
+  ivec2 home = homeGiPixel(f, gi, pixel, x);
   bool reuse = (gi.flags & RESTIR_GI_FLAG_RESOLVE_REUSE) != 0u;
   uint samples = reuse ? clamp(gi.resolveSamples, 1u, 4u) : 1u;
   float rotation = 2.0 * PI * random2(uvec2(pixel), f.frameIndex, RANDOM_GI_RESOLVE).x;
   ShL1 sh = ShL1(vec4(0.0), vec4(0.0), vec4(0.0));
-  vec3 exact = vec3(0.0);  // the direct estimate L cos / pi W (no reuse: the unbiased path)
+  vec3 exact = vec3(0.0);           // the direct estimate L cos / pi W at the shading normal
+  vec3 exactGeometric = vec3(0.0);  // ... and at the geometric normal
   float count = 0.0;
   ShL1 fallback = sh;
   float fallbackDistance = 3.0e38;
@@ -91,6 +137,7 @@ void main() {
       if (!valid) continue;
       shAdd(sh, direction, lw);
       exact += lw * (max(dot(direction, x.shadingNormal), 0.0) / PI);
+      exactGeometric += lw * (max(dot(direction, x.geometricNormal), 0.0) / PI);
     } else if (planeDistance < fallbackDistance) {
       // No reservoir on this surface (a thin feature at reduced GI resolution): the nearest one.
       fallbackDistance = planeDistance;
@@ -101,10 +148,7 @@ void main() {
   vec3 result;
   if (!reuse) result = count > 0.0 ? exact / count : shIrradianceOverPiAt(fallback, x.shadingNormal);
   else if (count > 0.0) {
-    sh.r /= count;
-    sh.g /= count;
-    sh.b /= count;
-    result = shIrradianceOverPiAt(sh, x.shadingNormal);
+    result = (exactGeometric / count) * normalVariation(sh, x);
   } else {
     result = shIrradianceOverPiAt(fallback, x.shadingNormal);
   }

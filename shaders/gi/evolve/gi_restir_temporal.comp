@@ -32,7 +32,7 @@ layout(set = 1, binding = GI_TEMPORAL_BINDING_NORMALS, rgba16f) uniform readonly
 layout(set = 1, binding = GI_TEMPORAL_BINDING_DEPTH, r32f) uniform readonly image2D depths;
 layout(set = 1, binding = GI_TEMPORAL_BINDING_VELOCITY, rg16f) uniform readonly image2D velocities;
 layout(set = 1, binding = GI_TEMPORAL_BINDING_ESTIMATE, rgba16f) uniform writeonly image2D estimateOut;
-layout(set = 1, binding = GI_TEMPORAL_BINDING_VALIDITY, rg16f) uniform readonly image2D validity;
+layout(set = 1, binding = GI_TEMPORAL_BINDING_VALIDITY, rgba16f) uniform readonly image2D validity;
 layout(set = 1, binding = GI_TEMPORAL_BINDING_OCCLUSION_VALIDITY, r16f) uniform readonly image2D occlusionValidity;
 
 const uint RANDOM_GI_PERMUTATION = 0x47490006u;
@@ -104,6 +104,17 @@ Reservoir permutedHistory(FrameConstants f, RestirGiConstants gi, ivec2 q, uint 
   return r;
 }
 
+// The stored and re-traced luminances summed over the neighbourhood of GI pixel g.
+vec2 neighbourhoodLuminances(RestirGiConstants gi, ivec2 g) {
+  vec2 sums = vec2(0.0);
+  for (int dy = -RADIANCE_VALIDATION_RADIUS; dy <= RADIANCE_VALIDATION_RADIUS; ++dy)
+    for (int dx = -RADIANCE_VALIDATION_RADIUS; dx <= RADIANCE_VALIDATION_RADIUS; ++dx) {
+      ivec2 q = g + ivec2(dx, dy);
+      if (insideGi(gi, q)) sums += imageLoad(validity, q).zw;
+    }
+  return sums;
+}
+
 // Caps a history reservoir's confidence (temporalMaxM x the candidate's M).
 Reservoir capped(RestirGiConstants gi, Reservoir r, float candidateM) {
   r.M = min(r.M, gi.temporalMaxM * max(candidateM, 1.0));
@@ -143,7 +154,14 @@ void main() {
     }
     result = endStream(s, x1);
   }
-  if (validated) result.M = min(result.M, gi.temporalMaxM);
+  if (validated) {
+    // Where the neighbourhood's light changed (a real change, not noise): less confidence, so
+    // that the next candidates take over. (Scaling W by the neighbourhood's ratio of re-traced
+    // to stored luminance as well darkened by a third with Path at x2: the stored values of
+    // freshly selected samples are biased bright, the ratio with them too.)
+    vec2 sums = neighbourhoodLuminances(gi, g);  // stored, re-traced
+    result.M = max(min(result.M, gi.temporalMaxM) * radianceValidity(gi, sums.x, sums.y), 1.0);
+  }
   result.origin = x1.position;
   result.originNormal = x1.shadingNormal;
   if (candidate.M <= 0.0) result = emptyReservoir();

@@ -200,6 +200,25 @@ Reservoir endStream(ReservoirStream s, PrimaryVertex x1) {
   return r;
 }
 
+// Validation (seed 000, "resolve-diffuse-rays": radiance changed -> lower M): how much of the
+// history still holds where the validation rays of a neighbourhood found their radiance
+// changed, from the sums of the stored and the re-traced luminances over the validated pixels
+// of RADIANCE_VALIDATION_RADIUS GI pixels around (gi.reservoir-validity z, w): 1 - the relative
+// change of the sums when it exceeds validationRadiance, else 1. Per pixel the two are single
+// noisy estimates, and the stored one was *selected* for being bright, so lowering each
+// reservoir's M by its own comparison kept the reservoirs whose sample happened to re-trace
+// alike and discarded the others: +20 % bright with fireflies on cornell. Summed over a
+// neighbourhood, noise cancels and a real change (a light switched, the sun moved) stands out;
+// every reservoir of the neighbourhood then loses the same share of its M.
+const int RADIANCE_VALIDATION_RADIUS = 2;
+
+float radianceValidity(RestirGiConstants gi, float storedSum, float retracedSum) {
+  float larger = max(storedSum, retracedSum);
+  if (!(larger > 0.0)) return 1.0;
+  float change = abs(retracedSum - storedSum) / larger;
+  return change > gi.validationRadiance ? 1.0 - change : 1.0;
+}
+
 vec4 finiteOrZero(vec4 v) {
   return any(isnan(v)) || any(isinf(v)) ? vec4(0.0) : v;
 }

@@ -233,7 +233,7 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
   graph::ImageHandle candidateEstimate =
       graph.createImage("gi.candidate-estimate", {kRgba16f, giSize});
   graph::ImageHandle reservoirValidity =
-      graph.createImage("gi.reservoir-validity", {VK_FORMAT_R16G16_SFLOAT, giSize});
+      graph.createImage("gi.reservoir-validity", {kRgba16f, giSize});
   // Spatial occlusion validity: written by gi-trace-spatial-validation-rays, read (previous)
   // by the next frame's gi-restir-temporal.
   const bool spatialValidation = settings_.spatialReuse && settings_.spatialValidation;
@@ -414,6 +414,7 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
   }
   if (!denoise) return;
   graph::HistoryImage denoised = graph.createHistoryImage("gi.denoised", {kRgba16f});
+  graph::HistoryImage denoisedFast = graph.createHistoryImage("gi.denoised-fast", {kRgba16f});
   const bool spatialDenoise = settings_.spatialDenoise;
   // Without the validation pass the occlusion-validity binding gets an unused R16F image.
   graph::ImageHandle occlusionNow = occlusionValidity ? occlusionValidity->current : neeVisibility;
@@ -429,11 +430,14 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       .read(in.flags, Access::StorageRead)
       .read(in.velocity, Access::StorageRead)
       .read(denoised.previous, Access::StorageRead)
+      .read(denoisedFast.previous, Access::StorageRead)
       .read(reservoirValidity, Access::StorageRead)
       .read(occlusionNow, Access::StorageRead)
       .write(denoised.current, Access::StorageWrite)
+      .write(denoisedFast.current, Access::StorageWrite)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-        bool valid = r.historyValid(denoised) && r.historyValid(in.depth);
+        bool valid = r.historyValid(denoised) && r.historyValid(denoisedFast) &&
+                     r.historyValid(in.depth);
         denoise_.record(cmd,
                         {{gpu::GI_DENOISE_BINDING_INPUT, r.image(resolved)},
                          {gpu::GI_DENOISE_BINDING_NORMALS, r.image(in.normals)},
@@ -445,7 +449,9 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
                          {gpu::GI_DENOISE_BINDING_CURRENT, r.image(denoised.current)},
                          {gpu::GI_DENOISE_BINDING_OUTPUT, r.image(temporalOut)},
                          {gpu::GI_DENOISE_BINDING_VALIDITY, r.image(reservoirValidity)},
-                         {gpu::GI_DENOISE_BINDING_OCCLUSION_VALIDITY, r.image(occlusionNow)}},
+                         {gpu::GI_DENOISE_BINDING_OCCLUSION_VALIDITY, r.image(occlusionNow)},
+                         {gpu::GI_DENOISE_BINDING_PREVIOUS_FAST, r.image(denoisedFast.previous)},
+                         {gpu::GI_DENOISE_BINDING_CURRENT_FAST, r.image(denoisedFast.current)}},
                         passConstants(in, valid), full);
       });
   if (!spatialDenoise) return;
