@@ -16,6 +16,9 @@ run() {  # label, then render arguments
   $R render --vbuffer trace --frames 240 --animate --timings "$OUT/$label.json" \
     --out "/tmp/$label.png" "$@" 2>&1 | grep -E "^  (cache|gi-|composite|frame)" | grep -v cascade
 }
+# A throw-away run first: the first run on a freshly started machine measured up to 3x slower.
+$R render --scene sunroom --preset mobile --vbuffer trace --frames 240 --animate --gi evolve \
+  --out /tmp/warm-up.png > /dev/null 2>&1
 for scene in sunroom city vase; do
   path=$scene; [ "$scene" = vase ] && path=$VASE
   for preset in mobile desktop; do run "$scene-$preset-evolve" --scene "$path" --preset $preset --gi evolve; done

@@ -22,20 +22,32 @@ layout(local_size_x = CLIPMAP_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { ClipmapPassConstants pc; };
 
 const uint BIN_QUADRATURE = 4u;
+const uint QUADRATURE_POINTS = BIN_QUADRATURE * BIN_QUADRATURE;
 const float NORMALISATION_LIMIT = 4.0;
+
+// The quadrature's directions, bin after bin, computed once per workgroup (each costs a few
+// transcendental functions; every cell of the group needs all of them).
+shared vec3 quadratureDirections[CLIPMAP_ENTRIES * QUADRATURE_POINTS];
+
+void computeQuadratureDirections() {
+  for (uint k = gl_LocalInvocationIndex; k < CLIPMAP_ENTRIES * QUADRATURE_POINTS; k += CLIPMAP_GROUP_SIZE) {
+    uint e = k / QUADRATURE_POINTS, i = k % QUADRATURE_POINTS;
+    vec2 u = (vec2(float(i % BIN_QUADRATURE), float(i / BIN_QUADRATURE)) + 0.5) / float(BIN_QUADRATURE);
+    quadratureDirections[k] = clipmapEntryDirection(e, u);
+  }
+  barrier();
+}
 
 // The mean of max(0, n . w) over the directions w of bin e.
 float binMeanCosine(uint e, vec3 n) {
   float sum = 0.0;
-  for (uint j = 0u; j < BIN_QUADRATURE; ++j)
-    for (uint i = 0u; i < BIN_QUADRATURE; ++i) {
-      vec2 u = (vec2(float(i), float(j)) + 0.5) / float(BIN_QUADRATURE);
-      sum += max(dot(n, clipmapEntryDirection(e, u)), 0.0);
-    }
-  return sum / float(BIN_QUADRATURE * BIN_QUADRATURE);
+  for (uint i = 0u; i < QUADRATURE_POINTS; ++i)
+    sum += max(dot(n, quadratureDirections[e * QUADRATURE_POINTS + i]), 0.0);
+  return sum / float(QUADRATURE_POINTS);
 }
 
 void main() {
+  computeQuadratureDirections();  // before any thread leaves: the barrier needs them all
   uint index = gl_GlobalInvocationID.x;
   if (index >= ClipmapFrameRef(pc.buffers.frame).v.liveCount) return;
   uint cell = ClipmapLiveListRef(pc.buffers.liveList).v[index];

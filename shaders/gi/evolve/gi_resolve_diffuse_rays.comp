@@ -38,6 +38,7 @@ layout(set = 1, binding = GI_CANDIDATES_BINDING_PREVIOUS + GI_RESERVOIR_NORMALS,
 layout(set = 1, binding = GI_CANDIDATES_BINDING_VALIDITY, rgba16f) uniform writeonly image2D validityOut;
 
 const float MOVED_VALIDITY = 0.2;
+const float VALIDATION_STEP = 2.0;
 
 // The history reservoir a validation ray re-traced, with `fresh` the re-traced sample; x of
 // `validity` as in gi.reservoir-validity, z and w the stored and re-traced luminance.
@@ -56,16 +57,22 @@ Reservoir validatedHistory(RestirGiConstants gi, float rayW, PrimaryVertex x1, R
   if (!moved) {
     // The re-traced radiance replaces the stored one. With the cache at x2 (or NEE alone) both
     // are close estimates of the same point's radiance (measured: their sums agree within 1 %
-    // on a static view), so W is kept and the estimate follows what changed, the cache's
-    // convergence included. With Path at x2 the stored value was selected from a heavy-tailed
-    // distribution (about twice the re-traced one on average), and taking the re-trace would
-    // darken, so W p_hat is kept instead (W scaled by the luminance ratio, which is the target
-    // ratio: same direction): the estimate and the reservoir's weight in later merges stay.
+    // on a static view), so the estimate follows what changed, the cache's convergence
+    // included, by at most a factor VALIDATION_STEP up or down per validation (W scaled by the
+    // rest of the luminance ratio): a sample that was dark and is now lit carries the large W
+    // of a dark sample, and taking its new radiance at once makes a firefly. With Path at x2
+    // the stored value was selected from a heavy-tailed distribution (about twice the re-traced
+    // one on average), and taking the re-trace would darken, so W p_hat is kept instead: the
+    // estimate and the reservoir's weight in later merges stay.
     float stored = max(brdfLuminance(h.radiance), 0.0);
     float retraced = max(brdfLuminance(fresh.radiance), 0.0);
     validity.zw = vec2(stored, retraced);
     if (stored > 0.0 && retraced > 0.0) {
-      if (gi.secondVertex == RESTIR_GI_SECOND_VERTEX_PATH) h.W *= stored / retraced;
+      float ratio = retraced / stored;
+      float estimateRatio = gi.secondVertex == RESTIR_GI_SECOND_VERTEX_PATH
+                                ? 1.0
+                                : clamp(ratio, 1.0 / VALIDATION_STEP, VALIDATION_STEP);
+      h.W *= estimateRatio / ratio;
       h.radiance = fresh.radiance;
     }
     return h;

@@ -47,12 +47,13 @@ struct RestirGiSettings {
   // (restir_gi_common.glsl, radianceValidity; lower: more reaction to noise; with Path at x2
   // the stored values are ~2x the re-traced ones even on a static view, because the stored
   // ones were selected for being bright, so there it always fires and only costs temporal
-  // reuse). Measured (lavapipe, 64 frames, mean ratio to the reference): neutral with temporal
-  // reuse alone (cornell 0.99 with or without), sunroom's full chain 0.75-0.79 either way,
-  // cornell's full chain 1.00 -> 1.04-1.08; a sun jump is not recovered faster (its error
-  // falls 15 % in 10 frames with or without: the change is one of where the light falls, not
-  // of how much arrives in a neighbourhood).
-  uint32_t validationPeriod = 3;
+  // reuse). Off by default (seed 000 uses 3): on a static view validation frames bring no
+  // fresh candidates (a third fewer samples) and the neighbourhood decisions show as 5x5-pixel
+  // blotches in the final picture; with it the GI follows a sun jump about twice as fast
+  // (sunroom: error down to 0.53-0.79x of the jump's in 10 frames, 0.85x without) and the
+  // mean is unchanged with temporal reuse alone (cornell 0.99 with or without). Use 3
+  // (--restir-validation-period 3) for scenes whose lighting or geometry jumps.
+  uint32_t validationPeriod = 0;
   float validationDistance = 0.1f;
   float validationRadiance = 0.25f;
   // Reprojection and reuse accept another primary vertex when it lies within this relative
