@@ -302,7 +302,8 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                 "The unbiased configuration: full-resolution GI, temporal reuse only, a "
                 "continued path at the 2nd vertex, no denoisers");
   cmd->add_option("--restir-validation-period", options->restirValidationPeriod,
-                  "Validation rays every N frames (0 off, the default: see README, known gaps)");
+                  "Validation rays every N frames (0: off, the default; seed 000 uses 3, for "
+                  "light or geometry that jumps: see README)");
   cmd->add_flag("--no-gi-denoise", options->noGiDenoise, "Turn the GI denoisers off");
   cmd->add_option("--view", options->view,
                   std::string("What to write: a pass of the frame (scene-update, vbuffer, gbuffer, "
