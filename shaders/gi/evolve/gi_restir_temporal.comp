@@ -104,16 +104,7 @@ Reservoir permutedHistory(FrameConstants f, RestirGiConstants gi, ivec2 q, uint 
   return r;
 }
 
-// The stored and re-traced luminances summed over the neighbourhood of GI pixel g.
-vec2 neighbourhoodLuminances(RestirGiConstants gi, ivec2 g) {
-  vec2 sums = vec2(0.0);
-  for (int dy = -RADIANCE_VALIDATION_RADIUS; dy <= RADIANCE_VALIDATION_RADIUS; ++dy)
-    for (int dx = -RADIANCE_VALIDATION_RADIUS; dx <= RADIANCE_VALIDATION_RADIUS; ++dx) {
-      ivec2 q = g + ivec2(dx, dy);
-      if (insideGi(gi, q)) sums += imageLoad(validity, q).zw;
-    }
-  return sums;
-}
+DEFINE_NEIGHBOURHOOD_LUMINANCES(validity)
 
 // Caps a history reservoir's confidence (temporalMaxM x the candidate's M).
 Reservoir capped(RestirGiConstants gi, Reservoir r, float candidateM) {

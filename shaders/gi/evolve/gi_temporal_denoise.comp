@@ -39,6 +39,8 @@ layout(set = 1, binding = GI_DENOISE_BINDING_CURRENT_FAST, rgba16f) uniform writ
 const float HISTORY_DEPTH_TOLERANCE = 0.03;
 const float FAST_FRAMES = 4.0;
 
+DEFINE_NEIGHBOURHOOD_LUMINANCES(reservoirValidity)
+
 // Last frame's pixel under `pixel` when its surface agrees (view depth), else (-1, -1).
 ivec2 historyPixel(FrameConstants f, ivec2 pixel) {
   vec2 previousPosition = vec2(pixel) + 0.5 - imageLoad(velocities, pixel).xy;
@@ -113,13 +115,7 @@ void main() {
   vec4 validation = imageLoad(reservoirValidity, g);
   float validity = clamp(validation.x, 0.0, 1.0);
   if (validation.y > 0.5) {  // a validated pixel: also the neighbourhood's radiance change
-    vec2 sums = vec2(0.0);
-    for (int dy = -RADIANCE_VALIDATION_RADIUS; dy <= RADIANCE_VALIDATION_RADIUS; ++dy)
-      for (int dx = -RADIANCE_VALIDATION_RADIUS; dx <= RADIANCE_VALIDATION_RADIUS; ++dx) {
-        ivec2 q = g + ivec2(dx, dy);
-        if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(gi.giResolution))))
-          sums += imageLoad(reservoirValidity, q).zw;
-      }
+    vec2 sums = neighbourhoodLuminances(gi, g);
     validity *= radianceValidity(gi, sums.x, sums.y);
   }
   float maxFrames = max(gi.denoiseMaxHistory * (isFiniteValue(validity) ? validity : 1.0), 1.0);

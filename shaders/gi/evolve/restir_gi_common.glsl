@@ -212,6 +212,21 @@ Reservoir endStream(ReservoirStream s, PrimaryVertex x1) {
 // every reservoir of the neighbourhood then loses the same share of its M.
 const int RADIANCE_VALIDATION_RADIUS = 2;
 
+// Defines vec2 neighbourhoodLuminances(RestirGiConstants gi, ivec2 g): the stored and re-traced
+// luminances summed over the neighbourhood of GI pixel g, read from the pass's binding of
+// gi.reservoir-validity, `image` (a macro: a storage image cannot be a function parameter).
+#define DEFINE_NEIGHBOURHOOD_LUMINANCES(image)                                            \
+  vec2 neighbourhoodLuminances(RestirGiConstants gi, ivec2 g) {                           \
+    vec2 sums = vec2(0.0);                                                                \
+    for (int dy = -RADIANCE_VALIDATION_RADIUS; dy <= RADIANCE_VALIDATION_RADIUS; ++dy)    \
+      for (int dx = -RADIANCE_VALIDATION_RADIUS; dx <= RADIANCE_VALIDATION_RADIUS; ++dx) { \
+        ivec2 q = g + ivec2(dx, dy);                                                      \
+        if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(gi.giResolution)))) \
+          sums += imageLoad(image, q).zw;                                                 \
+      }                                                                                   \
+    return sums;                                                                          \
+  }
+
 float radianceValidity(RestirGiConstants gi, float storedSum, float retracedSum) {
   float larger = max(storedSum, retracedSum);
   if (!(larger > 0.0)) return 1.0;
