@@ -14,7 +14,7 @@ build: deps
 
 demo: build
 	mkdir -p out
-	./$(BUILD)/bounce render --scene sunroom --sky daylight --gi evolve --res 480x270 --frames 64 \
+	./$(BUILD)/bounce render --scene sunroom --sky daylight --gi evolve --preset desktop --res 480x270 --frames 64 \
 		--timings out/demo-timings.json --out out/demo.png
 	@echo "demo: wrote out/demo.png and the per-pass GPU times out/demo-timings.json"
 

@@ -81,8 +81,10 @@ ImageRGBA32F referenceImage(vk::Context& context, GpuScene& gpuScene, const Scen
   return tracer.render(camera, options).image;
 }
 
+// The desktop preset's cache (4 candidates and 4 validation rays per cell per frame, alpha-tested
+// rays) with the given ReSTIR GI settings, at a test's size with full-resolution shadows.
 HybridSettings giSettings(uint32_t width, uint32_t height, const RestirGiSettings& gi) {
-  HybridSettings settings;
+  HybridSettings settings = presetSettings(Preset::Desktop);
   settings.width = width;
   settings.height = height;
   settings.shadowDivisor = 1;
@@ -222,14 +224,18 @@ TEST(RestirGi, FullChainConvergesOnCornell) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
-// Issue 6, test 3 on sunroom: the default chain after 64 frames against the reference. The
-// issue's bound is relMSE <= 0.05; measured 0.134-0.142 (mean ratio 0.83-0.84) against a
-// 256-spp reference. What is left of the darkness is mostly the cache's lag at x2: its
-// multi-bounce light builds up over hundreds of frames in this interior (mean ratio 0.73 after
-// 64 frames, 0.81 after 256, RestirGiDiag); with Path at x2 the chain reaches 0.92-0.95, and
-// its relMSE 0.10-0.15 is mostly noise of 64 frames in the dark corners, which relMSE weights
-// heavily. This test guards against regressions with the measured values plus margin (relMSE
-// 0.3, mean ratio 0.7-1.1); DISABLED_FullChainOnSunroomMeetsIssueBound holds the issue's bound.
+// Issue 6, test 3 on sunroom: the default chain (desktop preset) after 64 frames against a
+// 2,048-spp reference (a 256-spp one is itself 0.031 relMSE from an 8,192-spp render: it
+// inflated the measure by that much). The issue's bound is relMSE <= 0.05; measured 0.109-0.112
+// (mean ratio 0.92). Three pixels hold half of it: the white wall seen 10 cm deep inside the
+// 5 cm gap behind the teal cabinet, black in the reference (0.000-0.045) and 0.38-0.40 here,
+// because half-resolution GI has no sample inside a gap one pixel wide and the resolve and the
+// spatial denoiser take their neighbours' on the same wall plane (relMSE weights a near-black
+// reference pixel heavily); the other 765 pixels give 0.052. The rest is the cache's slow
+// multi-bounce build-up (RestirGiDiag: mean ratio 0.92-0.94 with the cache, 0.95-0.97 with Path
+// at x2). This test guards against regressions with the measured values plus margin (relMSE
+// 0.2, mean ratio 0.8-1.1); DISABLED_FullChainOnSunroomMeetsIssueBound holds the issue's bound.
+void printWorstPixels(const ImageRGBA32F& test, const ImageRGBA32F& reference, size_t count);
 void sunroomFullChain(double maxRelMse, double minRatio, double maxRatio) {
   const uint32_t width = 32, height = 24;
   Scene scene = loadScene("sunroom");
@@ -237,13 +243,14 @@ void sunroomFullChain(double maxRelMse, double minRatio, double maxRatio) {
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
   HybridSettings settings = giSettings(width, height, RestirGiSettings::desktopPreset());
-  ImageRGBA32F reference = referenceImage(context, gpuScene, scene, camera, width, height, 256);
+  ImageRGBA32F reference = referenceImage(context, gpuScene, scene, camera, width, height, 2048);
   HybridFrame frame(context, gpuScene, scene, settings);
   frame.requestDebugView("composite");
   Comparison c = fullChainError(frame, camera, reference, 64);
   writePair("full-sunroom", frame.debugViewImage("composite"), reference);
   std::printf("sunroom %ux%u, full chain after 64 frames: relMSE %.4f, mean ratio %.4f\n", width,
               height, c.relMse, c.meanRatio);
+  printWorstPixels(frame.debugViewImage("composite"), reference, 3);
   EXPECT_LE(c.relMse, maxRelMse);
   EXPECT_GE(c.meanRatio, minRatio);
   EXPECT_LE(c.meanRatio, maxRatio);
@@ -251,7 +258,7 @@ void sunroomFullChain(double maxRelMse, double minRatio, double maxRatio) {
 }
 
 TEST(RestirGi, FullChainOnSunroom) {
-  sunroomFullChain(0.3, 0.7, 1.1);
+  sunroomFullChain(0.2, 0.8, 1.1);
 }
 TEST(RestirGi, DISABLED_FullChainOnSunroomMeetsIssueBound) {
   sunroomFullChain(0.05, 0.95, 1.05);
@@ -263,16 +270,19 @@ TEST(RestirGi, DISABLED_FullChainOnSunroomMeetsIssueBound) {
 // sun from the start), so that it measures lag, not bias: converged level = one converged
 // frame's relMSE to that mean. A run converges under the mirrored sun (the sunlit floor patch
 // elsewhere), the sun jumps back, and 10 frames follow. The issue asks for the error back within
-// 1.5x of the converged level within 10 frames; measured: converged 0.023, before the jump
-// 0.57, after 10 frames 0.40, 70 % of the jump's error (75-80 % with temporalMaxM 20; without
-// validation rays 85 %; taking re-traced radiance without the 2x step limit 53 %, with
-// fireflies). Stored radiance in history reservoirs (M up to 10) and the cache's multi-bounce
-// light are what lag.
-// So the bound
+// 1.5x of the converged level within 10 frames; measured: converged 0.020, before the jump
+// 0.59, after 10 frames 0.33, 56 % of the jump's error (70 % with the mobile cache; 75-80 %
+// with temporalMaxM 20; taking re-traced radiance without the 2x step limit 53 %, with
+// fireflies). What lags is the ReSTIR history itself: with NEE alone at x2 (no cache) the error
+// falls just as slowly (to 51 % in 10 frames), and without the temporal denoiser too. A
+// reservoir's estimate is the running mean of the candidates it merged (M up to 10), and the
+// validation rays re-trace only the samples a reservoir holds: light that appears elsewhere
+// (the new sunlit patch) enters at the rate fresh candidates find it. So the bound
 // checked here is the measured behaviour with margin (error down to 0.85x of before within 10
 // frames; a chain that kept stale history would stay at ~1x); the issue's bound is
 // DISABLED_SunJumpRecoversWithinIssueBound. Then a camera cut (resetHistory, a closer view): the
 // first frame has no NaN and is not black (its mean is at least half that 16 frames later).
+RestirGiSettings diagnosticSettings(const std::string& name);
 void sunJumpAndCameraCut(double recoveryFactor, bool relativeToConverged) {
   // The GI output itself: the composite would also measure the shadow denoiser's lag (its
   // running mean spans shadowMaxHistory = 16 frames), which is not this chain's.
@@ -286,6 +296,7 @@ void sunJumpAndCameraCut(double recoveryFactor, bool relativeToConverged) {
   // lighting that jumps (RestirGiSettings::validationPeriod).
   RestirGiSettings gi = RestirGiSettings::desktopPreset();
   gi.validationPeriod = 3;
+  if (const char* c = std::getenv("RESTIR_JUMP_CONFIG")) gi = diagnosticSettings(c);
   HybridSettings settings = giSettings(width, height, gi);
   ImageRGBA32F target, lastConverged;
   {
@@ -348,9 +359,9 @@ TEST(RestirGi, DISABLED_SunJumpRecoversWithinIssueBound) {
 }
 
 // Issue 6, test 5: 1,000 animated frames (the scene's scripted motion, the default camera sway,
-// a moving sun) at 16x16 with the Vulkan validation layers on and ReSTIR GI's validation rays
-// every 3rd frame (off by default, so their code path is covered here): no NaN/Inf in
-// gi.diffuse or composite, silent validation layers.
+// a moving sun) at 16x16 with the Vulkan validation layers on, ReSTIR GI's validation rays
+// every 3rd frame (off by default, so their code path is covered here) and the cache's
+// validation rays: no NaN/Inf in gi.diffuse or composite, silent validation layers.
 TEST(RestirGi, LongAnimatedRunStaysFinite) {
   const uint32_t width = 16, height = 16;
   Scene scene = loadScene("sunroom");
@@ -361,7 +372,13 @@ TEST(RestirGi, LongAnimatedRunStaysFinite) {
   GpuScene gpuScene(context, scene);
   RestirGiSettings gi = RestirGiSettings::desktopPreset();
   gi.validationPeriod = 3;
-  HybridFrame frame(context, gpuScene, scene, giSettings(width, height, gi));
+  HybridSettings settings = giSettings(width, height, gi);
+  // One candidate and one validation ray per cache cell and frame: the cache's validation path
+  // is covered at a quarter of the desktop preset's rays (its ~5,000 cells' rays, not the
+  // 16x16 pixels, set this test's time on lavapipe).
+  settings.cache.raysPerCell = 1;
+  settings.cache.validationRaysPerCell = 1;
+  HybridFrame frame(context, gpuScene, scene, settings);
   frame.requestDebugView("composite");
   frame.requestDebugView("gi-restir-temporal");
   CameraPath path = swayCameraPath(camera, 20.0f, 0.3f, 8.0f);
@@ -395,6 +412,35 @@ namespace {
 // configurations against one 2048-spp reference (cached in /tmp), to locate a bias:
 //   RESTIR_DIAG=1 RESTIR_SCENE=cornell RESTIR_CONFIGS=default,path,path-temporal-only \
 //     ./tests/test_restir_gi --gtest_filter='*Diag*'   (RESTIR_TRACE=1: per-frame means)
+// The pixels that contribute most to relMSE(test, reference) (relMSE's epsilon, 0.01): a few
+// pixels whose reference is nearly black can dominate it.
+void printWorstPixels(const ImageRGBA32F& test, const ImageRGBA32F& reference, size_t count) {
+  std::vector<std::pair<double, size_t>> errors;
+  double total = 0.0;
+  for (size_t i = 0; i < test.pixelCount(); ++i) {
+    double e = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      double r = reference.pixels[4 * i + c], d = test.pixels[4 * i + c] - r;
+      e += d * d / (r * r + 0.01) / 3.0;
+    }
+    errors.push_back({e, i});
+    total += e;
+  }
+  count = std::min(count, errors.size());
+  std::partial_sort(errors.begin(), errors.begin() + long(count), errors.end(),
+                    [](const auto& a, const auto& b) { return a.first > b.first; });
+  const size_t n = errors.size(), width = test.width;
+  double worst = 0.0;
+  std::printf("  largest shares of relMSE %.4f:", total / double(n));
+  for (size_t k = 0; k < count; ++k) {
+    worst += errors[k].first;
+    std::printf(" (%zu,%zu) %.4f [%.3f vs %.3f]", errors[k].second % width, errors[k].second / width,
+                errors[k].first / double(n), luminance(test, errors[k].second),
+                luminance(reference, errors[k].second));
+  }
+  std::printf("\n  relMSE without those %zu pixels: %.4f\n", count, (total - worst) / double(n));
+}
+
 RestirGiSettings diagnosticSettings(const std::string& name) {
   RestirGiSettings gi = RestirGiSettings::desktopPreset();
   std::string base = name;
@@ -412,6 +458,8 @@ RestirGiSettings diagnosticSettings(const std::string& name) {
   if (has("noclip")) gi.denoiseClipSigma = 1e4f;
   if (has("maxm10")) gi.temporalMaxM = 10.0f;
   if (has("history2")) gi.denoiseMaxHistory = 2.0f;
+  if (has("history32")) gi.denoiseMaxHistory = 32.0f;
+  if (has("history64")) gi.denoiseMaxHistory = 64.0f;
   if (has("no-patch")) gi.patchReservoir = false;
   if (has("no-spatial-validation")) gi.spatialValidation = false;
   if (has("validation3")) gi.validationPeriod = 3;
@@ -423,14 +471,16 @@ RestirGiSettings diagnosticSettings(const std::string& name) {
 
 TEST(RestirGiDiag, Configurations) {
   if (!std::getenv("RESTIR_DIAG")) GTEST_SKIP();
-  const uint32_t width = 32, height = 24;
+  uint32_t width = 32, height = 24;
+  if (const char* res = std::getenv("RESTIR_RES")) std::sscanf(res, "%ux%u", &width, &height);
   const std::string sceneName =
       std::getenv("RESTIR_SCENE") ? std::getenv("RESTIR_SCENE") : "sunroom";
   Scene scene = loadScene(sceneName);
   Camera camera = effectiveCamera(scene);
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
-  std::string refPath = "/tmp/diag-ref-" + sceneName + ".exr";
+  std::string refPath = "/tmp/diag-ref-" + sceneName + "-" + std::to_string(width) + "x" +
+                        std::to_string(height) + ".exr";
   ImageRGBA32F reference;
   try {
     reference = readImage(refPath);
@@ -449,6 +499,8 @@ TEST(RestirGiDiag, Configurations) {
     HybridSettings hybrid = giSettings(width, height, gi);
     if (name.find("stale64") != std::string::npos) hybrid.cache.maxStaleFrames = 64;
     if (name.find("cap8") != std::string::npos) hybrid.cache.historyCap = 8.0f;
+    if (name.find("cap4") != std::string::npos) hybrid.cache.historyCap = 4.0f;
+    if (name.find("mcache") != std::string::npos) hybrid.cache = ClipmapCacheSettings{};
     HybridFrame frame(context, gpuScene, scene, hybrid);
     frame.requestDebugView("composite");
     frame.requestDebugView("gi-restir-temporal");
@@ -457,7 +509,7 @@ TEST(RestirGiDiag, Configurations) {
     const int frames = std::getenv("RESTIR_FRAMES") ? std::atoi(std::getenv("RESTIR_FRAMES")) : 64;
     for (int i = 0; i < frames; ++i) {
       frame.render(camera);
-      if (i >= frames - 32) accumulate(sum, frame.debugViewImage("composite"));
+      if (i >= frames / 2) accumulate(sum, frame.debugViewImage("composite"));
       if (i >= frames - 16 && std::getenv("RESTIR_TRACE"))
         std::printf("  frame %d: candidates %.4f temporal %.4f composite %.4f\n", i,
                     meanLuminance(frame.debugViewImage("gi-resolve-diffuse-rays")),
@@ -465,10 +517,12 @@ TEST(RestirGiDiag, Configurations) {
                     meanLuminance(frame.debugViewImage("composite")));
     }
     Comparison last = compare(frame.debugViewImage("composite"), reference);
-    Comparison mean = compare(scaled(sum, 1.0f / 32.0f), reference);
-    std::printf("%s: last frame relMSE %.4f ratio %.4f; mean of 32 relMSE %.4f ratio %.4f\n",
+    Comparison mean = compare(scaled(sum, 1.0f / float(frames - frames / 2)), reference);
+    std::printf("%s: last frame relMSE %.4f ratio %.4f; mean of 2nd half relMSE %.4f ratio %.4f\n",
                 name.c_str(), last.relMse, last.meanRatio, mean.relMse, mean.meanRatio);
     writePair("diag-" + name, frame.debugViewImage("composite"), reference);
+    printWorstPixels(scaled(sum, 1.0f / float(frames - frames / 2)), reference, 8);
+    writePair("diag-mean-" + name, scaled(sum, 1.0f / float(frames - frames / 2)), reference);
   }
 }
 }  // namespace

@@ -18,7 +18,8 @@
 //              cell index + 1 (so a zeroed pool is the identity list)
 //   counters   ClipmapCounters (cumulative)
 //   frame      ClipmapFrameCounters (reset by cache-update-lifetimes every frame)
-//   liveList   uint[CLIPMAP_MAX_CELLS]: this frame's live cells (cache-update-clipmap)
+//   liveList   uint[2 * CLIPMAP_MAX_CELLS]: this frame's live cells (cache-update-clipmap),
+//              then from index CLIPMAP_MAX_CELLS those of them never traced (new cells)
 #ifndef BOUNCE_SHARED_CLIPMAP_CACHE_IO_H
 #define BOUNCE_SHARED_CLIPMAP_CACHE_IO_H
 #include "shared/compat.h"
@@ -105,12 +106,14 @@ struct ClipmapFrameCounters {
   uint liveCount;       // cells in liveList
   uint liveCells[CLIPMAP_CASCADES];
   uint scrollFrees;  // cells freed by cache-update-clipmap (left their window)
-  // Indirect dispatch of cache-trace-diffuse-rays: a thread per entry of every live cell
-  // (CLIPMAP_GROUP_SIZE / CLIPMAP_ENTRIES cells a group), so that a cell's rays run in
+  // Indirect dispatch of cache-trace-diffuse-rays: first clipmapTraceLanes() threads per live
+  // cell (its candidate and validation rays; a warp's lanes all busy), then a thread per
+  // entry of every new cell (all 16 entries traced at once), so that a cell's rays run in
   // parallel rather than one after another in one thread.
   uvec3 rayDispatch;
+  uint newCount;  // new cells, at liveList[CLIPMAP_MAX_CELLS ...]
 };
-BOUNCE_CHECK_SIZE(ClipmapFrameCounters, 80);
+BOUNCE_CHECK_SIZE(ClipmapFrameCounters, 84);
 
 struct ClipmapCacheAddresses {
   DeviceAddress grid;

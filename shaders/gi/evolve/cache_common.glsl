@@ -117,6 +117,19 @@ const vec3 CLIPMAP_ENTRY_MEAN_DIRECTION[CLIPMAP_ENTRIES] = vec3[](
     vec3(-0.42398, 0.42398, -0.70834), vec3(-0.27872, 0.87340, 0.0),
     vec3(0.27872, 0.87340, 0.0), vec3(0.42398, 0.42398, -0.70834));
 
+// cache-trace-diffuse-rays' rays per live cell and frame: raysPerCell new candidates, each
+// entry refreshed every clipmapTraceRounds() frames, and validation rays (at most raysPerCell,
+// none when one round covers every entry).
+uint clipmapTraceRounds(ClipmapCacheConstants k) { return CLIPMAP_ENTRIES / k.raysPerCell; }
+uint clipmapValidationRays(ClipmapCacheConstants k) {
+  return clipmapTraceRounds(k) >= 2u ? min(k.validationRaysPerCell, k.raysPerCell) : 0u;
+}
+// Threads per live cell in cache-trace-diffuse-rays: its rays rounded up to a power of two
+// (raysPerCell is one), so that a workgroup holds whole cells and no lane idles.
+uint clipmapTraceLanes(ClipmapCacheConstants k) {
+  return clipmapValidationRays(k) > 0u ? 2u * k.raysPerCell : k.raysPerCell;
+}
+
 float clipmapLuminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 bool clipmapFinite(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }

@@ -2,7 +2,9 @@
 // origins in the constants). Slots are toroidal, so a cell still inside its window keeps its
 // slot and its metadata stays valid as it is; a cell now outside is freed. Survivors go to the
 // live list that cache-trace-diffuse-rays and cache-build-sh walk (indirect dispatch), and are
-// counted per cascade. One thread per grid slot.
+// counted per cascade; cells never traced also go to the new-cell list (liveList from
+// CLIPMAP_MAX_CELLS), whose every entry cache-trace-diffuse-rays traces at once. One thread
+// per grid slot.
 #version 460
 #include "gi/evolve/cache_free.glsl"
 
@@ -24,9 +26,16 @@ void main() {
     return;
   }
   ClipmapFrameRef frame = ClipmapFrameRef(pc.buffers.frame);
+  ClipmapLiveListRef list = ClipmapLiveListRef(pc.buffers.liveList);
   uint index = atomicAdd(frame.v.liveCount, 1u);
-  ClipmapLiveListRef(pc.buffers.liveList).v[index] = cell;
+  list.v[index] = cell;
   if (index % CLIPMAP_GROUP_SIZE == 0u) atomicAdd(frame.v.traceDispatch.x, 1u);
-  if (index % (CLIPMAP_GROUP_SIZE / CLIPMAP_ENTRIES) == 0u) atomicAdd(frame.v.rayDispatch.x, 1u);
+  uint lanes = clipmapTraceLanes(ClipmapConstantsRef(pc.cache).v);
+  if (index % (CLIPMAP_GROUP_SIZE / lanes) == 0u) atomicAdd(frame.v.rayDispatch.x, 1u);
+  if (ClipmapCellsRef(pc.buffers.cells).v[cell].validEntries == 0u) {
+    uint fresh = atomicAdd(frame.v.newCount, 1u);
+    list.v[CLIPMAP_MAX_CELLS + fresh] = cell;
+    if (fresh % (CLIPMAP_GROUP_SIZE / CLIPMAP_ENTRIES) == 0u) atomicAdd(frame.v.rayDispatch.x, 1u);
+  }
   atomicAdd(frame.v.liveCells[cascade], 1u);
 }
