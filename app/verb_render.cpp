@@ -41,6 +41,7 @@ struct RenderOptions {
   std::string restirSecondVertex;
   bool restirUnbiased = false;
   int restirValidationPeriod = -1;
+  float restirHistoryBrightening = -1.0f;
   bool noGiDenoise = false;
   std::string preset;
   std::string timings;
@@ -100,6 +101,12 @@ void applyRestirOptions(const RenderOptions& options, RestirGiSettings& gi) {
     gi.secondVertex = *v;
   }
   if (options.restirValidationPeriod >= 0) gi.validationPeriod = uint32_t(options.restirValidationPeriod);
+  if (options.restirHistoryBrightening >= 0.0f) {
+    if (options.restirHistoryBrightening != 0.0f && options.restirHistoryBrightening <= 1.0f)
+      fail("--restir-history-brightening {}: expected 0 (off) or a ratio above 1",
+           options.restirHistoryBrightening);
+    gi.historyBrightening = options.restirHistoryBrightening;
+  }
   if (options.noGiDenoise) gi.temporalDenoise = gi.spatialDenoise = false;
 }
 
@@ -304,6 +311,10 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
   cmd->add_option("--restir-validation-period", options->restirValidationPeriod,
                   "Validation rays every N frames (0: off, the default; seed 000 uses 3, for "
                   "light or geometry that jumps: see README)");
+  cmd->add_option("--restir-history-brightening", options->restirHistoryBrightening,
+                  "Cut ReSTIR GI history where a neighbourhood's fresh candidates stay brighter "
+                  "than their running mean by this ratio (0: off, the default; 1.3 with "
+                  "--restir-validation-period 3 for jumping light: see README)");
   cmd->add_flag("--no-gi-denoise", options->noGiDenoise, "Turn the GI denoisers off");
   cmd->add_option("--view", options->view,
                   std::string("What to write: a pass of the frame (scene-update, vbuffer, gbuffer, "

@@ -72,7 +72,7 @@ struct RestirGiConstants {
   float validationRadiance;  // validation: relative radiance change of a neighbourhood -> M cut
   uint temporalHistorySamples;  // history reservoirs gi-restir-temporal may merge (1 to 5)
   uint spatialDenoiseRadius;    // gi-spatial-denoise: half-width of the blur, pixels
-  uint pad0;
+  float historyBrightening;     // temporal: neighbourhood candidates / history above this -> M cut (0 = off)
 };
 BOUNCE_CHECK_SIZE(RestirGiConstants, 120);
 
@@ -156,7 +156,13 @@ BOUNCE_CONST uint GI_TEMPORAL_BINDING_ESTIMATE = 15u;  // RGBA16F the reservoir'
 BOUNCE_CONST uint GI_TEMPORAL_BINDING_VALIDITY = 16u;  // gi.reservoir-validity
 // last frame's spatial occlusion validity (R16F; read only with RESTIR_GI_FLAG_SPATIAL_VALIDATION)
 BOUNCE_CONST uint GI_TEMPORAL_BINDING_OCCLUSION_VALIDITY = 17u;
-BOUNCE_CONST uint GI_TEMPORAL_BINDING_COUNT = 18u;
+// this frame's candidate estimates (gi.candidate-estimate) and the running mean of their
+// neighbourhood sums (gi.candidate-mean, RG32F history: last frame's, this frame's; x the
+// mean, y 1 where this frame's sum exceeded historyBrightening x the mean)
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_CANDIDATE_ESTIMATE = 18u;
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_PREVIOUS_CANDIDATE_MEAN = 19u;
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_CURRENT_CANDIDATE_MEAN = 20u;
+BOUNCE_CONST uint GI_TEMPORAL_BINDING_COUNT = 21u;
 // offsets within a reservoir's four images
 BOUNCE_CONST uint GI_RESERVOIR_SAMPLE = 0u;
 BOUNCE_CONST uint GI_RESERVOIR_RADIANCE = 1u;

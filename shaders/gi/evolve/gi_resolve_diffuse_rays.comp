@@ -58,9 +58,11 @@ Reservoir validatedHistory(RestirGiConstants gi, float rayW, PrimaryVertex x1, R
     // The re-traced radiance replaces the stored one. With the cache at x2 (or NEE alone) both
     // are close estimates of the same point's radiance (measured: their sums agree within 1 %
     // on a static view), so the estimate follows what changed, the cache's convergence
-    // included, by at most a factor VALIDATION_STEP up or down per validation (W scaled by the
-    // rest of the luminance ratio): a sample that was dark and is now lit carries the large W
-    // of a dark sample, and taking its new radiance at once makes a firefly. With Path at x2
+    // included: down at once, up by at most a factor VALIDATION_STEP per validation (W scaled
+    // by the rest of the luminance ratio), because a sample that was dark and is now lit
+    // carries the large W of a dark sample, and taking its new radiance at once makes a
+    // firefly. (Limiting the way down too kept an unlit patch's light for three validations
+    // after a sun jump: 47 % of the jump's error left after 10 frames instead of 40 %.) With Path at x2
     // the stored value was selected from a heavy-tailed distribution (about twice the re-traced
     // one on average), and taking the re-trace would darken, so W p_hat is kept instead: the
     // estimate and the reservoir's weight in later merges stay.
@@ -71,7 +73,7 @@ Reservoir validatedHistory(RestirGiConstants gi, float rayW, PrimaryVertex x1, R
       float ratio = retraced / stored;
       float estimateRatio = gi.secondVertex == RESTIR_GI_SECOND_VERTEX_PATH
                                 ? 1.0
-                                : clamp(ratio, 1.0 / VALIDATION_STEP, VALIDATION_STEP);
+                                : clamp(ratio, 0.0, VALIDATION_STEP);
       h.W *= estimateRatio / ratio;
       h.radiance = fresh.radiance;
     }

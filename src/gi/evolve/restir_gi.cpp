@@ -94,6 +94,7 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
   c.validationRadiance = s.validationRadiance;
   c.temporalHistorySamples = std::clamp(s.temporalHistorySamples, 1u, 5u);
   c.spatialDenoiseRadius = std::min(s.spatialDenoiseRadius, 4u);
+  c.historyBrightening = s.historyBrightening > 1.0f ? s.historyBrightening : 0.0f;
   c.flags |= s.validationPeriod > 0 ? gpu::RESTIR_GI_FLAG_VALIDATION : 0u;
   constants_ = upload(context, std::span<const gpu::RestirGiConstants>(&c, 1), "gi.constants");
 }
@@ -243,6 +244,10 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
         graph.createHistoryImage("gi.spatial-occlusion-validity", {VK_FORMAT_R16_SFLOAT, giSize});
   graph::ImageHandle reservoirEstimate =
       graph.createImage("gi.reservoir-estimate", {kRgba16f, giSize});
+  // gi-restir-temporal's running mean of each neighbourhood's candidates and whether they were
+  // brighter than it last frame (historyBrightening).
+  graph::HistoryImage candidateMean =
+      graph.createHistoryImage("gi.candidate-mean", {VK_FORMAT_R32G32_SFLOAT, giSize});
   const bool denoise = settings_.temporalDenoise;
   graph::ImageHandle resolved = denoise ? graph.createImage("gi.resolved", {kRgba16f}) : output;
 
@@ -367,20 +372,27 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       pass.read(candidate[i], Access::StorageRead)
           .read(reservoir[i].previous, Access::StorageRead)
           .write(reservoir[i].current, Access::StorageWrite);
-    pass.read(reservoirValidity, Access::StorageRead);
+    pass.read(reservoirValidity, Access::StorageRead)
+        .read(candidateEstimate, Access::StorageRead)
+        .read(candidateMean.previous, Access::StorageRead)
+        .write(candidateMean.current, Access::StorageWrite);
     // Without the validation pass the occlusion-validity binding gets an unused R16F image.
     graph::ImageHandle occlusion = occlusionValidity ? occlusionValidity->previous : neeVisibility;
     pass.read(occlusion, Access::StorageRead);
     pass.record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
       bool valid = true;
       for (int i = 0; i < 4; ++i) valid = valid && r.historyValid(reservoir[i]);
+      valid = valid && r.historyValid(candidateMean);
       std::vector<ImageBinding> images = {
           {gpu::GI_TEMPORAL_BINDING_VALIDITY, r.image(reservoirValidity)},
           {gpu::GI_TEMPORAL_BINDING_OCCLUSION_VALIDITY, r.image(occlusion)},
           {gpu::GI_TEMPORAL_BINDING_NORMALS, r.image(in.normals)},
           {gpu::GI_TEMPORAL_BINDING_DEPTH, r.image(in.depth.current)},
           {gpu::GI_TEMPORAL_BINDING_VELOCITY, r.image(in.velocity)},
-          {gpu::GI_TEMPORAL_BINDING_ESTIMATE, r.image(reservoirEstimate)}};
+          {gpu::GI_TEMPORAL_BINDING_ESTIMATE, r.image(reservoirEstimate)},
+          {gpu::GI_TEMPORAL_BINDING_CANDIDATE_ESTIMATE, r.image(candidateEstimate)},
+          {gpu::GI_TEMPORAL_BINDING_PREVIOUS_CANDIDATE_MEAN, r.image(candidateMean.previous)},
+          {gpu::GI_TEMPORAL_BINDING_CURRENT_CANDIDATE_MEAN, r.image(candidateMean.current)}};
       for (uint32_t i = 0; i < 4; ++i) {
         images.push_back({gpu::GI_TEMPORAL_BINDING_CANDIDATE + i, r.image(candidate[i])});
         images.push_back({gpu::GI_TEMPORAL_BINDING_PREVIOUS + i, r.image(reservoir[i].previous)});
