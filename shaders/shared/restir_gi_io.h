@@ -73,8 +73,10 @@ struct RestirGiConstants {
   uint temporalHistorySamples;  // history reservoirs gi-restir-temporal may merge (1 to 5)
   uint spatialDenoiseRadius;    // gi-spatial-denoise: half-width of the blur, pixels
   float historyBrightening;     // temporal: neighbourhood candidates / history above this -> M cut (0 = off)
+  float fireflyRatio;           // temporal denoise: input clamped to this x its ring's brightest (0 = off)
+  uint pad0;
 };
-BOUNCE_CHECK_SIZE(RestirGiConstants, 120);
+BOUNCE_CHECK_SIZE(RestirGiConstants, 128);
 
 // Push constants of every ReSTIR GI pass.
 struct RestirGiPassConstants {

@@ -15,7 +15,7 @@
 // independent values.
 // The history length shrinks with the reservoir validity (gi-resolve-diffuse-rays) and grows
 // where the spatial occlusion validity is low (gi-trace-spatial-validation-rays). Writes
-// gi.diffuse. Nothing non-finite enters history.
+// gi.diffuse. Nothing non-finite enters history. Outliers are clamped first (withoutFirefly).
 #version 460
 #include "gi/evolve/restir_gi_common.glsl"
 
@@ -50,6 +50,27 @@ ivec2 historyPixel(FrameConstants f, ivec2 pixel) {
   float expectedDepth = (f.previousViewProjection * vec4(position, 1.0)).w;
   float previousDepth = imageLoad(previousDepths, p).x;
   return abs(previousDepth - expectedDepth) <= HISTORY_DEPTH_TOLERANCE * expectedDepth ? p : ivec2(-1);
+}
+
+// The resolved value clamped to fireflyRatio x the brightest (luminance) of the 8 values two GI
+// pixels away (RestirGiSettings::fireflyRatio): far enough that one reservoir's sample, which
+// the resolve spreads over a few pixels, is not in its own ring.
+vec3 withoutFirefly(FrameConstants f, RestirGiConstants gi, ivec2 pixel, vec3 value) {
+  if (!(gi.fireflyRatio > 1.0)) return value;
+  const vec3 toLuminance = vec3(0.2126, 0.7152, 0.0722);
+  float brightest = 0.0;
+  int stride = 2 * int(gi.divisor);
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 q = pixel + stride * ivec2(dx, dy);
+      if ((dx == 0 && dy == 0) || any(lessThan(q, ivec2(0))) ||
+          any(greaterThanEqual(q, ivec2(f.resolution))))
+        continue;
+      brightest = max(brightest, dot(finiteOrZero(imageLoad(inputImage, q)).rgb, toLuminance));
+    }
+  float luminance = dot(value, toLuminance);
+  float limit = gi.fireflyRatio * brightest;
+  return luminance > limit && brightest > 0.0 ? value * (limit / luminance) : value;
 }
 
 struct ClipBox {
@@ -90,7 +111,7 @@ void main() {
     imageStore(outputImage, pixel, vec4(0.0));
     return;
   }
-  vec3 value = imageLoad(inputImage, pixel).rgb;
+  vec3 value = withoutFirefly(f, gi, pixel, finiteOrZero(imageLoad(inputImage, pixel)).rgb);
   vec4 history = vec4(0.0), fastHistory = vec4(0.0);
   ivec2 p = ivec2(-1);
   if (pc.historyValid != 0u && (gi.flags & RESTIR_GI_FLAG_DENOISE) != 0u) p = historyPixel(f, pixel);

@@ -95,6 +95,7 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
   c.temporalHistorySamples = std::clamp(s.temporalHistorySamples, 1u, 5u);
   c.spatialDenoiseRadius = std::min(s.spatialDenoiseRadius, 4u);
   c.historyBrightening = s.historyBrightening > 1.0f ? s.historyBrightening : 0.0f;
+  c.fireflyRatio = s.fireflyRatio > 1.0f ? s.fireflyRatio : 0.0f;
   c.flags |= s.validationPeriod > 0 ? gpu::RESTIR_GI_FLAG_VALIDATION : 0u;
   constants_ = upload(context, std::span<const gpu::RestirGiConstants>(&c, 1), "gi.constants");
 }

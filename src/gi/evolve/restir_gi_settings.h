@@ -119,6 +119,16 @@ struct RestirGiSettings {
   bool temporalDenoise = true;
   float denoiseMaxHistory = 16.0f;
   float denoiseClipSigma = 2.0f;
+  // Anti-firefly (as NRD's denoisers have): before accumulating, gi-temporal-denoise clamps
+  // the resolved value to fireflyRatio times the brightest of 8 values two GI pixels away
+  // (outside the few pixels one reservoir's sample reaches in the resolve). Rare samples of
+  // huge weight, reconnection shifts with a large Jacobian along concave edges where a
+  // neighbour's hit point lies next to this pixel, otherwise stay in one reservoir for frames
+  // and show as a dotted line along every wall-ceiling edge. Indirect light is smooth at that
+  // scale, so only outliers are touched: lower removes more energy, higher lets more dots
+  // through; 0 = off. (Rejecting Jacobians above 2 instead of 10 removed the dots too but
+  // darkened sunroom by 12 %.)
+  float fireflyRatio = 2.0f;
   // gi-spatial-denoise after the temporal denoiser (seed 000: desktop only): an edge-aware
   // (same-surface) Gaussian blur of half-width spatialDenoiseRadius pixels. Larger: smoother,
   // loses contact shadows and small indirect detail; cost grows with the square.
@@ -154,6 +164,7 @@ struct RestirGiSettings {
     s.temporalHistorySamples = 1;
     s.patchReservoir = false;
     s.historyBrightening = 0.0f;  // history confidence from neighbours' candidates
+    s.fireflyRatio = 0.0f;
     return s;
   }
 };
