@@ -72,7 +72,7 @@ struct RestirGiConstants {
   float validationRadiance;  // validation: relative radiance change of a neighbourhood -> M cut
   uint temporalHistorySamples;  // history reservoirs gi-restir-temporal may merge (1 to 5)
   uint spatialDenoiseRadius;    // gi-spatial-denoise: half-width of the blur, pixels
-  float historyBrightening;     // temporal: neighbourhood candidates / history above this -> M cut (0 = off)
+  float historyBrightening;     // temporal: neighbourhood candidates / their running mean above this (2 frames) -> M cut (0 = off)
   float fireflyRatio;           // temporal denoise: input clamped to this x its ring's brightest (0 = off)
   uint pad0;
 };

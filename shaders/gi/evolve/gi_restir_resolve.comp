@@ -59,10 +59,9 @@ const float NORMAL_VARIATION_LIMIT = 4.0;
 // SH irradiance at x's shading normal over that at its geometric normal (luminance), bounded;
 // 1 where the SH gives nothing at the geometric normal.
 float normalVariation(ShL1 sh, PrimaryVertex x) {
-  const vec3 toLuminance = vec3(0.2126, 0.7152, 0.0722);
-  float atGeometric = dot(shIrradianceOverPiAt(sh, x.geometricNormal), toLuminance);
+  float atGeometric = brdfLuminance(shIrradianceOverPiAt(sh, x.geometricNormal));
   if (!(atGeometric > 1e-8)) return 1.0;
-  float atShading = dot(shIrradianceOverPiAt(sh, x.shadingNormal), toLuminance);
+  float atShading = brdfLuminance(shIrradianceOverPiAt(sh, x.shadingNormal));
   return clamp(atShading / atGeometric, 0.0, NORMAL_VARIATION_LIMIT);
 }
 

@@ -9,8 +9,8 @@
 // The merged reservoir is this frame's history (the only reservoir fed back). Where the
 // candidate is a validated history reservoir (gi-resolve-diffuse-rays), it replaces history
 // without a merge (merging would count that history twice).
-// Where this frame's candidates around the pixel are much brighter than last frame's reservoirs
-// there (light appeared where no history sample points), history M is cut (historyScale).
+// Where the fresh candidates around the pixel stay brighter than their running mean (light
+// appeared where no history sample points), history M is cut (brighteningScale; off by default).
 #version 460
 #include "gi/evolve/restir_gi_common.glsl"
 #include "common/random.glsl"
@@ -51,6 +51,13 @@ bool insideGi(RestirGiConstants gi, ivec2 q) {
   return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(gi.giResolution)));
 }
 
+// Where this pixel was last frame (gbuffer.velocity), in last frame's GI pixel coordinates:
+// GI pixel g sits at its representative pixel's centre, g d + d / 2 + 0.5 (restir_gi_io.h).
+vec2 previousGiPosition(RestirGiConstants gi, ivec2 pixel) {
+  vec2 previousPixel = vec2(pixel) + 0.5 - imageLoad(velocities, pixel).xy;
+  return (previousPixel - 0.5 - float(gi.divisor / 2u)) / float(gi.divisor);
+}
+
 // The canonical history reservoir by sub-pixel-aware reprojection (Area ReSTIR, Zhang et al.
 // 2024, §5): the reprojected point falls between last frame's GI pixel centres; one of the four
 // around it is picked with probability equal to its bilinear weight (renormalised over those on
@@ -61,9 +68,7 @@ bool insideGi(RestirGiConstants gi, ivec2 q) {
 ivec2 canonicalHistoryPixel(FrameConstants f, RestirGiConstants gi, ivec2 pixel, ivec2 g,
                             PrimaryVertex x1, out Reservoir history) {
   history = emptyReservoir();
-  vec2 previousPixel = vec2(pixel) + 0.5 - imageLoad(velocities, pixel).xy;
-  // GI pixel g sits at its representative pixel's centre, g d + d / 2 + 0.5 (restir_gi_io.h).
-  vec2 p = (previousPixel - 0.5 - float(gi.divisor / 2u)) / float(gi.divisor);
+  vec2 p = previousGiPosition(gi, pixel);
   ivec2 base = ivec2(floor(p));
   vec2 t = p - vec2(base);
   float weights[4] = float[4]((1.0 - t.x) * (1.0 - t.y), t.x * (1.0 - t.y), (1.0 - t.x) * t.y, t.x * t.y);
@@ -117,13 +122,12 @@ const float CANDIDATE_MEAN_BLEND = 0.25;
 // The sum of this frame's candidate estimates (luminance) over the 5x5 GI pixels around g,
 // without g itself, so that nothing decided from it depends on g's own candidate.
 float neighbourhoodCandidates(RestirGiConstants gi, ivec2 g) {
-  const vec3 toLuminance = vec3(0.2126, 0.7152, 0.0722);
   float sum = 0.0;
   for (int dy = -BRIGHTENING_RADIUS; dy <= BRIGHTENING_RADIUS; ++dy)
     for (int dx = -BRIGHTENING_RADIUS; dx <= BRIGHTENING_RADIUS; ++dx) {
       ivec2 d = ivec2(dx, dy);
       if (d != ivec2(0) && insideGi(gi, g + d))
-        sum += dot(imageLoad(candidateEstimate, g + d).rgb, toLuminance);
+        sum += brdfLuminance(imageLoad(candidateEstimate, g + d).rgb);
     }
   return sum;
 }
@@ -131,8 +135,7 @@ float neighbourhoodCandidates(RestirGiConstants gi, ivec2 g) {
 // Last frame's GI pixel nearest to where this pixel was (no surface test: the running mean
 // below is a smooth neighbourhood quantity), or (-1, -1) off screen.
 ivec2 reprojectedGiPixel(RestirGiConstants gi, ivec2 pixel) {
-  vec2 previousPixel = vec2(pixel) + 0.5 - imageLoad(velocities, pixel).xy;
-  ivec2 q = ivec2(floor((previousPixel - 0.5 - float(gi.divisor / 2u)) / float(gi.divisor) + 0.5));
+  ivec2 q = ivec2(floor(previousGiPosition(gi, pixel) + 0.5));
   return insideGi(gi, q) ? q : ivec2(-1);
 }
 

@@ -57,7 +57,6 @@ ivec2 historyPixel(FrameConstants f, ivec2 pixel) {
 // the resolve spreads over a few pixels, is not in its own ring.
 vec3 withoutFirefly(FrameConstants f, RestirGiConstants gi, ivec2 pixel, vec3 value) {
   if (!(gi.fireflyRatio > 1.0)) return value;
-  const vec3 toLuminance = vec3(0.2126, 0.7152, 0.0722);
   float brightest = 0.0;
   int stride = 2 * int(gi.divisor);
   for (int dy = -1; dy <= 1; ++dy)
@@ -66,9 +65,9 @@ vec3 withoutFirefly(FrameConstants f, RestirGiConstants gi, ivec2 pixel, vec3 va
       if ((dx == 0 && dy == 0) || any(lessThan(q, ivec2(0))) ||
           any(greaterThanEqual(q, ivec2(f.resolution))))
         continue;
-      brightest = max(brightest, dot(finiteOrZero(imageLoad(inputImage, q)).rgb, toLuminance));
+      brightest = max(brightest, brdfLuminance(finiteOrZero(imageLoad(inputImage, q)).rgb));
     }
-  float luminance = dot(value, toLuminance);
+  float luminance = brdfLuminance(value);
   float limit = gi.fireflyRatio * brightest;
   return luminance > limit && brightest > 0.0 ? value * (limit / luminance) : value;
 }
@@ -127,8 +126,7 @@ void main() {
   if (p.x >= 0) {
     ClipBox box = fastHistoryBox(f, gi, p, fast);
     clipped = clamp(history.rgb, box.low, box.high);
-    const vec3 toLuminance = vec3(0.2126, 0.7152, 0.0722);
-    lag = abs(dot(history.rgb - fast, toLuminance)) / max(dot(box.sigma, toLuminance), 1e-4);
+    lag = abs(brdfLuminance(history.rgb - fast)) / max(brdfLuminance(box.sigma), 1e-4);
   }
   // Less accumulation where the reservoir validity is low (seed 000): a validation ray found
   // moved geometry or changed light there, so history is stale.
