@@ -43,6 +43,8 @@ struct RenderOptions {
   int restirValidationPeriod = -1;
   float restirHistoryBrightening = -1.0f;
   bool noGiDenoise = false;
+  int materialTextureSide = -1;  // -1: the settings' default
+  bool noOccluderVisibility = false;
   std::string preset;
   std::string timings;
   float exposure = HybridSettings{}.exposure;
@@ -108,6 +110,7 @@ void applyRestirOptions(const RenderOptions& options, RestirGiSettings& gi) {
     gi.historyBrightening = options.restirHistoryBrightening;
   }
   if (options.noGiDenoise) gi.temporalDenoise = gi.spatialDenoise = false;
+  if (options.noOccluderVisibility) gi.occluderVisibility = false;
 }
 
 // Preset first, then --res, then the rest of the options.
@@ -134,6 +137,13 @@ HybridSettings settingsFrom(const RenderOptions& options) {
   if (!vbuffer) fail("--vbuffer '{}': expected raster or trace", options.vbuffer);
   settings.vbuffer = *vbuffer;
   applyRestirOptions(options, settings.restirGi);
+  if (options.materialTextureSide >= 0) {
+    if (options.materialTextureSide > 2048)
+      fail("--gi-texture-side {}: expected 0 (full resolution) to 2048 texels",
+           options.materialTextureSide);
+    settings.restirGi.materialTextureSide = settings.cache.materialTextureSide =
+        uint32_t(options.materialTextureSide);
+  }
   if (!(options.exposure > 0.0f)) fail("--exposure {}: must be positive", options.exposure);
   settings.exposure = options.exposure;
   if (!(options.skyAmbient >= 0.0f)) fail("--sky-ambient {}: must be >= 0", options.skyAmbient);
@@ -316,6 +326,12 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                   "than their running mean by this ratio (0: off, the default; 1.3 with "
                   "--restir-validation-period 3 for jumping light: see README)");
   cmd->add_flag("--no-gi-denoise", options->noGiDenoise, "Turn the GI denoisers off");
+  cmd->add_flag("--no-occluder-visibility", options->noOccluderVisibility,
+                "Pixels beside an occluder reuse ReSTIR GI samples without a visibility test and "
+                "are blurred like the others (light leaks into gaps; for comparisons)");
+  cmd->add_option("--gi-texture-side", options->materialTextureSide,
+                  "GI and cache rays read textures at the mip at most this many texels wide "
+                  "(default 16, seed 000's coarse mip; 0: full resolution)");
   cmd->add_option("--view", options->view,
                   std::string("What to write: a pass of the frame (scene-update, vbuffer, gbuffer, "
                               "shadows-trace, shadows-denoise, sky, composite, tonemap; with GI "

@@ -224,17 +224,63 @@ TEST(RestirGi, FullChainConvergesOnCornell) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
+// Seed 000's coarse mip (RestirGiSettings::materialTextureSide, ClipmapCacheSettings's twin):
+// GI rays read x2's textures at the mip at most 16 texels wide. The mips are box filters (the
+// mean of each texel block is kept), and diffuse GI integrates albedo over footprints much
+// wider than 1/16 of a texture, so the GI must not change beyond noise: the mean of gi.diffuse
+// over frames 16-47 with coarse mips within 3 % of the full-resolution run's, and the images
+// within relMSE 0.02 of each other. The same seeds drive both runs, so they differ only through
+// the texture reads and the different choices these lead to. Measured (64x48, lavapipe): mean
+// ratio 1.015, relMSE 0.0005 (the rest is normal maps and roughness smoothed by the mip); with
+// the mips' plain colour mean, which let the white colour of the leaves' cut-out texels into
+// every coarse mip, 1.048 (texture_pack.cpp, blockMean). Reading every texture at its 1x1 mip
+// gives 1.025: this checks the mips' means, not that the mip chosen is the 16-texel one.
+TEST(RestirGi, CoarseMipMaterialsKeepTheGi) {
+  const uint32_t width = 64, height = 48;
+  Scene scene = loadGltf(test::sharedDir() + "/scenes/glass_vase_flowers/glTF/GlassVaseFlowers.gltf");
+  scene.sun.direction = glm::normalize(glm::vec3(-0.4f, -0.8f, -0.45f));
+  scene.sun.irradiance = 100.0f;
+  scene.sky.radiance = glm::vec3(0.5f, 0.6f, 0.9f);
+  Camera camera = effectiveCamera(scene);
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  auto meanGi = [&](uint32_t side) {
+    HybridSettings settings = giSettings(width, height, RestirGiSettings::desktopPreset());
+    settings.lambert = false;
+    settings.restirGi.materialTextureSide = settings.cache.materialTextureSide = side;
+    HybridFrame frame(context, gpuScene, scene, settings);
+    frame.requestDebugView("gi.diffuse");
+    ImageRGBA32F sum;
+    for (int i = 0; i < 48; ++i) {
+      frame.render(camera);
+      if (i >= 16) accumulate(sum, frame.debugViewImage("gi.diffuse"));
+    }
+    return scaled(sum, 1.0f / 32.0f);
+  };
+  ImageRGBA32F full = meanGi(0), coarse = meanGi(16);
+  writePair("coarse-mip-vase", coarse, full);
+  Comparison c = compare(coarse, full);
+  std::printf("glass_vase_flowers %ux%u, gi.diffuse, coarse (16 texels) vs full mips: relMSE %.4f, mean ratio %.4f\n",
+              width, height, c.relMse, c.meanRatio);
+  EXPECT_NEAR(c.meanRatio, 1.0, 0.03);
+  EXPECT_LT(c.relMse, 0.02);
+  EXPECT_EQ(countNonFinitePixels(coarse), 0u);
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+}
+
 // Issue 6, test 3 on sunroom: the default chain (desktop preset) after 64 frames against a
 // 2,048-spp reference (a 256-spp one is itself 0.031 relMSE from an 8,192-spp render: it
-// inflated the measure by that much). The issue's bound is relMSE <= 0.05; measured 0.109-0.112
-// (mean ratio 0.92). Three pixels hold half of it: the white wall seen 10 cm deep inside the
-// 5 cm gap behind the teal cabinet, black in the reference (0.000-0.045) and 0.38-0.40 here,
-// because half-resolution GI has no sample inside a gap one pixel wide and the resolve and the
-// spatial denoiser take their neighbours' on the same wall plane (relMSE weights a near-black
-// reference pixel heavily); the other 765 pixels give 0.052. The rest is the cache's slow
-// multi-bounce build-up (RestirGiDiag: mean ratio 0.92-0.94 with the cache, 0.95-0.97 with Path
-// at x2). This test guards against regressions with the measured values plus margin (relMSE
-// 0.2, mean ratio 0.8-1.1); DISABLED_FullChainOnSunroomMeetsIssueBound holds the issue's bound.
+// inflated the measure by that much). The issue's bound is relMSE <= 0.05; measured 0.061-0.064
+// (mean ratio 0.90-0.94). It was 0.109-0.112 until pixels beside an occluder tested the
+// visibility of the samples they reuse (RestirGiSettings::occluderVisibility): three pixels
+// of the white wall seen 10 cm deep inside the 5 cm gap behind the teal cabinet, black in the
+// reference, were 0.38-0.40 (half-resolution GI has no sample inside a gap one pixel wide, and
+// the resolve and the spatial denoiser took their neighbours' light on the same wall plane);
+// they are now 0.000. Blue-noise directions: 0.073 -> 0.064 (mean of frames 32-63, RestirGiDiag,
+// `white`). What is left is mostly the cache's slow multi-bounce build-up (mean ratio 0.90-0.94
+// with the cache, 0.95-0.97 with Path at x2). This test guards against regressions with the
+// measured values plus margin (relMSE 0.1, mean ratio 0.8-1.1);
+// DISABLED_FullChainOnSunroomMeetsIssueBound holds the issue's bound.
 void printWorstPixels(const ImageRGBA32F& test, const ImageRGBA32F& reference, size_t count);
 void sunroomFullChain(double maxRelMse, double minRatio, double maxRatio) {
   const uint32_t width = 32, height = 24;
@@ -258,7 +304,7 @@ void sunroomFullChain(double maxRelMse, double minRatio, double maxRatio) {
 }
 
 TEST(RestirGi, FullChainOnSunroom) {
-  sunroomFullChain(0.2, 0.8, 1.1);
+  sunroomFullChain(0.1, 0.8, 1.1);
 }
 TEST(RestirGi, DISABLED_FullChainOnSunroomMeetsIssueBound) {
   sunroomFullChain(0.05, 0.95, 1.05);
@@ -473,6 +519,9 @@ RestirGiSettings diagnosticSettings(const std::string& name) {
   if (has("no-denoise")) gi.temporalDenoise = false, gi.resolveSamples = 1;
   if (has("full-res")) gi.divisor = 1;
   if (has("nobright")) gi.historyBrightening = 0.0f;
+  if (has("white")) gi.blueNoise = false;
+  if (has("no-occluder")) gi.occluderVisibility = false;
+  if (has("fullmip")) gi.materialTextureSide = 0;
   if (has("bright13")) gi.historyBrightening = 1.3f;
   if (has("bright15")) gi.historyBrightening = 1.5f;
   if (has("bright2")) gi.historyBrightening = 2.0f;
@@ -532,6 +581,16 @@ TEST(RestirGiDiag, Configurations) {
                 name.c_str(), last.relMse, last.meanRatio, mean.relMse, mean.meanRatio);
     writePair("diag-" + name, frame.debugViewImage("composite"), reference);
     printWorstPixels(scaled(sum, 1.0f / float(frames - frames / 2)), reference, 8);
+    // RESTIR_PIXELS="x,y x,y ...": those pixels' mean luminance against the reference's.
+    if (const char* list = std::getenv("RESTIR_PIXELS")) {
+      ImageRGBA32F m = scaled(sum, 1.0f / float(frames - frames / 2));
+      unsigned x = 0, y = 0;
+      int consumed = 0;
+      for (const char* p = list; std::sscanf(p, "%u,%u%n", &x, &y, &consumed) == 2; p += consumed)
+        if (x < width && y < height)
+          std::printf("  pixel (%u,%u): %.3f vs %.3f\n", x, y, luminance(m, size_t(y) * width + x),
+                      luminance(reference, size_t(y) * width + x));
+    }
     writePair("diag-mean-" + name, scaled(sum, 1.0f / float(frames - frames / 2)), reference);
   }
 }

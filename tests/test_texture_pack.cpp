@@ -134,6 +134,40 @@ TEST(TexturePack, SrgbMipsFilterInLinearSpace) {
               1.0f, 1e-6f);
 }
 
+// A cut-out texture: a checker of opaque green and fully transparent white texels. The colour
+// of the transparent texels is never seen at mip 0, so a colour (sRGB) texture's coarser mips
+// must stay green (coverage-weighted mean) with alpha the covered fraction, 0.5 (code 128);
+// a plain mean would turn the leaf pale (linear 0.5 white + 0.5 green). Linear textures have
+// no opacity in alpha and keep the plain mean.
+TEST(TexturePack, ColourMipsIgnoreTransparentTexels) {
+  const int side = 64;
+  Image image = solidImage(side, side, {0, 0, 0, 0});
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
+      uint8_t* t = &image.rgba[size_t(y * side + x) * 4];
+      bool opaque = (x + y) % 2 == 0;
+      const uint8_t texelColour[4] = {uint8_t(opaque ? 40 : 255), 200, uint8_t(opaque ? 60 : 255),
+                                      uint8_t(opaque ? 255 : 0)};
+      std::copy(texelColour, texelColour + 4, t);
+    }
+  Scene scene;
+  scene.images = {image};
+  Material m;
+  m.baseColorTexture = 0;
+  m.normalTexture = 0;
+  scene.materials = {m};
+  PackedTextures packed = packSceneTextures(scene);
+  const PackedTextureArray* srgb = packed.find(0, true);
+  const PackedTextureArray* linear = packed.find(0, false);
+  ASSERT_TRUE(srgb && linear);
+  for (uint32_t mip = 1; mip < srgb->mipCount; ++mip) {
+    EXPECT_EQ(texel(*srgb, 0, mip, 0, 0), glm::u8vec4(40, 200, 60, 128)) << "mip " << mip;
+    glm::u8vec4 plain = texel(*linear, 0, mip, 0, 0);
+    EXPECT_EQ(plain.x, 148) << "mip " << mip;  // (40 + 255) / 2, rounded
+    EXPECT_EQ(plain.w, 128) << "mip " << mip;
+  }
+}
+
 TEST(TexturePack, AlphaSamplingWrapsAndPicksNearestTexel) {
   Scene scene = sceneWithBaseColour(alphaRampImage(64));
   scene.materials[0].baseColor.w = 0.5f;

@@ -9,7 +9,8 @@
 # (gi/ -> docs/images/gi, cache/ -> docs/images/cache).
 set -u
 R="bash .devicepack/run.sh bounce"
-VASE=.devicepack/data/glTF/GlassVaseFlowers.gltf
+# The vase's glTF has no light: a sun and a sky as in the README's vase pictures.
+VASE=".devicepack/data/glTF/GlassVaseFlowers.gltf --sun=-0.4,-0.8,-0.45:100 --sky 0.5,0.6,0.9"
 run() {  # label, then render arguments
   local label=$1; shift
   echo "== $label"
@@ -21,10 +22,16 @@ $R render --scene sunroom --preset mobile --vbuffer trace --frames 240 --animate
   --out /tmp/warm-up.png > /dev/null 2>&1
 for scene in sunroom city vase; do
   path=$scene; [ "$scene" = vase ] && path=$VASE
-  for preset in mobile desktop; do run "$scene-$preset-evolve" --scene "$path" --preset $preset --gi evolve; done
+  # $path unquoted: the vase's carries its lighting options
+  for preset in mobile desktop; do run "$scene-$preset-evolve" --scene $path --preset $preset --gi evolve; done
 done
 run sunroom-1440p-evolve --scene sunroom --preset desktop --res 2560x1440 --gi evolve
 run city-1440p-evolve --scene city --preset desktop --res 2560x1440 --gi evolve
+# Ablations in the same run: full-resolution textures for x2 (the coarse mip's saving), and
+# the occluder visibility test off (its cost in gi-restir-resolve and gi-spatial-denoise).
+run vase-desktop-fullmip --scene $VASE --preset desktop --gi evolve --gi-texture-side 0
+run sunroom-1440p-no-occluder --scene sunroom --preset desktop --res 2560x1440 --gi evolve \
+  --no-occluder-visibility
 for preset in mobile desktop; do
   run "sunroom-$preset-cache" --scene sunroom --preset $preset --gi cache
   run "city-$preset-cache" --scene city --preset $preset --gi cache
@@ -42,6 +49,8 @@ for view in gi-resolve-diffuse-rays gi-restir-temporal gi-restir-spatial-1 \
 done
 $R render --scene sunroom --preset desktop --vbuffer trace --gi evolve --frames 64 --animate \
   --out "$OUT/gi/sunroom-desktop.png" > /dev/null 2>&1
+$R render --scene $VASE --preset desktop --vbuffer trace --gi evolve --frames 64 \
+  --out "$OUT/gi/vase-desktop.png" > /dev/null 2>&1
 $R render --scene sunroom --preset desktop --res 480x270 --gi cache --frames 48 \
   --out "$OUT/cache/sunroom-gi-cache-desktop.png" > /dev/null 2>&1
 $R render --scene sunroom --preset desktop --res 480x270 --gi cache --frames 48 --view cache \

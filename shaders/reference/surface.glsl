@@ -15,6 +15,18 @@ struct Surface {
   BrdfMaterial brdf;
 };
 
+// The mip level at which a texture is at most maxSide texels wide (0 = always the full mip).
+// Seed 000's gi-trace-diffuse-rays "always samples materials at a coarse mip level, to reduce
+// bandwidth": diffuse GI rays scatter over the hemisphere, so their hits are incoherent and a
+// full-resolution fetch misses the cache; and what the GI needs of a texture is its average
+// over a footprint much larger than a texel. The mips are box-filtered (texture_pack.cpp), so a
+// coarse mip keeps each region's mean albedo.
+float coarseTextureLod(uint ref, uint maxSide) {
+  if (maxSide == 0u) return 0.0;
+  uint side = TEXTURE_MIN_SIZE << ((ref >> 16) & 0xFu);
+  return max(0.0, log2(float(side) / float(maxSide)));
+}
+
 // Emitted radiance of a material at uv: emissive factor (strength folded in) x emissive texture.
 vec3 materialEmission(GpuMaterial m, vec2 uv) {
   vec3 e = m.emissive;
@@ -27,7 +39,8 @@ vec3 materialEmission(GpuMaterial m, vec2 uv) {
 // triangle's uv gradient (the glTF sample viewer's rule when a mesh has no tangents):
 // t = dP/du made orthogonal to n, b = cross(n, t), flipped when the uv layout is mirrored
 // (glTF's v runs down the image, so an unmirrored layout has b along -dP/dv).
-vec3 applyNormalMap(GpuMaterial m, vec3 n, vec3 e1, vec3 e2, vec2 duv1, vec2 duv2, vec2 uv) {
+vec3 applyNormalMap(GpuMaterial m, vec3 n, vec3 e1, vec3 e2, vec2 duv1, vec2 duv2, vec2 uv,
+                    uint maxTextureSide) {
   float det = duv1.x * duv2.y - duv1.y * duv2.x;
   if (abs(det) < 1e-12) return n;
   vec3 dPdu = (e1 * duv2.y - e2 * duv1.y) / det;
@@ -37,7 +50,7 @@ vec3 applyNormalMap(GpuMaterial m, vec3 n, vec3 e1, vec3 e2, vec2 duv1, vec2 duv
   t = normalize(t);
   vec3 b = cross(n, t);
   if (dot(b, dPdv) > 0.0) b = -b;
-  vec3 tangentSpace = sampleSceneTexture(m.normalTexture, uv, 0.0).rgb * 2.0 - 1.0;
+  vec3 tangentSpace = sampleSceneTexture(m.normalTexture, uv, coarseTextureLod(m.normalTexture, maxTextureSide)).rgb * 2.0 - 1.0;
   tangentSpace.xy *= m.normalScale;
   vec3 perturbed = tangentSpace.x * t + tangentSpace.y * b + tangentSpace.z * n;
   return dot(perturbed, perturbed) > 1e-12 ? normalize(perturbed) : n;
@@ -48,7 +61,9 @@ bool instanceMirrors(GpuInstance instance) {
              cross(instance.worldToObject[1].xyz, instance.worldToObject[2].xyz)) < 0.0;
 }
 
-Surface loadSurface(TraceHit hit, vec3 rayDirection, bool lambertOnly) {
+// The surface at a hit with its textures read at mips at most maxTextureSide texels wide (0:
+// full resolution; see coarseTextureLod).
+Surface loadSurfaceAtCoarseMip(TraceHit hit, vec3 rayDirection, bool lambertOnly, uint maxTextureSide) {
   GpuInstance instance = sceneInstance(hit.instance);
   GpuGeometry geometry = sceneGeometry(hit.geometry);
   GpuMaterial m = sceneMaterial(geometry.material);
@@ -85,7 +100,7 @@ Surface loadSurface(TraceHit hit, vec3 rayDirection, bool lambertOnly) {
     Vec2Array uvs = Vec2Array(scene.uvs);
     vec2 uv0 = uvs.v[tri.x];
     vec3 front = flip ? -ns : ns;
-    ns = applyNormalMap(m, front, e1, e2, uvs.v[tri.y] - uv0, uvs.v[tri.z] - uv0, uv);
+    ns = applyNormalMap(m, front, e1, e2, uvs.v[tri.y] - uv0, uvs.v[tri.z] - uv0, uv, maxTextureSide);
     if (flip) ns = -ns;
   }
   // A shading normal that hides the viewer would make the BRDF zero for every direction.
@@ -94,19 +109,26 @@ Surface loadSurface(TraceHit hit, vec3 rayDirection, bool lambertOnly) {
 
   vec3 baseColor = m.baseColor.rgb;
   if (m.baseColorTexture != NO_TEXTURE)
-    baseColor *= sampleSceneTexture(m.baseColorTexture, uv, 0.0).rgb;
+    baseColor *= sampleSceneTexture(m.baseColorTexture, uv, coarseTextureLod(m.baseColorTexture, maxTextureSide)).rgb;
   float metallic = m.metallic;
   float roughness = m.roughness;
   if (m.metallicRoughnessTexture != NO_TEXTURE) {
-    vec4 mr = sampleSceneTexture(m.metallicRoughnessTexture, uv, 0.0);
+    vec4 mr = sampleSceneTexture(m.metallicRoughnessTexture, uv,
+                                 coarseTextureLod(m.metallicRoughnessTexture, maxTextureSide));
     roughness *= mr.g;
     metallic *= mr.b;
   }
   if (lambertOnly) metallic = 0.0;
   s.brdf = makeBrdfMaterial(baseColor, metallic, roughness, lambertOnly);
-  // Emission is one-sided: only the glTF front face emits.
+  // Emission is one-sided: only the glTF front face emits. It is read at full resolution even
+  // here, so that it matches what NEE's light sampling (lights.glsl) sees of the same emitter.
   s.emission = frontFacing ? materialEmission(m, uv) : vec3(0.0);
   return s;
+}
+
+// The surface at full texture resolution: the path tracer and the GBuffer.
+Surface loadSurface(TraceHit hit, vec3 rayDirection, bool lambertOnly) {
+  return loadSurfaceAtCoarseMip(hit, rayDirection, lambertOnly, 0u);
 }
 
 #endif

@@ -141,7 +141,7 @@ struct ClipmapCacheConstants {
   float historyCap;  // largest M a reservoir keeps
   uint maxStaleFrames;
   uint poolCapacity;  // live cells at most: CLIPMAP_MAX_CELLS, or fewer for tests
-  uint pad1;
+  uint materialTextureSide;  // the cells' rays read textures at mips at most this wide (0 = full)
 };
 BOUNCE_CHECK_SIZE(ClipmapCacheConstants, 56 + 8 + 192 + 48);
 

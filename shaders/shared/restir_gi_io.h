@@ -42,6 +42,7 @@ BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_VALIDATION = 16u;  // gi-trace-spatial-
 BOUNCE_CONST uint RESTIR_GI_FLAG_PATCH = 32u;               // gi-restir-patch-reservoir
 BOUNCE_CONST uint RESTIR_GI_FLAG_VALIDATION = 64u;  // validation traces every validationPeriod
 BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_DENOISE = 128u;  // gi-spatial-denoise
+BOUNCE_CONST uint RESTIR_GI_FLAG_OCCLUDER_VISIBILITY = 256u;  // beside_occluder.glsl
 
 // Constants of the whole chain, uploaded once (RestirGi's constructor).
 struct RestirGiConstants {
@@ -74,9 +75,16 @@ struct RestirGiConstants {
   uint spatialDenoiseRadius;    // gi-spatial-denoise: half-width of the blur, pixels
   float historyBrightening;     // temporal: neighbourhood candidates / their running mean above this (2 frames) -> M cut (0 = off)
   float fireflyRatio;           // temporal denoise: input clamped to this x its ring's brightest (0 = off)
-  uint pad0;
+  uint materialTextureSide;     // x2's textures are read at mips at most this wide (0 = full)
+  // RESTIR_GI_BLUE_NOISE_SIDE^2 uints, row-major: two blue-noise rank maps (src/core/blue_noise.h)
+  // packed as rankA | rankB << 16, for gi-prepare-diffuse-rays' ray directions
+  DeviceAddress blueNoise;
+  uint pad0, pad1;
 };
-BOUNCE_CHECK_SIZE(RestirGiConstants, 128);
+BOUNCE_CHECK_SIZE(RestirGiConstants, 144);
+
+// Side of the tiled blue-noise map (64: 4,096 distinct values per channel, 16 KiB).
+BOUNCE_CONST uint RESTIR_GI_BLUE_NOISE_SIDE = 64u;
 
 // Push constants of every ReSTIR GI pass.
 struct RestirGiPassConstants {
@@ -226,6 +234,7 @@ BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_DEPTH = 2u;
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_FLAGS = 3u;
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_OUTPUT = 4u;  // gi.diffuse
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_COUNT = 5u;
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_MAX_RADIUS = 4u;  // RestirGiSettings::spatialDenoiseRadius at most
 
 BOUNCE_END_SHARED
 #endif

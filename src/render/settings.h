@@ -51,6 +51,10 @@ struct ClipmapCacheSettings {
   // exist for tests of what happens when the pool runs dry (lookups then fall back to coarser
   // cells and count an allocation failure).
   uint32_t maxLiveCells = 65535;
+  // The cells' rays read textures at the mip at most this many texels wide, as ReSTIR GI's
+  // rays do (RestirGiSettings::materialTextureSide: seed 000's coarse mip, less bandwidth for
+  // incoherent hits; a cell only needs mean albedos). 0 = full resolution.
+  uint32_t materialTextureSide = 16;
 };
 
 struct HybridSettings {

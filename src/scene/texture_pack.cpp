@@ -138,16 +138,33 @@ std::vector<glm::vec4> resampleToSquare(const Image& image, bool srgb, uint32_t 
   return out;
 }
 
+// The mean of four texels. With coverage weighting (colour textures, whose alpha is opacity),
+// the colour is the mean of the texels weighted by their alpha: the colour of cut-out texels
+// (alpha 0) is never seen at mip 0 and often arbitrary (white, black, bled), so a plain mean
+// would tint every coarse mip of a leaf or fence texture with it; the GI's coarse-mip reads
+// (RestirGiSettings::materialTextureSide) saw sorrel leaves 5 % too bright that way. Alpha
+// itself is the plain mean (the fraction covered).
+glm::vec4 blockMean(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, const glm::vec4& d,
+                    bool coverageWeighted) {
+  glm::vec4 mean = 0.25f * (a + b + c + d);
+  float coverage = a.w + b.w + c.w + d.w;
+  if (!coverageWeighted || !(coverage > 0.0f)) return mean;
+  glm::vec3 colour = (glm::vec3(a) * a.w + glm::vec3(b) * b.w + glm::vec3(c) * c.w +
+                      glm::vec3(d) * d.w) / coverage;
+  return glm::vec4(colour, mean.w);
+}
+
 // The next mip: each texel is the mean of a 2x2 block (a box filter; sides are powers of two,
 // so blocks never straddle).
-std::vector<glm::vec4> halve(const std::vector<glm::vec4>& level, uint32_t side) {
+std::vector<glm::vec4> halve(const std::vector<glm::vec4>& level, uint32_t side,
+                             bool coverageWeighted) {
   uint32_t half = side / 2;
   std::vector<glm::vec4> out(size_t(half) * half);
   for (uint32_t y = 0; y < half; ++y)
     for (uint32_t x = 0; x < half; ++x) {
       const glm::vec4* row0 = &level[size_t(2 * y) * side + 2 * x];
       const glm::vec4* row1 = row0 + side;
-      out[size_t(y) * half + x] = 0.25f * (row0[0] + row0[1] + row1[0] + row1[1]);
+      out[size_t(y) * half + x] = blockMean(row0[0], row0[1], row1[0], row1[1], coverageWeighted);
     }
   return out;
 }
@@ -166,7 +183,9 @@ void packLayer(const Scene& scene, const PackJob& job, PackedTextureArray& array
       resampleToSquare(scene.images[size_t(job.image)], job.srgb, array.side);
   for (uint32_t mip = 0; mip < array.mipCount; ++mip) {
     encodeLevel(level, job.srgb, &array.texels[array.texelOffset(job.layer, mip, 0, 0)]);
-    if (mip + 1 < array.mipCount) level = halve(level, array.mipSide(mip));
+    // sRGB textures are the colour ones (base colour, emissive), whose alpha is opacity; the
+    // linear ones (normals, metallic-roughness, occlusion) have no meaningful alpha.
+    if (mip + 1 < array.mipCount) level = halve(level, array.mipSide(mip), job.srgb);
   }
 }
 

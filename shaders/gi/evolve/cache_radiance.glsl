@@ -84,7 +84,7 @@ vec3 cacheRayRadiance(FrameConstants f, ClipmapCacheView cache, vec3 origin, vec
     return skyRadianceToward(f, dir);
   }
   hitDistance = hit.t;
-  Surface s = loadSurface(hit, dir, (f.flags & FRAME_FLAG_LAMBERT) != 0u);
+  Surface s = loadSurfaceAtCoarseMip(hit, dir, (f.flags & FRAME_FLAG_LAMBERT) != 0u, cache.constants.v.materialTextureSide);
   vec4 u = uniformFromHash(pcg4d(seed));
   vec2 jitter = uniformFromHash(pcg4d(seed.yzwx ^ uvec4(0x68E31DA4u))).xy - 0.5;
   vec3 albedo = s.brdf.baseColor * (1.0 - s.brdf.metallic);

@@ -1,10 +1,7 @@
 // gi-prepare-diffuse-rays: one ray per GI pixel from its representative pixel's primary vertex,
 // uniformly distributed over the hemisphere of the shading normal (ReSTIR GI, Ouyang et al.
-// 2021, §4: the source pdf is 1 / (2 pi)). The directions come from the R2 low-discrepancy
-// sequence over frames (Roberts 2018) with a per-pixel Cranley-Patterson rotation
-// (reference/integrator.glsl pixelJitter): successive frames of one pixel are well stratified,
-// neighbouring pixels independent. (Seed 000 uses blue noise; our own generated blue-noise
-// texture is not there yet.) Only the direction is written: x1 is in the GBuffer.
+// 2021, §4: the source pdf is 1 / (2 pi)), from blue noise as in seed 000 (see
+// blueNoiseSample). Only the direction is written: x1 is in the GBuffer.
 // Every validationPeriod-th frame (seed 000: 3) a pixel whose history reservoir survives
 // reprojection re-traces that reservoir's stored direction instead (a validation ray; the
 // history's GI pixel is encoded in w, shared/restir_gi_io.h), so that gi-resolve-diffuse-rays
@@ -50,6 +47,30 @@ vec4 validationRay(RestirGiConstants gi, ivec2 pixel, PrimaryVertex x1) {
   return vec4(direction, GI_RAY_VALIDATION + float(q.y * int(gi.giResolution.x) + q.x));
 }
 
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer BlueNoiseMap {
+  uint ranks[];
+};
+
+// Spatio-temporal blue noise for the direction of GI pixel g: our void-and-cluster map
+// (src/core/blue_noise.h, two channels) tiled over the GI pixels, every value shifted each
+// frame by the R2 sequence (Roberts 2018) modulo 1, a Cranley-Patterson rotation shared by all
+// pixels. Within a frame the directions of neighbouring pixels are then spread evenly over the
+// hemisphere (blue: the spatial passes and denoisers, which average neighbours, see less
+// low-frequency error); over frames each pixel walks an R2 sequence from its own start, well
+// stratified in time, and equidistributed, so every direction stays equally likely (the
+// source pdf is unchanged). Fixed point: ranks of 12 bits become the top bits of 32-bit
+// numbers, and the R2 step wraps around exactly.
+vec2 blueNoiseSample(RestirGiConstants gi, ivec2 g, uint frame) {
+  const uint side = RESTIR_GI_BLUE_NOISE_SIDE;
+  const uint rankBits = 12u;  // log2(side * side)
+  uvec2 t = uvec2(g) % side;
+  uint packed = BlueNoiseMap(gi.blueNoise).ranks[t.y * side + t.x];
+  uvec2 rank = uvec2(packed & 0xFFFFu, packed >> 16u);
+  uvec2 start = (rank << (32u - rankBits)) + (1u << (31u - rankBits));  // rank + 0.5
+  const uvec2 r2Step = uvec2(3242174889u, 2447445413u);  // (1/g, 1/g^2) * 2^32
+  return vec2((start + frame * r2Step) >> 8u) * (1.0 / 16777216.0);
+}
+
 vec3 uniformHemisphere(vec3 n, vec2 u) {
   float cosTheta = u.x;
   float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
@@ -77,6 +98,9 @@ void main() {
       return;
     }
   }
-  vec2 u = pixelJitter(uvec4(g, RANDOM_GI_DIRECTION, 0u), f.frameIndex);
+  // Without the map (RestirGiSettings::blueNoise off): white noise across pixels, the same R2
+  // sequence over frames from a hashed start per pixel.
+  vec2 u = gi.blueNoise != 0ul ? blueNoiseSample(gi, g, f.frameIndex)
+                               : pixelJitter(uvec4(g, RANDOM_GI_DIRECTION, 0u), f.frameIndex);
   imageStore(raysOut, g, vec4(uniformHemisphere(x1.shadingNormal, u), GI_RAY_FRESH));
 }

@@ -62,7 +62,7 @@ void main() {
     return;
   }
   bool lambert = (f.flags & FRAME_FLAG_LAMBERT) != 0u;
-  Surface s = loadSurface(hit, dir, lambert);
+  Surface s = loadSurfaceAtCoarseMip(hit, dir, lambert, gi.materialTextureSide);
   vec3 wo = -dir;
   vec3 radiance = s.emission;
   vec4 neeRay = vec4(0.0);
@@ -82,7 +82,8 @@ void main() {
         neeRadiance *= powerHeuristic(l.pdf, brdfPdf(s.brdf, s.shadingNormal, wo, l.direction));
       neeRay = l.distant ? vec4(l.direction, 0.0) : vec4(l.shadowTarget, 1.0);
     }
-    if (continues) radiance += continuedPath(f, s, wo, key, localPick, gi.maxPathBounces, lambert);
+    if (continues)
+      radiance += continuedPath(f, s, wo, key, localPick, gi.maxPathBounces, lambert, gi.materialTextureSide);
     if (addsCache) radiance += cacheBounce(s, key.x);
   }
   writeResult(g, s.position, RESTIR_GI_KIND_SURFACE, s.geometricNormal, radiance, neeRay, neeRadiance);

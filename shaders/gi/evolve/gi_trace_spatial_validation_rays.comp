@@ -9,9 +9,7 @@
 // and this frame's gi-temporal-denoise read it. Writes the validated sample image (x2, W); the
 // reservoir's other parts stay gi-restir-spatial-1's.
 #version 460
-#include "gi/evolve/restir_gi_common.glsl"
-#include "common/ray_offset.glsl"
-#include "rt/trace.glsl"
+#include "gi/evolve/restir_gi_visibility.glsl"
 
 layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
@@ -28,15 +26,6 @@ layout(set = 1, binding = GI_VALIDATION_BINDING_VALIDITY_PREVIOUS, r16f) uniform
 layout(set = 1, binding = GI_VALIDATION_BINDING_VALIDITY_CURRENT, r16f) uniform writeonly image2D validityCurrent;
 layout(set = 1, binding = GI_VALIDATION_BINDING_SAMPLE_OUT, rgba32f) uniform writeonly image2D sampleOut;
 layout(set = 1, binding = GI_VALIDATION_BINDING_ESTIMATE, rgba16f) uniform writeonly image2D estimateOut;
-
-// Whether x2 is visible from x1 (a sky sample: its direction escapes).
-bool sampleVisible(PrimaryVertex x1, Reservoir r) {
-  vec3 origin = offsetRayOrigin(x1.position, x1.geometricNormal);
-  if (r.kind == RESTIR_GI_KIND_SKY)
-    return traceVisibility(origin, normalize(r.samplePosition - x1.position), 0.0, 3.0e38, true);
-  vec3 target = offsetRayOrigin(r.samplePosition, r.sampleNormal);
-  return traceVisibility(origin, target - origin, 0.0, 1.0, true);
-}
 
 // Last frame's validity at this pixel's position (1 = trust spatial reuse when unknown).
 float previousValidity(RestirGiConstants gi, ivec2 pixel) {

@@ -59,7 +59,7 @@ vec3 laterVertexLighting(FrameConstants f, Surface s, vec3 wo, uvec4 key, uint b
 // The path from x2 (scattering event 1; x1 is event 0) on, without x2's emission and NEE.
 // Mirrors tracePath in reference/integrator.glsl from its second vertex.
 vec3 continuedPath(FrameConstants f, Surface s, vec3 wo, uvec4 key, float localPickAtX2,
-                   uint maxBounces, bool lambert) {
+                   uint maxBounces, bool lambert, uint maxTextureSide) {
   vec3 radiance = vec3(0.0);
   vec3 throughput = vec3(1.0);
   float localPick = localPickAtX2;
@@ -78,7 +78,7 @@ vec3 continuedPath(FrameConstants f, Surface s, vec3 wo, uvec4 key, float localP
       radiance += throughput * skyRadianceToward(f, b.wi);
       break;
     }
-    Surface next = loadSurface(hit, b.wi, lambert);
+    Surface next = loadSurfaceAtCoarseMip(hit, b.wi, lambert, maxTextureSide);
     if (any(greaterThan(next.emission, vec3(0.0)))) {
       float lightPdf = localPick * emissiveHitLightPdf(next.material, s.position, next.position,
                                                        next.geometricNormal);

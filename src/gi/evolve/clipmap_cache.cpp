@@ -109,6 +109,7 @@ gpu::ClipmapCacheConstants ClipmapCache::makeConstants(const FrameInputs& inputs
   c.historyCap = settings_.historyCap;
   c.maxStaleFrames = settings_.maxStaleFrames;
   c.poolCapacity = settings_.maxLiveCells;
+  c.materialTextureSide = settings_.materialTextureSide;
   return c;
 }
 

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <optional>
 #include <span>
+#include <vector>
 
+#include "core/blue_noise.h"
 #include "core/error.h"
 #include "render/gpu_scene.h"
 
@@ -24,6 +26,13 @@ constexpr VkFormat kReservoirFormats[4] = {kRgba32f, kRgba32f, kRgba32f, kRgba16
 template <typename T>
 vk::Buffer upload(vk::Context& context, std::span<const T> items, const std::string& name) {
   return vk::uploadBuffer(context, std::as_bytes(items), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, name);
+}
+
+// The blue noise of gi-prepare-diffuse-rays' directions, generated once per process (~50 ms).
+const std::vector<uint32_t>& directionBlueNoise() {
+  static const std::vector<uint32_t> noise =
+      generateBlueNoise2D(gpu::RESTIR_GI_BLUE_NOISE_SIDE, /*seed=*/0x9E3779B97F4A7C15ull);
+  return noise;
 }
 
 }  // namespace
@@ -58,6 +67,7 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
   giResolution_ = {(settings.width + s.divisor - 1) / s.divisor,
                    (settings.height + s.divisor - 1) / s.divisor};
 
+  blueNoise_ = upload(context, std::span<const uint32_t>(directionBlueNoise()), "gi.blue-noise");
   gpu::RestirGiConstants c{};
   c.lights = lights_.address();
   c.giResolution = {giResolution_.width, giResolution_.height};
@@ -93,10 +103,13 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
   c.validationDistance = s.validationDistance;
   c.validationRadiance = s.validationRadiance;
   c.temporalHistorySamples = std::clamp(s.temporalHistorySamples, 1u, 5u);
-  c.spatialDenoiseRadius = std::min(s.spatialDenoiseRadius, 4u);
+  c.spatialDenoiseRadius = std::min(s.spatialDenoiseRadius, gpu::GI_SPATIAL_DENOISE_MAX_RADIUS);
   c.historyBrightening = s.historyBrightening > 1.0f ? s.historyBrightening : 0.0f;
   c.fireflyRatio = s.fireflyRatio > 1.0f ? s.fireflyRatio : 0.0f;
+  c.materialTextureSide = s.materialTextureSide;
+  c.blueNoise = s.blueNoise ? blueNoise_.address() : 0;
   c.flags |= s.validationPeriod > 0 ? gpu::RESTIR_GI_FLAG_VALIDATION : 0u;
+  c.flags |= s.occluderVisibility ? gpu::RESTIR_GI_FLAG_OCCLUDER_VISIBILITY : 0u;
   constants_ = upload(context, std::span<const gpu::RestirGiConstants>(&c, 1), "gi.constants");
 }
 

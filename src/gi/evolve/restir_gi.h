@@ -70,6 +70,7 @@ class RestirGi final : public DiffuseGi {
   std::unique_ptr<ClipmapCache> cache_;  // only with RestirGiSecondVertex::Cache
   VkExtent2D giResolution_{};
   vk::Buffer constants_;  // gpu::RestirGiConstants
+  vk::Buffer blueNoise_;  // RestirGiConstants::blueNoise
   RestirGiPass prepare_, trace_, traceNee_, candidates_, temporal_, spatial0_, spatial1_,
       spatialValidation_, patch_, resolve_, spatialDenoise_, denoise_;
 };

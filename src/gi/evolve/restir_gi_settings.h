@@ -129,6 +129,23 @@ struct RestirGiSettings {
   // through; 0 = off. (Rejecting Jacobians above 2 instead of 10 removed the dots too but
   // darkened sunroom by 12 %.)
   float fireflyRatio = 2.0f;
+  // gi-trace-diffuse-rays and the continued path read x2's textures at the mip at most this
+  // many texels wide (seed 000: "always sample materials at a coarse mip level, to reduce
+  // bandwidth"; surface.glsl, coarseTextureLod). The hits of hemisphere rays are scattered, so
+  // full-resolution fetches miss the texture cache, and the GI only needs a texture's mean
+  // over a footprint many texels wide. Lower: less bandwidth, albedo detail smaller than
+  // 1/side of the texture averaged away; 0 = full resolution (the unbiased configuration).
+  uint32_t materialTextureSide = 16;
+  // Candidate directions from our void-and-cluster blue noise (seed 000; src/core/blue_noise.h)
+  // rather than white noise across pixels: neighbouring pixels' directions spread evenly over
+  // the hemisphere in each frame, so what the spatial passes and denoisers average has less
+  // low-frequency error. Either way each pixel follows an R2 sequence over frames.
+  bool blueNoise = true;
+  // Pixels beside an occluder (a GBuffer point one GI pixel away in front of their tangent
+  // plane: gaps, inside corners) test the visibility of the samples gi-restir-resolve reuses
+  // (up to resolveSamples shadow rays each) and are not blurred by gi-spatial-denoise, so that
+  // light seen from a neighbour's primary vertex does not leak behind the occluder.
+  bool occluderVisibility = true;
   // gi-spatial-denoise after the temporal denoiser (seed 000: desktop only): an edge-aware
   // (same-surface) Gaussian blur of half-width spatialDenoiseRadius pixels. Larger: smoother,
   // loses contact shadows and small indirect detail; cost grows with the square.
@@ -165,6 +182,7 @@ struct RestirGiSettings {
     s.patchReservoir = false;
     s.historyBrightening = 0.0f;  // history confidence from neighbours' candidates
     s.fireflyRatio = 0.0f;
+    s.materialTextureSide = 0;  // the reference reads full-resolution textures
     return s;
   }
 };
