@@ -42,7 +42,7 @@ BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_VALIDATION = 16u;  // gi-trace-spatial-
 BOUNCE_CONST uint RESTIR_GI_FLAG_PATCH = 32u;               // gi-restir-patch-reservoir
 BOUNCE_CONST uint RESTIR_GI_FLAG_VALIDATION = 64u;  // validation traces every validationPeriod
 BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_DENOISE = 128u;  // gi-spatial-denoise
-BOUNCE_CONST uint RESTIR_GI_FLAG_OCCLUDER_VISIBILITY = 256u;  // beside_occluder.glsl
+BOUNCE_CONST uint RESTIR_GI_FLAG_OCCLUDER_VISIBILITY = 256u;  // gi-trace-resolve-visibility
 
 // Constants of the whole chain, uploaded once (RestirGi's constructor).
 struct RestirGiConstants {
@@ -185,7 +185,16 @@ BOUNCE_CONST uint GI_RESOLVE_BINDING_NORMALS = 4u;
 BOUNCE_CONST uint GI_RESOLVE_BINDING_DEPTH = 5u;
 BOUNCE_CONST uint GI_RESOLVE_BINDING_FLAGS = 6u;
 BOUNCE_CONST uint GI_RESOLVE_BINDING_OUTPUT = 7u;  // RGBA16F irradiance / pi per unit albedo
-BOUNCE_CONST uint GI_RESOLVE_BINDING_COUNT = 8u;
+BOUNCE_CONST uint GI_RESOLVE_BINDING_OCCLUSION = 8u;  // gi.resolve-occlusion
+BOUNCE_CONST uint GI_RESOLVE_BINDING_COUNT = 9u;
+
+// gi-trace-resolve-visibility (render resolution): which of gi-restir-resolve's samples are
+// hidden from pixels beside an occluder. Same reservoir and GBuffer bindings as the resolve;
+// writes gi.resolve-occlusion, R32UI: bit i (i < 4) = the resolve's i-th sample is hidden,
+// RESOLVE_BESIDE_OCCLUDER = the pixel is beside an occluder (gi-spatial-denoise keeps it as is)
+BOUNCE_CONST uint GI_RESOLVE_VISIBILITY_BINDING_OUTPUT = 7u;
+BOUNCE_CONST uint GI_RESOLVE_VISIBILITY_BINDING_COUNT = 8u;
+BOUNCE_CONST uint RESOLVE_BESIDE_OCCLUDER = 16u;
 
 // gi-restir-spatial-0 / -1 and gi-restir-patch-reservoir: a reservoir in, a reservoir out
 BOUNCE_CONST uint GI_SPATIAL_BINDING_INPUT = 0u;   // 0-3
@@ -233,7 +242,8 @@ BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_NORMALS = 1u;
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_DEPTH = 2u;
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_FLAGS = 3u;
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_OUTPUT = 4u;  // gi.diffuse
-BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_COUNT = 5u;
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_OCCLUSION = 5u;  // gi.resolve-occlusion
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_COUNT = 6u;
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_MAX_RADIUS = 4u;  // RestirGiSettings::spatialDenoiseRadius at most
 
 BOUNCE_END_SHARED

@@ -22,9 +22,11 @@
 // a corner), a neighbour's sample may be hidden from here although it was visible from there:
 // on the wall inside a 5 cm gap, half-resolution GI had no sample of its own and showed the
 // light of the wall outside (sunroom: 0.4 where the reference is 0). Those pixels
-// (besideOccluder) trace a shadow ray to each sample, and an occluded one counts with zero.
+// (gi-trace-resolve-visibility) trace a shadow ray to each sample, and a hidden one counts with
+// zero. (The rays are traced in that pass: traversal code here, even when not run, cost the
+// resolve half its speed on the H200 through register pressure.)
 #version 460
-#include "gi/evolve/restir_gi_visibility.glsl"
+#include "gi/evolve/restir_gi_common.glsl"
 #include "common/random.glsl"
 #include "common/sh.glsl"
 
@@ -39,9 +41,8 @@ layout(set = 1, binding = GI_RESOLVE_BINDING_NORMALS, rgba16f) uniform readonly 
 layout(set = 1, binding = GI_RESOLVE_BINDING_DEPTH, r32f) uniform readonly image2D depths;
 layout(set = 1, binding = GI_RESOLVE_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
 layout(set = 1, binding = GI_RESOLVE_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
-#include "gi/evolve/beside_occluder.glsl"
-
-const uint RANDOM_GI_RESOLVE = 0x47490004u;
+layout(set = 1, binding = GI_RESOLVE_BINDING_OCCLUSION, r32ui) uniform readonly uimage2D resolveOcclusion;
+#include "gi/evolve/resolve_samples.glsl"
 
 // L1 spherical harmonics of incoming radiance (common/sh.glsl), one vec4 per colour channel.
 struct ShL1 {
@@ -83,30 +84,6 @@ bool shiftedSample(RestirGiConstants gi, PrimaryVertex x, Reservoir r, out vec3 
   return c > 0.0 && jacobian > 0.0 && jacobian <= gi.maxJacobian && r.W > 0.0;
 }
 
-bool reservoirOnSurface(RestirGiConstants gi, PrimaryVertex x, ivec2 q) {
-  vec4 origin = imageLoad(reservoirOrigin, q);
-  vec3 originNormal = decodeOctahedral(imageLoad(reservoirNormals, q).xy);
-  return uint(origin.w + 0.5) != RESTIR_GI_KIND_NONE && sameSurface(gi, x, origin.xyz, originNormal);
-}
-
-// The GI pixel whose reservoir this pixel starts from: the one under it, else the first of its
-// neighbours towards this pixel (horizontal, vertical, diagonal) whose reservoir is on this
-// pixel's surface, else the one under it.
-ivec2 homeGiPixel(FrameConstants f, RestirGiConstants gi, ivec2 pixel, PrimaryVertex x) {
-  ivec2 home = min(pixel / int(gi.divisor), ivec2(gi.giResolution) - 1);
-  if (gi.divisor == 1u || reservoirOnSurface(gi, x, home)) return home;
-  ivec2 toward = ivec2(sign(vec2(pixel - giRepresentativePixel(f, gi, home))));
-  ivec2 steps[3] = ivec2[3](ivec2(toward.x, 0), ivec2(0, toward.y), toward);
-  for (int i = 0; i < 3; ++i) {
-    ivec2 q = home + steps[i];
-    if (steps[i] == ivec2(0) || any(lessThan(q, ivec2(0))) ||
-        any(greaterThanEqual(q, ivec2(gi.giResolution))))
-      continue;
-    if (reservoirOnSurface(gi, x, q)) return q;
-  }
-  return home;
-}
-
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
@@ -119,21 +96,18 @@ void main() {
   PrimaryVertex x = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
   ivec2 home = homeGiPixel(f, gi, pixel, x);
   bool reuse = (gi.flags & RESTIR_GI_FLAG_RESOLVE_REUSE) != 0u;
-  uint samples = reuse ? clamp(gi.resolveSamples, 1u, 4u) : 1u;
-  float rotation = 2.0 * PI * random2(uvec2(pixel), f.frameIndex, RANDOM_GI_RESOLVE).x;
+  uint samples = resolveSampleCount(gi);
+  float rotation = resolveRotation(f, pixel);
+  bool occlusionKnown = (gi.flags & RESTIR_GI_FLAG_OCCLUDER_VISIBILITY) != 0u;
+  uint hidden = occlusionKnown ? imageLoad(resolveOcclusion, pixel).x : 0u;
   ShL1 sh = ShL1(vec4(0.0), vec4(0.0), vec4(0.0));
   vec3 exact = vec3(0.0);           // the direct estimate L cos / pi W at the shading normal
   vec3 exactGeometric = vec3(0.0);  // ... and at the geometric normal
   float count = 0.0;
   ShL1 fallback = sh;
   float fallbackDistance = 3.0e38;
-  bool testVisibility = besideOccluder(f, gi, pixel, x);
   for (uint i = 0u; i < samples; ++i) {
-    ivec2 q = home;
-    if (i > 0u) {
-      vec2 offset = goldenSpiralOffset(i - 1u, samples - 1u, rotation, 0.5 * gi.resolveRadius, gi.resolveRadius);
-      q = clamp(home + ivec2(round(offset)), ivec2(0), ivec2(gi.giResolution) - 1);
-    }
+    ivec2 q = resolveSampleGiPixel(gi, home, i, samples, rotation);
     Reservoir r = unpackReservoir(imageLoad(reservoirSample, q), imageLoad(reservoirRadiance, q),
                                   imageLoad(reservoirOrigin, q), imageLoad(reservoirNormals, q));
     if (r.M <= 0.0) continue;
@@ -142,7 +116,7 @@ void main() {
     float planeDistance = abs(dot(x.geometricNormal, r.origin - x.position)) / max(x.depth, 1e-6);
     if (sameSurface(gi, x, r.origin, r.originNormal)) {
       count += 1.0;
-      if (!valid || (testVisibility && !sampleVisible(x, r))) continue;
+      if (!valid || (hidden & (1u << i)) != 0u) continue;
       shAdd(sh, direction, lw);
       exact += lw * (max(dot(direction, x.shadingNormal), 0.0) / PI);
       exactGeometric += lw * (max(dot(direction, x.geometricNormal), 0.0) / PI);

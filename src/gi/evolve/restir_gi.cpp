@@ -55,6 +55,8 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
                          gpu::GI_VALIDATION_BINDING_COUNT),
       patch_(context, gpuScene, "gi/evolve/gi_restir_patch_reservoir",
              gpu::GI_SPATIAL_BINDING_COUNT),
+      resolveVisibility_(context, gpuScene, "gi/evolve/gi_trace_resolve_visibility",
+                         gpu::GI_RESOLVE_VISIBILITY_BINDING_COUNT),
       resolve_(context, gpuScene, "gi/evolve/gi_restir_resolve", gpu::GI_RESOLVE_BINDING_COUNT),
       spatialDenoise_(context, gpuScene, "gi/evolve/gi_spatial_denoise",
                       gpu::GI_SPATIAL_DENOISE_BINDING_COUNT),
@@ -419,10 +421,15 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
   for (int i = 0; i < 4; ++i) temporalReservoir[i] = reservoir[i].current;
   const ReservoirImages final =
       declareSpatialChain(graph, in, temporalReservoir, occlusionValidity);
-  {
-    graph::PassBuilder pass = graph.addPass("gi-restir-resolve", QueueKind::Compute);
+  // Which of the resolve's samples are hidden from pixels beside an occluder (restir_gi_io.h).
+  // Without the pass its binding gets the (R32UI) GBuffer flags, which the shaders then ignore.
+  graph::ImageHandle resolveOcclusion =
+      settings_.occluderVisibility ? graph.createImage("gi.resolve-occlusion", {VK_FORMAT_R32_UINT})
+                                   : in.flags;
+  if (settings_.occluderVisibility) {
+    graph::PassBuilder pass = graph.addPass("gi-trace-resolve-visibility", QueueKind::Compute);
     pass.read(in.frameConstants, Access::StorageRead)
-        .write(resolved, Access::StorageWrite)
+        .write(resolveOcclusion, Access::StorageWrite)
         .read(in.normals, Access::StorageRead)
         .read(in.depth.current, Access::StorageRead)
         .read(in.flags, Access::StorageRead);
@@ -432,7 +439,28 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
           {gpu::GI_RESOLVE_BINDING_NORMALS, r.image(in.normals)},
           {gpu::GI_RESOLVE_BINDING_DEPTH, r.image(in.depth.current)},
           {gpu::GI_RESOLVE_BINDING_FLAGS, r.image(in.flags)},
-          {gpu::GI_RESOLVE_BINDING_OUTPUT, r.image(resolved)}};
+          {gpu::GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, r.image(resolveOcclusion)}};
+      for (uint32_t i = 0; i < 4; ++i)
+        images.push_back({gpu::GI_RESOLVE_BINDING_RESERVOIR + i, r.image(final[i])});
+      resolveVisibility_.record(cmd, images, passConstants(in, false), full);
+    });
+  }
+  {
+    graph::PassBuilder pass = graph.addPass("gi-restir-resolve", QueueKind::Compute);
+    pass.read(in.frameConstants, Access::StorageRead)
+        .write(resolved, Access::StorageWrite)
+        .read(resolveOcclusion, Access::StorageRead)
+        .read(in.normals, Access::StorageRead)
+        .read(in.depth.current, Access::StorageRead)
+        .read(in.flags, Access::StorageRead);
+    for (int i = 0; i < 4; ++i) pass.read(final[i], Access::StorageRead);
+    pass.record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
+      std::vector<ImageBinding> images = {
+          {gpu::GI_RESOLVE_BINDING_NORMALS, r.image(in.normals)},
+          {gpu::GI_RESOLVE_BINDING_DEPTH, r.image(in.depth.current)},
+          {gpu::GI_RESOLVE_BINDING_FLAGS, r.image(in.flags)},
+          {gpu::GI_RESOLVE_BINDING_OUTPUT, r.image(resolved)},
+          {gpu::GI_RESOLVE_BINDING_OCCLUSION, r.image(resolveOcclusion)}};
       for (uint32_t i = 0; i < 4; ++i)
         images.push_back({gpu::GI_RESOLVE_BINDING_RESERVOIR + i, r.image(final[i])});
       resolve_.record(cmd, images, passConstants(in, false), full);
@@ -488,13 +516,15 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       .read(in.normals, Access::StorageRead)
       .read(in.depth.current, Access::StorageRead)
       .read(in.flags, Access::StorageRead)
+      .read(resolveOcclusion, Access::StorageRead)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
         spatialDenoise_.record(cmd,
                                {{gpu::GI_SPATIAL_DENOISE_BINDING_INPUT, r.image(temporalOut)},
                                 {gpu::GI_SPATIAL_DENOISE_BINDING_NORMALS, r.image(in.normals)},
                                 {gpu::GI_SPATIAL_DENOISE_BINDING_DEPTH, r.image(in.depth.current)},
                                 {gpu::GI_SPATIAL_DENOISE_BINDING_FLAGS, r.image(in.flags)},
-                                {gpu::GI_SPATIAL_DENOISE_BINDING_OUTPUT, r.image(output)}},
+                                {gpu::GI_SPATIAL_DENOISE_BINDING_OUTPUT, r.image(output)},
+                                {gpu::GI_SPATIAL_DENOISE_BINDING_OCCLUSION, r.image(resolveOcclusion)}},
                                passConstants(in, false), full);
       });
 }

@@ -2,7 +2,7 @@
 //
 //   (cache-*)                  the clipmap cache's update (ClipmapCache::declareUpdate), when the
 //                              2nd vertex continues into the cache (RestirGiSecondVertex::Cache)
-//   gi-prepare-diffuse-rays    a uniform hemisphere direction per GI pixel (R2 + rotation); every
+//   gi-prepare-diffuse-rays    a uniform hemisphere direction per GI pixel (blue noise); every
 //                              3rd frame a validation ray along the history reservoir's sample
 //   gi-trace-diffuse-rays      closest hit; sky on a miss; emission, NEE set-up, the cache lookup
 //                              (Cache) or a continued path (Path) at the 2nd vertex
@@ -15,6 +15,8 @@
 //   gi-trace-spatial-validation-rays  visibility of reused samples (W = 0 when occluded); the
 //                              spatial occlusion validity mask (history)
 //   gi-restir-patch-reservoir  rejected reservoirs take the first valid one of their 2x2 patch
+//   gi-trace-resolve-visibility  pixels beside an occluder: which of the resolve's samples
+//                              they cannot see (shadow rays), and no spatial denoise there
 //   gi-restir-resolve          reservoirs -> L1 SH -> gi.diffuse at render resolution
 //   gi-temporal-denoise        running mean with variance clipping (when enabled)
 //   gi-spatial-denoise         edge-aware blur (desktop preset)
@@ -24,7 +26,7 @@
 // gi.candidate-estimate, gi.reservoir-validity, history gi.reservoir.{sample,radiance,origin,
 // normals}, gi.reservoir-estimate, gi.spatial-{0,1}.{...}, gi.spatial-{0,1}-estimate,
 // gi.validated.sample, gi.validated-estimate, history gi.spatial-occlusion-validity,
-// gi.patched.{...}, gi.patched-estimate, gi.resolved, history gi.denoised,
+// gi.patched.{...}, gi.patched-estimate, gi.resolve-occlusion, gi.resolved, history gi.denoised,
 // gi.temporal-denoised. Formats: shared/restir_gi_io.h. Every pass and resource is a debug view
 // by name (`bounce render --gi evolve --view ...`; a pass shows its estimate image).
 #pragma once
@@ -72,7 +74,7 @@ class RestirGi final : public DiffuseGi {
   vk::Buffer constants_;  // gpu::RestirGiConstants
   vk::Buffer blueNoise_;  // RestirGiConstants::blueNoise
   RestirGiPass prepare_, trace_, traceNee_, candidates_, temporal_, spatial0_, spatial1_,
-      spatialValidation_, patch_, resolve_, spatialDenoise_, denoise_;
+      spatialValidation_, patch_, resolveVisibility_, resolve_, spatialDenoise_, denoise_;
 };
 
 }  // namespace bounce
