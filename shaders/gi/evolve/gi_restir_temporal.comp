@@ -117,7 +117,13 @@ Reservoir permutedHistory(FrameConstants f, RestirGiConstants gi, ivec2 q, uint 
 DEFINE_NEIGHBOURHOOD_LUMINANCES(validity)
 
 const int BRIGHTENING_RADIUS = 2;
-const float CANDIDATE_MEAN_BLEND = 0.25;
+// The running mean's weight of this frame: 1 / temporalMaxM's default (10), so that the mean
+// lags behind a change about as long as the reservoirs' history does and the cut lasts while
+// it lags (0.25 let the mean catch up in a few frames and the cut stop while the history was
+// still stale: sunroom 32x24, mean of the temporal estimates 10 frames after a sun jump 0.47,
+// now 0.51-0.54, with fresh candidates at 0.6-0.7; gi.diffuse 0.47 -> 0.6 of its converged
+// mean; the error, dominated by the denoiser's and the cache's lag, hardly moves).
+const float CANDIDATE_MEAN_BLEND = 0.1;
 
 // The sum of this frame's candidate estimates (luminance) over the 5x5 GI pixels around g,
 // without g itself, so that nothing decided from it depends on g's own candidate.
@@ -164,7 +170,10 @@ float brighteningScale(RestirGiConstants gi, ivec2 g, ivec2 pixel, bool validate
   float ratio = now / max(mean, 1e-6 * now + 1e-12);
   bool brighter = !validated && ratio > gi.historyBrightening;
   float updated = validated ? mean : mix(mean, now, CANDIDATE_MEAN_BLEND);
-  imageStore(currentCandidateMean, g, vec4(updated, brighter ? 1.0 : 0.0, 0.0, 0.0));
+  // A validation frame has no fresh candidates: it carries the flag over rather than break the
+  // run of brighter frames.
+  float flag = validated ? previous.y : (brighter ? 1.0 : 0.0);
+  imageStore(currentCandidateMean, g, vec4(updated, flag, 0.0, 0.0));
   if (!brighter || previous.y < 0.5) return 1.0;
   float s = gi.historyBrightening / ratio;
   return s * s;
