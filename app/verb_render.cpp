@@ -137,8 +137,8 @@ HybridSettings settingsFrom(const RenderOptions& options) {
   if (!vbuffer) fail("--vbuffer '{}': expected raster or trace", options.vbuffer);
   settings.vbuffer = *vbuffer;
   applyRestirOptions(options, settings.restirGi);
-  if (options.materialTextureSide >= 0) {
-    if (options.materialTextureSide > 2048)
+  if (options.materialTextureSide != -1) {
+    if (options.materialTextureSide < 0 || options.materialTextureSide > 2048)
       fail("--gi-texture-side {}: expected 0 (full resolution) to 2048 texels",
            options.materialTextureSide);
     settings.restirGi.materialTextureSide = settings.cache.materialTextureSide =
