@@ -224,46 +224,54 @@ TEST(RestirGi, FullChainConvergesOnCornell) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
-// Seed 000's coarse mip (RestirGiSettings::materialTextureSide, ClipmapCacheSettings's twin):
-// GI rays read x2's textures at the mip at most 16 texels wide. The mips are box filters (the
-// mean of each texel block is kept), and diffuse GI integrates albedo over footprints much
-// wider than 1/16 of a texture, so the GI must not change beyond noise: the mean of gi.diffuse
-// over frames 16-47 with coarse mips within 3 % of the full-resolution run's, and the images
-// within relMSE 0.02 of each other. The same seeds drive both runs, so they differ only through
-// the texture reads and the different choices these lead to. Measured (64x48, lavapipe): mean
-// ratio 1.015, relMSE 0.0005 (the rest is normal maps and roughness smoothed by the mip); with
-// the mips' plain colour mean, which let the white colour of the leaves' cut-out texels into
-// every coarse mip, 1.048 (texture_pack.cpp, blockMean). Reading every texture at its 1x1 mip
-// gives 1.025: this checks the mips' means, not that the mip chosen is the 16-texel one.
+// Seed 000's coarse mip (RestirGiSettings::materialTextureSide): GI rays read x2's textures at
+// the mip at most 16 texels wide. The mips are box filters (each texel block's mean is kept), so
+// over many hit points the material the GI sees must hardly change. Compared on exactly the
+// same hit points: with validation rays off, gi-prepare-diffuse-rays' directions depend only on
+// (pixel, frame), so both runs trace the same rays and draw the same NEE samples at x2, and
+// NEE's radiance (gi.nee-radiance: the BRDF at x2 x the light) differs only by the texture
+// reads (deterministic: the same numbers every run). Comparing the chain's output instead
+// (gi.diffuse, 48 frames) was too noisy to tell 3 % apart on this scene (runs 0.96-1.05).
+// Mean over the GI pixels of 16 frames of `glass_vase_flowers` with a sun, closer than the
+// framing camera so that the flowers fill the view: within 3 %. Measured: 16 texels 1.023
+// (1.015 with Lambert materials: the rest is roughness and normal maps smoothed), 4 texels
+// 1.076, 1 texel (each texture's mean) 1.09-1.11: where hits land is not where the texture's
+// area is (a texture's mean weighs its texels by uv area, the GI by the surface's), so coarser
+// mips drift; a wrong lod towards the 1x1 mip fails, and so do mips whose colour takes in the
+// cut-out texels' (plain means: 1.068; texture_pack.cpp). relMSE of the per-pixel means < 0.05
+// (measured 0.019: the leaves' veins are averaged away).
 TEST(RestirGi, CoarseMipMaterialsKeepTheGi) {
-  const uint32_t width = 64, height = 48;
+  const uint32_t width = 96, height = 72;
   Scene scene = loadGltf(test::sharedDir() + "/scenes/glass_vase_flowers/glTF/GlassVaseFlowers.gltf");
   scene.sun.direction = glm::normalize(glm::vec3(-0.4f, -0.8f, -0.45f));
   scene.sun.irradiance = 100.0f;
   scene.sky.radiance = glm::vec3(0.5f, 0.6f, 0.9f);
   Camera camera = effectiveCamera(scene);
+  camera.position = camera.target + 0.5f * (camera.position - camera.target);
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
-  auto meanGi = [&](uint32_t side) {
+  const char* kView = "gi.nee-radiance";
+  auto meanNee = [&](uint32_t side) {
     HybridSettings settings = giSettings(width, height, RestirGiSettings::desktopPreset());
-    settings.lambert = false;
+    settings.lambert = false;  // metallic-roughness and normal textures are read too
     settings.restirGi.materialTextureSide = settings.cache.materialTextureSide = side;
     HybridFrame frame(context, gpuScene, scene, settings);
-    frame.requestDebugView("gi.diffuse");
+    frame.requestDebugView(kView);
     ImageRGBA32F sum;
-    for (int i = 0; i < 48; ++i) {
+    for (int i = 0; i < 16; ++i) {
       frame.render(camera);
-      if (i >= 16) accumulate(sum, frame.debugViewImage("gi.diffuse"));
+      accumulate(sum, frame.debugViewImage(kView));
     }
-    return scaled(sum, 1.0f / 32.0f);
+    return scaled(sum, 1.0f / 16.0f);
   };
-  ImageRGBA32F full = meanGi(0), coarse = meanGi(16);
+  const uint32_t side = 16;
+  ImageRGBA32F full = meanNee(0), coarse = meanNee(side);
   writePair("coarse-mip-vase", coarse, full);
   Comparison c = compare(coarse, full);
-  std::printf("glass_vase_flowers %ux%u, gi.diffuse, coarse (16 texels) vs full mips: relMSE %.4f, mean ratio %.4f\n",
-              width, height, c.relMse, c.meanRatio);
+  std::printf("glass_vase_flowers %ux%u, %s, coarse (%u texels) vs full mips: relMSE %.4f, mean ratio %.4f\n",
+              width, height, kView, side, c.relMse, c.meanRatio);
   EXPECT_NEAR(c.meanRatio, 1.0, 0.03);
-  EXPECT_LT(c.relMse, 0.02);
+  EXPECT_LT(c.relMse, 0.05);
   EXPECT_EQ(countNonFinitePixels(coarse), 0u);
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
@@ -542,6 +550,7 @@ RestirGiSettings diagnosticSettings(const std::string& name) {
   if (has("nobright")) gi.historyBrightening = 0.0f;
   if (has("white")) gi.blueNoise = false;
   if (has("jac100")) gi.maxJacobian = 100.0f;
+  if (has("nofirefly")) gi.fireflyRatio = 0.0f;
   if (has("no-occluder")) gi.occluderVisibility = false;
   if (has("fullmip")) gi.materialTextureSide = 0;
   if (has("bright13")) gi.historyBrightening = 1.3f;

@@ -426,46 +426,36 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
   graph::ImageHandle resolveOcclusion =
       settings_.occluderVisibility ? graph.createImage("gi.resolve-occlusion", {VK_FORMAT_R32_UINT})
                                    : in.flags;
-  if (settings_.occluderVisibility) {
-    graph::PassBuilder pass = graph.addPass("gi-trace-resolve-visibility", QueueKind::Compute);
+  // gi-trace-resolve-visibility and gi-restir-resolve read the same reservoir and GBuffer
+  // images (the resolve's bindings) and write one image each; the resolve also reads the
+  // occlusion (binding 0: none).
+  auto declareResolveStage = [&](const char* name, RestirGiPass& shader, uint32_t outputBinding,
+                                 graph::ImageHandle output, uint32_t occlusionBinding) {
+    graph::PassBuilder pass = graph.addPass(name, QueueKind::Compute);
     pass.read(in.frameConstants, Access::StorageRead)
-        .write(resolveOcclusion, Access::StorageWrite)
+        .write(output, Access::StorageWrite)
         .read(in.normals, Access::StorageRead)
         .read(in.depth.current, Access::StorageRead)
         .read(in.flags, Access::StorageRead);
+    if (occlusionBinding != 0) pass.read(resolveOcclusion, Access::StorageRead);
     for (int i = 0; i < 4; ++i) pass.read(final[i], Access::StorageRead);
-    pass.record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
+    pass.record([=, this, &shader](VkCommandBuffer cmd, const graph::PassResources& r) {
       std::vector<ImageBinding> images = {
           {gpu::GI_RESOLVE_BINDING_NORMALS, r.image(in.normals)},
           {gpu::GI_RESOLVE_BINDING_DEPTH, r.image(in.depth.current)},
           {gpu::GI_RESOLVE_BINDING_FLAGS, r.image(in.flags)},
-          {gpu::GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, r.image(resolveOcclusion)}};
+          {outputBinding, r.image(output)}};
+      if (occlusionBinding != 0) images.push_back({occlusionBinding, r.image(resolveOcclusion)});
       for (uint32_t i = 0; i < 4; ++i)
         images.push_back({gpu::GI_RESOLVE_BINDING_RESERVOIR + i, r.image(final[i])});
-      resolveVisibility_.record(cmd, images, passConstants(in, false), full);
+      shader.record(cmd, images, passConstants(in, false), full);
     });
-  }
-  {
-    graph::PassBuilder pass = graph.addPass("gi-restir-resolve", QueueKind::Compute);
-    pass.read(in.frameConstants, Access::StorageRead)
-        .write(resolved, Access::StorageWrite)
-        .read(resolveOcclusion, Access::StorageRead)
-        .read(in.normals, Access::StorageRead)
-        .read(in.depth.current, Access::StorageRead)
-        .read(in.flags, Access::StorageRead);
-    for (int i = 0; i < 4; ++i) pass.read(final[i], Access::StorageRead);
-    pass.record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-      std::vector<ImageBinding> images = {
-          {gpu::GI_RESOLVE_BINDING_NORMALS, r.image(in.normals)},
-          {gpu::GI_RESOLVE_BINDING_DEPTH, r.image(in.depth.current)},
-          {gpu::GI_RESOLVE_BINDING_FLAGS, r.image(in.flags)},
-          {gpu::GI_RESOLVE_BINDING_OUTPUT, r.image(resolved)},
-          {gpu::GI_RESOLVE_BINDING_OCCLUSION, r.image(resolveOcclusion)}};
-      for (uint32_t i = 0; i < 4; ++i)
-        images.push_back({gpu::GI_RESOLVE_BINDING_RESERVOIR + i, r.image(final[i])});
-      resolve_.record(cmd, images, passConstants(in, false), full);
-    });
-  }
+  };
+  if (settings_.occluderVisibility)
+    declareResolveStage("gi-trace-resolve-visibility", resolveVisibility_,
+                        gpu::GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, resolveOcclusion, 0);
+  declareResolveStage("gi-restir-resolve", resolve_, gpu::GI_RESOLVE_BINDING_OUTPUT, resolved,
+                      gpu::GI_RESOLVE_BINDING_OCCLUSION);
   if (!denoise) return;
   graph::HistoryImage denoised = graph.createHistoryImage("gi.denoised", {kRgba16f});
   graph::HistoryImage denoisedFast = graph.createHistoryImage("gi.denoised-fast", {kRgba16f});
