@@ -551,6 +551,7 @@ RestirGiSettings diagnosticSettings(const std::string& name) {
   if (has("white")) gi.blueNoise = false;
   if (has("jac100")) gi.maxJacobian = 100.0f;
   if (has("nofirefly")) gi.fireflyRatio = 0.0f;
+  if (has("firefly3")) gi.fireflyRatio = 3.0f;
   if (has("no-occluder")) gi.occluderVisibility = false;
   if (has("fullmip")) gi.materialTextureSide = 0;
   if (has("bright13")) gi.historyBrightening = 1.3f;

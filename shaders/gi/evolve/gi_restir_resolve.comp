@@ -16,15 +16,8 @@
 // The own reservoir is the one of the GI pixel under this pixel or, when that one lies on
 // another surface (an edge at reduced GI resolution), of the nearest GI pixel towards this pixel
 // that lies on this one (homeGiPixel), so that edges are not left to the fallback.
-// Samples come from other pixels' primary vertices and the chain tests their visibility only
-// from those (gi-trace-spatial-validation-rays). Where geometry stands in front of this pixel's
-// tangent plane within a GI pixel (beside an occluder: a gap behind a cabinet, the inside of
-// a corner), a neighbour's sample may be hidden from here although it was visible from there:
-// on the wall inside a 5 cm gap, half-resolution GI had no sample of its own and showed the
-// light of the wall outside (sunroom: 0.4 where the reference is 0). Those pixels
-// (gi-trace-resolve-visibility) trace a shadow ray to each sample, and a hidden one counts with
-// zero. (The rays are traced in that pass: traversal code here, even when not run, cost the
-// resolve half its speed on the H200 through register pressure.)
+// At pixels beside an occluder, samples that gi-trace-resolve-visibility found hidden from this
+// pixel's vertex count with zero (see that pass: light leaking into gaps).
 #version 460
 #include "gi/evolve/restir_gi_common.glsl"
 #include "common/random.glsl"
