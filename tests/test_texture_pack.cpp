@@ -109,16 +109,21 @@ TEST(TexturePack, ConstantColourSurvivesEveryMip) {
           ASSERT_EQ(texel(a, 0, mip, x, y), colour) << "srgb " << a.srgb << " mip " << mip;
 }
 
-// Averaging sRGB black and white must happen in linear space: linear 0.5 is sRGB code 188,
-// not the 128 a naive byte average gives. Linear arrays average the bytes.
-TEST(TexturePack, SrgbMipsFilterInLinearSpace) {
+// One image used by a material both as base colour (packed sRGB) and as normal map (linear).
+PackedTextures packAsColourAndNormal(const Image& image) {
   Scene scene;
-  scene.images = {checkerImage(64)};
+  scene.images = {image};
   Material m;
   m.baseColorTexture = 0;
   m.normalTexture = 0;
   scene.materials = {m};
-  PackedTextures packed = packSceneTextures(scene);
+  return packSceneTextures(scene);
+}
+
+// Averaging sRGB black and white must happen in linear space: linear 0.5 is sRGB code 188,
+// not the 128 a naive byte average gives. Linear arrays average the bytes.
+TEST(TexturePack, SrgbMipsFilterInLinearSpace) {
+  PackedTextures packed = packAsColourAndNormal(checkerImage(64));
   const PackedTextureArray* srgb = packed.find(0, true);
   const PackedTextureArray* linear = packed.find(0, false);
   ASSERT_TRUE(srgb && linear);
@@ -150,13 +155,7 @@ TEST(TexturePack, ColourMipsIgnoreTransparentTexels) {
                                       uint8_t(opaque ? 255 : 0)};
       std::copy(texelColour, texelColour + 4, t);
     }
-  Scene scene;
-  scene.images = {image};
-  Material m;
-  m.baseColorTexture = 0;
-  m.normalTexture = 0;
-  scene.materials = {m};
-  PackedTextures packed = packSceneTextures(scene);
+  PackedTextures packed = packAsColourAndNormal(image);
   const PackedTextureArray* srgb = packed.find(0, true);
   const PackedTextureArray* linear = packed.find(0, false);
   ASSERT_TRUE(srgb && linear);
