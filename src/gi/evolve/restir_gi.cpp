@@ -439,7 +439,8 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
         .read(in.flags, Access::StorageRead);
     if (occlusionBinding != 0) pass.read(resolveOcclusion, Access::StorageRead);
     for (int i = 0; i < 4; ++i) pass.read(final[i], Access::StorageRead);
-    pass.record([=, this, &shader](VkCommandBuffer cmd, const graph::PassResources& r) {
+    RestirGiPass* stage = &shader;  // a member: outlives the graph's recorded lambdas
+    pass.record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
       std::vector<ImageBinding> images = {
           {gpu::GI_RESOLVE_BINDING_NORMALS, r.image(in.normals)},
           {gpu::GI_RESOLVE_BINDING_DEPTH, r.image(in.depth.current)},
@@ -448,7 +449,7 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       if (occlusionBinding != 0) images.push_back({occlusionBinding, r.image(resolveOcclusion)});
       for (uint32_t i = 0; i < 4; ++i)
         images.push_back({gpu::GI_RESOLVE_BINDING_RESERVOIR + i, r.image(final[i])});
-      shader.record(cmd, images, passConstants(in, false), full);
+      stage->record(cmd, images, passConstants(in, false), full);
     });
   };
   if (settings_.occluderVisibility)
