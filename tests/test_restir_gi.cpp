@@ -358,14 +358,29 @@ void sunJumpAndCameraCut(double recoveryFactor, bool relativeToConverged) {
   if (const char* c = std::getenv("RESTIR_JUMP_CONFIG")) gi = diagnosticSettings(c);
   HybridSettings settings = giSettings(width, height, gi);
   if (const char* c = std::getenv("RESTIR_JUMP_CONFIG")) applyDiagnosticCacheSettings(c, settings.cache);
+  // RESTIR_TRACE: each stage's mean, converged and after the jump.
+  const char* kStages[] = {"cache", "gi.hit-radiance", "gi-resolve-diffuse-rays", "gi-restir-temporal", "gi.resolved",
+                           "gi.temporal-denoised"};
   ImageRGBA32F target, lastConverged;
   {
     HybridFrame frame(context, gpuScene, scene, settings);
     frame.requestDebugView(kView);
+    if (std::getenv("RESTIR_TRACE"))
+      for (const char* stage : kStages) frame.requestDebugView(stage);
     ImageRGBA32F sum;
+    std::vector<double> stageSums(std::size(kStages), 0.0);
     for (int i = 0; i < 64; ++i) {
       frame.render(camera);
-      if (i >= 48) accumulate(sum, frame.debugViewImage(kView));
+      if (i < 48) continue;
+      accumulate(sum, frame.debugViewImage(kView));
+      if (std::getenv("RESTIR_TRACE"))
+        for (size_t s = 0; s < stageSums.size(); ++s)
+          stageSums[s] += meanLuminance(frame.debugViewImage(kStages[s])) / 16.0;
+    }
+    if (std::getenv("RESTIR_TRACE")) {
+      std::printf("converged stage means:");
+      for (double m : stageSums) std::printf(" %.3f", m);
+      std::printf("\n");
     }
     target = scaled(sum, 1.0f / 16.0f);
     lastConverged = frame.debugViewImage(kView);
@@ -373,9 +388,6 @@ void sunJumpAndCameraCut(double recoveryFactor, bool relativeToConverged) {
   const double converged = relativeMeanSquaredError(lastConverged, target);
   HybridFrame frame(context, gpuScene, scene, settings);
   frame.requestDebugView(kView);
-  // RESTIR_TRACE: each stage's mean after the jump, relative to its converged mean.
-  const char* kStages[] = {"gi-resolve-diffuse-rays", "gi-restir-temporal", "gi.resolved",
-                           "gi.temporal-denoised"};
   if (std::getenv("RESTIR_TRACE"))
     for (const char* stage : kStages) frame.requestDebugView(stage);
   Sun other = scene.sun;
@@ -530,7 +542,8 @@ RestirGiSettings diagnosticSettings(const std::string& name) {
   if (name == "unbiased") return RestirGiSettings::unbiased();
   auto has = [&](const char* part) { return base.find(part) != std::string::npos; };
   if (has("temporal-only")) gi.temporalHistorySamples = 1, gi.spatialReuse = false;
-  if (has("no-spatial")) gi.spatialReuse = false;
+  if (has("no-spatial-reuse") || (has("no-spatial") && !has("no-spatial-validation")))
+    gi.spatialReuse = false;
   if (has("history1")) gi.temporalHistorySamples = 1;
   if (has("no-tdenoise")) gi.temporalDenoise = false;
   if (has("no-sdenoise")) gi.spatialDenoise = false;
@@ -542,7 +555,7 @@ RestirGiSettings diagnosticSettings(const std::string& name) {
   if (has("history64")) gi.denoiseMaxHistory = 64.0f;
   if (has("no-patch")) gi.patchReservoir = false;
   if (has("no-spatial-validation")) gi.spatialValidation = false;
-  if (has("validation3")) gi.validationPeriod = 3;
+  if (has("validation3") || has("revalidate3")) gi.validationPeriod = 3;
   if (has("validation3")) gi.historyBrightening = 1.3f;  // the jumping-light configuration
   if (has("passthrough")) gi.validationRadiance = 100.0f, gi.validationDistance = 100.0f;
   if (has("no-denoise")) gi.temporalDenoise = false, gi.resolveSamples = 1;
@@ -553,6 +566,7 @@ RestirGiSettings diagnosticSettings(const std::string& name) {
   if (has("nofirefly")) gi.fireflyRatio = 0.0f;
   if (has("firefly3")) gi.fireflyRatio = 3.0f;
   if (has("no-occluder")) gi.occluderVisibility = false;
+  if (has("onem")) gi.producerNormalisation = false;
   if (has("fullmip")) gi.materialTextureSide = 0;
   if (has("bright13")) gi.historyBrightening = 1.3f;
   if (has("bright15")) gi.historyBrightening = 1.5f;
@@ -592,11 +606,21 @@ TEST(RestirGiDiag, Configurations) {
     frame.requestDebugView("composite");
     frame.requestDebugView("gi-restir-temporal");
     frame.requestDebugView("gi-resolve-diffuse-rays");
+    const bool curve = std::getenv("RESTIR_CURVE") != nullptr;
+    const bool cacheView = hybrid.restirGi.secondVertex == RestirGiSecondVertex::Cache;
+    if (curve && cacheView) frame.requestDebugView("cache");
     ImageRGBA32F sum;
     const int frames = std::getenv("RESTIR_FRAMES") ? std::atoi(std::getenv("RESTIR_FRAMES")) : 64;
     for (int i = 0; i < frames; ++i) {
       frame.render(camera);
       if (i >= frames / 2) accumulate(sum, frame.debugViewImage("composite"));
+      // RESTIR_CURVE: the convergence curve, relMSE and mean ratio at frames 2^k.
+      if (curve && ((i + 1) & i) == 0 && i >= 3) {
+        Comparison now = compare(frame.debugViewImage("composite"), reference);
+        std::printf("  frame %d: relMSE %.4f ratio %.4f cache %.4f candidates %.4f\n", i + 1,
+                    now.relMse, now.meanRatio, cacheView ? meanLuminance(frame.debugViewImage("cache")) : 0.0,
+                    meanLuminance(frame.debugViewImage("gi-resolve-diffuse-rays")));
+      }
       if (i >= frames - 16 && std::getenv("RESTIR_TRACE"))
         std::printf("  frame %d: candidates %.4f temporal %.4f composite %.4f\n", i,
                     meanLuminance(frame.debugViewImage("gi-resolve-diffuse-rays")),
@@ -620,6 +644,20 @@ TEST(RestirGiDiag, Configurations) {
                       luminance(reference, size_t(y) * width + x));
     }
     writePair("diag-mean-" + name, scaled(sum, 1.0f / float(frames - frames / 2)), reference);
+    // RESTIR_MAP: the mean's ratio to the reference per pixel (luminance), one character each:
+    // '-' < 0.8 <= 'd' < 0.95 <= '.' < 1.05 <= 'b' < 1.2 <= '+'; ' ' where the reference is black.
+    if (std::getenv("RESTIR_MAP")) {
+      ImageRGBA32F m = scaled(sum, 1.0f / float(frames - frames / 2));
+      for (uint32_t y = 0; y < height; ++y) {
+        std::string row = "  |";
+        for (uint32_t x = 0; x < width; ++x) {
+          double r = luminance(reference, size_t(y) * width + x);
+          double ratio = luminance(m, size_t(y) * width + x) / std::max(r, 1e-9);
+          row += r < 0.01 ? ' ' : ratio < 0.8 ? '-' : ratio < 0.95 ? 'd' : ratio < 1.05 ? '.' : ratio < 1.2 ? 'b' : '+';
+        }
+        std::printf("%s|\n", row.c_str());
+      }
+    }
   }
 }
 }  // namespace

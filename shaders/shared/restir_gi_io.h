@@ -43,6 +43,7 @@ BOUNCE_CONST uint RESTIR_GI_FLAG_PATCH = 32u;               // gi-restir-patch-r
 BOUNCE_CONST uint RESTIR_GI_FLAG_VALIDATION = 64u;  // validation traces every validationPeriod
 BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_DENOISE = 128u;  // gi-spatial-denoise
 BOUNCE_CONST uint RESTIR_GI_FLAG_OCCLUDER_VISIBILITY = 256u;  // gi-trace-resolve-visibility
+BOUNCE_CONST uint RESTIR_GI_FLAG_PRODUCER_NORMALISATION = 512u;  // 1/Z in spatial reuse and resolve
 
 // Constants of the whole chain, uploaded once (RestirGi's constructor).
 struct RestirGiConstants {
@@ -85,6 +86,8 @@ BOUNCE_CHECK_SIZE(RestirGiConstants, 144);
 
 // Side of the tiled blue-noise map (64: 4,096 distinct values per channel, 16 KiB).
 BOUNCE_CONST uint RESTIR_GI_BLUE_NOISE_SIDE = 64u;
+// Most neighbours one spatial pass merges (gi_restir_spatial.comp keeps them for 1/Z).
+BOUNCE_CONST uint RESTIR_GI_MAX_SPATIAL_SAMPLES = 8u;
 
 // Push constants of every ReSTIR GI pass.
 struct RestirGiPassConstants {

@@ -33,6 +33,21 @@ Reservoir loadReservoir(ivec2 q) {
                          imageLoad(inNormals, q));
 }
 
+
+
+// 1/Z normalisation: the confidence (M) of the reservoirs that could have produced the chosen
+// sample, the own one (the chosen sample has a positive target at x1) and those of the merged
+// neighbours whose surface and shift reach it (couldProduce).
+float confidenceOfProducers(RestirGiConstants gi, PrimaryVertex x1, float ownM, Reservoir chosen,
+                            ivec2 merged[RESTIR_GI_MAX_SPATIAL_SAMPLES], uint mergedCount) {
+  float z = ownM;
+  for (uint i = 0u; i < mergedCount; ++i) {
+    Reservoir r = loadReservoir(merged[i]);
+    if (couldProduce(r.origin, r.originNormal, x1, chosen, gi.maxJacobian)) z += r.M;
+  }
+  return z;
+}
+
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
@@ -45,9 +60,11 @@ void main() {
   if (own.M > 0.0) {
     ReservoirStream s = beginStream(x1, own);
     uint variant = min(pc.variant, 1u);
-    uint n = gi.spatialSamples[variant];
+    uint n = min(gi.spatialSamples[variant], RESTIR_GI_MAX_SPATIAL_SAMPLES);
     vec2 u0 = random2(uvec2(g), f.frameIndex, RANDOM_GI_SPATIAL + variant);
     float rotation = 2.0 * PI * u0.x;
+    ivec2 merged[RESTIR_GI_MAX_SPATIAL_SAMPLES];  // the neighbours that entered the stream
+    uint mergedCount = 0u;
     for (uint i = 0u; i < n; ++i) {
       vec2 offset = goldenSpiralOffset(i, n, rotation, gi.spatialMinRadius, gi.spatialRadius[variant]);
       ivec2 q = g + ivec2(round(offset));
@@ -57,8 +74,11 @@ void main() {
       if (r.M <= 0.0 || !sameSurface(gi, x1, r.origin, r.originNormal)) continue;
       float u = random2(uvec2(g), f.frameIndex * 16u + i, RANDOM_GI_SPATIAL + 2u).x;
       streamReservoir(s, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, u);
+      merged[mergedCount++] = q;
     }
-    result = endStream(s, x1);
+    bool normalise = (gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) != 0u;
+    result = normalise ? endStreamNormalised(s, x1, confidenceOfProducers(gi, x1, own.M, s.chosen, merged, mergedCount))
+                       : endStream(s, x1);
   }
   vec4 a, b, c, d;
   packReservoir(result, a, b, c, d);

@@ -190,14 +190,34 @@ void streamReservoir(inout ReservoirStream s, PrimaryVertex x1, Reservoir r, flo
   }
 }
 
-// The stream's reservoir, re-homed at x1.
-Reservoir endStream(ReservoirStream s, PrimaryVertex x1) {
+// The stream's reservoir, re-homed at x1, its W normalised by the confidence of the
+// reservoirs that could have produced the chosen sample (`z`, at most s.M; s.M itself is
+// ReSTIR's biased 1/M normalisation).
+Reservoir endStreamNormalised(ReservoirStream s, PrimaryVertex x1, float z) {
   Reservoir r = s.chosen;
   r.M = s.M;
-  r.W = s.chosenTarget > 0.0 ? s.weightSum / (s.M * s.chosenTarget) : 0.0;
+  r.W = s.chosenTarget > 0.0 && z > 0.0 ? s.weightSum / (z * s.chosenTarget) : 0.0;
   r.origin = x1.position;
   r.originNormal = x1.shadingNormal;
   return r;
+}
+
+Reservoir endStream(ReservoirStream s, PrimaryVertex x1) {
+  return endStreamNormalised(s, x1, s.M);
+}
+
+// Whether a reservoir whose primary vertex is (origin, originNormal) could have produced
+// the chosen sample and passed it on to x1: the sample lies above that surface and the reconnection
+// shift to x1 is one the streams accept (Jacobian at most maxJacobian). The domain test of
+// ReSTIR's 1/Z normalisation (Bitterli et al. 2020, Alg. 6; Ouyang et al. 2021, Alg. 4, here
+// without visibility): dividing by the confidence of every reservoir, also those whose shift
+// could never reach the chosen sample, darkens wherever shifts are rejected (grazing and
+// near-contact geometry: 2 % on sunroom).
+bool couldProduce(vec3 origin, vec3 originNormal, PrimaryVertex x1, Reservoir chosen,
+                  float maxJacobian) {
+  if (dot(chosen.samplePosition - origin, originNormal) <= 0.0) return false;
+  float jacobian = reconnectionJacobian(origin, x1.position, chosen);
+  return jacobian > 0.0 && jacobian <= maxJacobian;
 }
 
 // Validation (seed 000, "resolve-diffuse-rays": radiance changed -> lower M): how much of the

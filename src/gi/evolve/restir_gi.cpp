@@ -96,7 +96,8 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
   c.resolveSamples = s.resolveSamples;
   c.cache = cache_ ? cache_->constantsAddress() : 0;
   for (int i = 0; i < 2; ++i) {
-    c.spatialSamples[i] = s.spatialSamples[i];
+    // gi_restir_spatial.comp keeps the merged neighbours for its 1/Z normalisation: at most 8.
+    c.spatialSamples[i] = std::min(s.spatialSamples[i], gpu::RESTIR_GI_MAX_SPATIAL_SAMPLES);
     c.spatialRadius[i] = s.spatialRadius[i];
   }
   c.spatialMinRadius = std::max(s.spatialMinRadius, 0.5f);
@@ -112,6 +113,7 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
   c.blueNoise = s.blueNoise ? blueNoise_.address() : 0;
   c.flags |= s.validationPeriod > 0 ? gpu::RESTIR_GI_FLAG_VALIDATION : 0u;
   c.flags |= s.occluderVisibility ? gpu::RESTIR_GI_FLAG_OCCLUDER_VISIBILITY : 0u;
+  c.flags |= s.producerNormalisation ? gpu::RESTIR_GI_FLAG_PRODUCER_NORMALISATION : 0u;
   constants_ = upload(context, std::span<const gpu::RestirGiConstants>(&c, 1), "gi.constants");
 }
 
