@@ -171,6 +171,46 @@ TEST(Animation, SunIsUpAtNoonAndDownAtMidnight) {
   EXPECT_NEAR(track.hoursAt(5.0f), 6.0f, 1e-4f);  // 18 h + 12 h wraps to 6 h
 }
 
+// HybridFrame::setSunAndSky's lighting cuts (LightingCutDetector): a day that passes in 10
+// seconds at 60 frames per second (0.6 degrees of sun per frame, sunrise and sunset fades
+// included) is motion in every frame; a 3-hour jump, a sun switched off, a sky 3x brighter
+// are cuts; a negative threshold never cuts.
+TEST(Animation, LightingCutsAreJumpsNotMotion) {
+  Scene scene = loadScene("sunroom");
+  Sun sun;
+  Sky sky;
+  applyTimeOfDay(8.0f, scene.sun, scene.sky, sun, sky);
+  LightingCutDetector day(sun, sky, 5.0f);
+  int cuts = 0;
+  for (int frame = 1; frame <= 600; ++frame) {
+    applyTimeOfDay(8.0f + 24.0f * float(frame) / 600.0f, scene.sun, scene.sky, sun, sky);
+    cuts += day.next(sun, sky) ? 1 : 0;
+  }
+  EXPECT_EQ(cuts, 0);
+
+  Sun morning, afternoon;
+  Sky morningSky, afternoonSky;
+  applyTimeOfDay(9.0f, scene.sun, scene.sky, morning, morningSky);
+  applyTimeOfDay(12.0f, scene.sun, scene.sky, afternoon, afternoonSky);
+  LightingCutDetector jump(morning, morningSky, 5.0f);
+  EXPECT_TRUE(jump.next(afternoon, afternoonSky));
+  EXPECT_FALSE(jump.next(afternoon, afternoonSky));  // the same light again: no cut
+  Sun off = afternoon;
+  off.irradiance = 0.0f;
+  EXPECT_TRUE(jump.next(off, afternoonSky));
+  Sky bright = afternoonSky;
+  bright.radiance = 3.0f * glm::max(afternoonSky.radiance, glm::vec3(0.1f));
+  EXPECT_TRUE(jump.next(off, bright));
+
+  Sun turned = morning;
+  turned.direction = glm::rotate(glm::mat4(1.0f), glm::radians(1.0f), glm::vec3(0, 1, 0)) *
+                     glm::vec4(morning.direction, 0.0f);
+  LightingCutDetector small(morning, morningSky, 5.0f);
+  EXPECT_FALSE(small.next(turned, morningSky));
+  LightingCutDetector never(morning, morningSky, -1.0f);
+  EXPECT_FALSE(never.next(afternoon, afternoonSky));
+}
+
 // ---- GPU ----------------------------------------------------------------------------------------
 
 HybridSettings smallSettings(uint32_t width, uint32_t height) {

@@ -142,8 +142,13 @@ struct ClipmapCacheConstants {
   uint maxStaleFrames;
   uint poolCapacity;  // live cells at most: CLIPMAP_MAX_CELLS, or fewer for tests
   uint materialTextureSide;  // the cells' rays read textures at mips at most this wide (0 = full)
+  // Non-zero in the frames after a reset or a lighting cut (ClipmapCache::beginFullRefresh):
+  // every live cell traces all its entries, its history capped at fullRefreshHistoryCap.
+  uint fullRefresh;
+  float fullRefreshHistoryCap;
+  uint pad0, pad1;
 };
-BOUNCE_CHECK_SIZE(ClipmapCacheConstants, 56 + 8 + 192 + 48);
+BOUNCE_CHECK_SIZE(ClipmapCacheConstants, 56 + 8 + 192 + 48 + 16);
 
 // Push constants of the cache passes.
 struct ClipmapPassConstants {

@@ -95,8 +95,12 @@ struct RestirGiPassConstants {
   DeviceAddress gi;     // RestirGiConstants
   uint historyValid;    // 0 in the first frame and after a reset
   uint variant;         // which of a shared shader's passes (gi-restir-spatial-0 / -1)
+  // Scales temporalMaxM and denoiseMaxHistory: settleHistoryScale while the light settles
+  // after a reset or a lighting cut (RestirGiSettings::settleFrames), else 1.
+  float historyScale;
+  uint pad0;
 };
-BOUNCE_CHECK_SIZE(RestirGiPassConstants, 24);
+BOUNCE_CHECK_SIZE(RestirGiPassConstants, 32);
 
 BOUNCE_CONST uint RESTIR_GI_GROUP_SIZE = 8u;
 

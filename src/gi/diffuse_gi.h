@@ -66,6 +66,9 @@ class DiffuseGi {
   virtual std::vector<GiStatistic> statistics() const { return {}; }
   // A camera cut: forget temporal state that is not in frame-graph history images.
   virtual void resetHistory() {}
+  // A lighting cut (the sun jumped, HybridFrame::setSunAndSky): the view's history stays valid
+  // but the light it holds does not; rebuild it quickly.
+  virtual void lightingCut() {}
 };
 
 // The system for `settings.gi`; nullptr for GiMode::None (gi.diffuse then stays zero).

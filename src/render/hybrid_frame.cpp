@@ -1,5 +1,6 @@
 #include "render/hybrid_frame.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -82,6 +83,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
       settings_(settings),
       sun_(scene.sun),
       sky_(scene.sky),
+      lightingCuts_(scene.sun, scene.sky, settings.lightingCutDegrees),
       frameConstantsBuffer_(context, sizeof(gpu::FrameConstants),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                             vk::MemoryUse::DeviceOnly, "frame-constants"),
@@ -162,6 +164,39 @@ gpu::FrameConstants HybridFrame::makeFrameConstants(const Camera& camera) const 
 
 gpu::HybridPassConstants HybridFrame::passConstants(bool historyValid) const {
   return {frameConstantsBuffer_.address(), historyValid ? 1u : 0u, 0u};
+}
+
+namespace {
+float skyBrightness(const Sky& sky) { return sky.radiance.x + sky.radiance.y + sky.radiance.z; }
+}  // namespace
+
+LightingCutDetector::LightingCutDetector(const Sun& sun, const Sky& sky, float cutDegrees)
+    : sun_(sun),
+      sky_(sky),
+      cutDegrees_(cutDegrees),
+      brightestSun_(sun.irradiance),
+      brightestSky_(skyBrightness(sky)) {}
+
+bool LightingCutDetector::next(const Sun& sun, const Sky& sky) {
+  brightestSun_ = std::max(brightestSun_, sun.irradiance);
+  brightestSky_ = std::max(brightestSky_, skyBrightness(sky));
+  const bool lit = sun_.irradiance > 0.0f && sun.irradiance > 0.0f;
+  const float cosine = glm::dot(glm::normalize(sun_.direction), glm::normalize(sun.direction));
+  const bool turned = lit && cosine < std::cos(glm::radians(cutDegrees_)) - 1e-6f;
+  const bool sunJumped = std::abs(sun.irradiance - sun_.irradiance) > 0.5f * brightestSun_;
+  const bool skyJumped =
+      std::abs(skyBrightness(sky) - skyBrightness(sky_)) > 0.5f * brightestSky_;
+  const bool cut = cutDegrees_ >= 0.0f &&
+                   (turned || sunJumped || skyJumped || sky.model != sky_.model);
+  sun_ = sun;
+  sky_ = sky;
+  return cut;
+}
+
+void HybridFrame::setSunAndSky(const Sun& sun, const Sky& sky) {
+  if (lightingCuts_.next(sun, sky) && gi_) gi_->lightingCut();
+  sun_ = sun;
+  sky_ = sky;
 }
 
 void HybridFrame::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {

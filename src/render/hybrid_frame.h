@@ -33,6 +33,25 @@ namespace bounce {
 // (shared/camera.h): y down, reversed Z with an infinite far plane, depth = near / view depth.
 glm::mat4 viewProjection(const gpu::GpuCamera& camera, float nearPlane);
 
+// Tells a lighting cut from motion (HybridSettings::lightingCutDegrees): from one sun and sky
+// to the next, the lit sun turned by more than cutDegrees, or the sun's irradiance or the
+// sky's radiance changed by more than half of the brightest seen so far (so that a sun
+// fading out at dusk, step by small step, is motion, and switching it off is a cut), or the
+// sky model changed. cutDegrees < 0: never a cut.
+class LightingCutDetector {
+ public:
+  LightingCutDetector(const Sun& sun, const Sky& sky, float cutDegrees);
+  // Takes the next sun and sky; whether they are a cut from the last ones.
+  bool next(const Sun& sun, const Sky& sky);
+
+ private:
+  Sun sun_;
+  Sky sky_;
+  float cutDegrees_;
+  float brightestSun_;  // irradiance, W/m^2
+  float brightestSky_;  // radiance summed over r, g, b
+};
+
 class HybridFrame {
  public:
   // `scene` must be the one `gpuScene` was built from.
@@ -44,11 +63,11 @@ class HybridFrame {
   // rebuilt TLAS into buffers made at init, keeping this frame's placement as the previous one
   // for object motion vectors. Call it every frame while anything moves. No Vulkan allocation.
   void setInstanceTransforms(std::span<const glm::mat4> objectToWorld);
-  // The sun and sky from now on (a moving sun, day and night).
-  void setSunAndSky(const Sun& sun, const Sky& sky) {
-    sun_ = sun;
-    sky_ = sky;
-  }
+  // The sun and sky from now on (a moving sun, day and night). A change that is no longer
+  // motion (isLightingCut: the sun turned by more than settings().lightingCutDegrees, or its
+  // or the sky's brightness changed by more than half) is a lighting cut: the GI system
+  // rebuilds its light quickly (DiffuseGi::lightingCut) while the view's history stays.
+  void setSunAndSky(const Sun& sun, const Sky& sky);
 
   // Declares, records, submits and waits for one frame seen from `camera`. Returns the GPU
   // time of each pass (debug-view copies included), in recording order.
@@ -94,6 +113,7 @@ class HybridFrame {
   HybridSettings settings_;
   Sun sun_;
   Sky sky_;
+  LightingCutDetector lightingCuts_;
   float nearPlane_ = 1e-3f;
   std::vector<Draw> opaqueDraws_, alphaTestedDraws_;  // every (instance, geometry) with triangles
   std::vector<Draw> visibleOpaque_, visibleAlphaTested_;  // this frame's, capacity reserved once

@@ -55,6 +55,15 @@ struct ClipmapCacheSettings {
   // rays do (RestirGiSettings::materialTextureSide: seed 000's coarse mip, less bandwidth for
   // incoherent hits; a cell only needs mean albedos). 0 = full resolution.
   uint32_t materialTextureSide = 16;
+  // Frames after a reset (the first frames) or a lighting cut (HybridFrame::setSunAndSky: the
+  // sun jumped) in which every live cell traces all 16 entries each frame, with history capped
+  // at fullRefreshHistoryCap candidates, instead of raysPerCell. Light then crosses one bounce
+  // per frame (otherwise one bounce per refresh round of 16 / raysPerCell frames, each diluted
+  // by the entry's 1/M), so the multi-bounce light of a closed room rebuilds in about as many
+  // frames as it has significant bounces. Cost: 16 rays per cell in those frames (desktop 2x,
+  // mobile 16x the usual cache rays). 0 = off.
+  uint32_t fullRefreshFrames = 16;
+  float fullRefreshHistoryCap = 1.0f;
 };
 
 struct HybridSettings {
@@ -80,6 +89,12 @@ struct HybridSettings {
   // Raster is seed 000's choice and the default; Trace gives the same ids (pixel centres, same
   // alpha test) and is ~3-10x faster on the H200 (README, "The hybrid frame").
   VBufferMode vbuffer = VBufferMode::Raster;
+  // A sun that turns by more than this many degrees from one frame to the next (or whose
+  // irradiance, or the sky's radiance, changes by more than half) makes a lighting cut
+  // (HybridFrame::setSunAndSky). A day that lasts 24 minutes turns the sun 0.004 degrees per
+  // frame at 60 fps; a jump is a scripted change of the time of day. 0 = every change is a cut;
+  // a negative value: never.
+  float lightingCutDegrees = 5.0f;
   RestirGiSettings restirGi;  // --gi evolve
   ClipmapCacheSettings cache;  // --gi cache (and the cache ReSTIR GI reads)
 };

@@ -4,7 +4,10 @@
 // rays re-trace the kept samples of other entries. A cell that has never been traced (new this
 // frame) traces one candidate for every entry at once, so that it has a complete SH the frame
 // after it was allocated instead of filling in over 16 frames (the talk leaves this open; the
-// cost is bounded by the allocations per frame).
+// cost is bounded by the allocations per frame). During a full refresh (the frames after a reset
+// or a lighting cut, ClipmapCacheSettings::fullRefreshFrames) every live cell is traced that way,
+// its entries' history capped at fullRefreshHistoryCap: light then crosses one bounce per frame
+// instead of one per refresh round.
 // Cells touched last frame at a level below CLIPMAP_TOUCH_LEVELS allocate and keep alive the
 // cells their rays look up (shared/clipmap_cache_io.h); the others only read, so that cells
 // cannot keep each other alive for ever.
@@ -22,7 +25,7 @@ uint rayTouch(uint cellFlags) {
 }
 
 void traceCandidate(FrameConstants f, ClipmapCacheView cache, uint cell, ClipmapCell c, uint e,
-                    bool alphaTest, uint touch) {
+                    bool alphaTest, uint touch, float historyCap) {
   uvec4 seed = uvec4(cell, f.frameIndex, e, 0x0CAC4E01u);
   vec4 u = uniformFromHash(pcg4d(seed));
   vec3 dir = clipmapEntryDirection(e, u.xy);
@@ -30,8 +33,8 @@ void traceCandidate(FrameConstants f, ClipmapCacheView cache, uint cell, Clipmap
   vec3 radiance = cacheRayRadiance(f, cache, c.origin, dir, alphaTest, touch, touch != 0u,
                                    seed ^ uvec4(0u, 0u, 0u, 0x5BD1E995u), hitDistance);
   ClipmapEntry entry = cache.entries.v[cell * CLIPMAP_ENTRIES + e];
-  reservoirMerge(entry, radiance, dir, c.origin, hitDistance, CLIPMAP_ENTRY_PDF,
-                 cache.constants.v.historyCap, u.z);
+  reservoirMerge(entry, radiance, dir, c.origin, hitDistance, CLIPMAP_ENTRY_PDF, historyCap,
+                 u.z);
   cache.entries.v[cell * CLIPMAP_ENTRIES + e] = entry;
 }
 
@@ -83,16 +86,18 @@ void main() {
   uint touch = rayTouch(c.flags);
   bool alphaTest = (k.flags & CLIPMAP_FLAG_ALPHA_TEST) != 0u;
 
-  if (newCell) {  // never traced: fill every entry now
-    traceCandidate(f, cache, cell, c, lane, alphaTest, touch);
+  bool fullRefresh = k.fullRefresh != 0u;
+  if (newCell) {  // never traced, or a full refresh: every entry now
+    traceCandidate(f, cache, cell, c, lane, alphaTest, touch,
+                   fullRefresh ? k.fullRefreshHistoryCap : k.historyCap);
     return;
   }
-  if (c.validEntries == 0u) return;  // a new cell: traced in the second range
+  if (c.validEntries == 0u || fullRefresh) return;  // traced in the second range
   uint rays = k.raysPerCell;
   uint rounds = clipmapTraceRounds(k);  // raysPerCell divides 16 (checked on the CPU)
   uint round = (f.frameIndex + cell) % rounds;
   if (lane < rays) {
-    traceCandidate(f, cache, cell, c, round * rays + lane, alphaTest, touch);
+    traceCandidate(f, cache, cell, c, round * rays + lane, alphaTest, touch, k.historyCap);
   } else if (lane < rays + clipmapValidationRays(k)) {
     uint validationRound = (round + rounds / 2u) % rounds;
     traceValidation(f, cache, cell, validationRound * rays + (lane - rays), alphaTest, touch);

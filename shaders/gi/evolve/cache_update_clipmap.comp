@@ -32,7 +32,9 @@ void main() {
   if (index % CLIPMAP_GROUP_SIZE == 0u) atomicAdd(frame.v.traceDispatch.x, 1u);
   uint lanes = clipmapTraceLanes(ClipmapConstantsRef(pc.cache).v);
   if (index % (CLIPMAP_GROUP_SIZE / lanes) == 0u) atomicAdd(frame.v.rayDispatch.x, 1u);
-  if (ClipmapCellsRef(pc.buffers.cells).v[cell].validEntries == 0u) {
+  // A full refresh (ClipmapCacheConstants.fullRefresh) traces every cell as a new one.
+  if (ClipmapCellsRef(pc.buffers.cells).v[cell].validEntries == 0u ||
+      ClipmapConstantsRef(pc.cache).v.fullRefresh != 0u) {
     uint fresh = atomicAdd(frame.v.newCount, 1u);
     list.v[CLIPMAP_MAX_CELLS + fresh] = cell;
     if (fresh % (CLIPMAP_GROUP_SIZE / CLIPMAP_ENTRIES) == 0u) atomicAdd(frame.v.rayDispatch.x, 1u);

@@ -188,6 +188,7 @@ Reservoir capped(RestirGiConstants gi, Reservoir r, float candidateM) {
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
+  gi.temporalMaxM = max(gi.temporalMaxM * pc.historyScale, 1.0);  // shorter while light settles
   ivec2 g = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(g), gi.giResolution))) return;
   ivec2 pixel = giRepresentativePixel(f, gi, g);

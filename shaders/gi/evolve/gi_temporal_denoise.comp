@@ -102,6 +102,8 @@ ClipBox fastHistoryBox(FrameConstants f, RestirGiConstants gi, ivec2 p, vec3 cen
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
+  // Shorter while the light settles after a reset or a lighting cut.
+  gi.denoiseMaxHistory = max(gi.denoiseMaxHistory * pc.historyScale, 1.0);
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
   if ((imageLoad(flags, pixel).x & GBUFFER_FLAG_SURFACE) == 0u) {

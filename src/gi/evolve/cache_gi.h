@@ -19,6 +19,7 @@ class CacheGi final : public DiffuseGi {
   void afterFrame() override { cache_.afterFrame(); }
   std::vector<GiStatistic> statistics() const override { return cache_.statistics(); }
   void resetHistory() override { cache_.resetHistory(); }
+  void lightingCut() override { cache_.beginFullRefresh(); }
 
   ClipmapCache& cache() { return cache_; }
 

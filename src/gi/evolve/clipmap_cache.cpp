@@ -39,6 +39,8 @@ void checkSettings(const ClipmapCacheSettings& s) {
   if (!(s.finestCellSize > 0.0f) || !std::isfinite(s.finestCellSize))
     fail("clipmap cache: finest cell size {} m must be positive", s.finestCellSize);
   if (!(s.historyCap >= 1.0f)) fail("clipmap cache: history cap {} must be >= 1", s.historyCap);
+  if (!(s.fullRefreshHistoryCap >= 0.0f) || !std::isfinite(s.fullRefreshHistoryCap))
+    fail("clipmap cache: full-refresh history cap {} must be >= 0", s.fullRefreshHistoryCap);
   if (s.maxStaleFrames < 1) fail("clipmap cache: max stale frames must be >= 1");
   if (s.maxLiveCells < 1 || s.maxLiveCells > gpu::CLIPMAP_MAX_CELLS)
     fail("clipmap cache: {} live cells at most; expected 1 to {}", s.maxLiveCells,
@@ -81,6 +83,7 @@ ClipmapCache::ClipmapCache(vk::Context& context, const GpuScene& gpuScene,
       liveCellsView_(context, gpuScene, "gi/evolve/cache_live_cells_view", 1,
                      sizeof(gpu::ClipmapPassConstants)) {
   std::memset(readback_.mapped(), 0, readback_.size());
+  beginFullRefresh();  // the cache starts empty: a reset
 }
 
 gpu::ClipmapCacheAddresses ClipmapCache::addresses() const {
@@ -110,6 +113,8 @@ gpu::ClipmapCacheConstants ClipmapCache::makeConstants(const FrameInputs& inputs
   c.maxStaleFrames = settings_.maxStaleFrames;
   c.poolCapacity = settings_.maxLiveCells;
   c.materialTextureSide = settings_.materialTextureSide;
+  c.fullRefresh = fullRefreshLeft_ > 0 ? 1u : 0u;
+  c.fullRefreshHistoryCap = settings_.fullRefreshHistoryCap;
   return c;
 }
 
@@ -142,6 +147,7 @@ void ClipmapCache::declareUpdate(graph::FrameGraph& graph, const FrameInputs& in
   }
 
   constantsData_ = makeConstants(inputs);
+  if (fullRefreshLeft_ > 0) --fullRefreshLeft_;
   gpu::ClipmapPassConstants push{};
   push.cache = constants_.address();
   push.frame = inputs.frameConstantsAddress;

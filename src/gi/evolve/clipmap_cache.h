@@ -68,8 +68,15 @@ class ClipmapCache {
   // Live cells (total and per cascade), allocations, frees (all and by scrolling) and failed
   // allocations of the last frame.
   std::vector<GiStatistic> statistics() const;
-  // Empties the cache (every cell back to the pool) at the next declareUpdate().
-  void resetHistory() { resetPending_ = true; }
+  // Empties the cache (every cell back to the pool) at the next declareUpdate(), then refreshes
+  // every cell fully for settings().fullRefreshFrames frames.
+  void resetHistory() {
+    resetPending_ = true;
+    beginFullRefresh();
+  }
+  // The light changed everywhere at once (a lighting cut): the cells stay, but for the next
+  // settings().fullRefreshFrames frames every cell traces all its entries each frame.
+  void beginFullRefresh() { fullRefreshLeft_ = settings_.fullRefreshFrames; }
 
  private:
   gpu::ClipmapCacheAddresses addresses() const;
@@ -84,6 +91,7 @@ class ClipmapCache {
   CacheBuffers handles_;
   gpu::ClipmapCacheConstants constantsData_{};
   bool resetPending_ = true;
+  uint32_t fullRefreshLeft_ = 0;  // frames of full refresh still to come
   uint64_t frames_ = 0;
 
   struct Snapshot {

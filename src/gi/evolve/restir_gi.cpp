@@ -66,6 +66,9 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
     cache_ = std::make_unique<ClipmapCache>(context, gpuScene, lights_, settings.cache);
   if (s.divisor == 0 || s.divisor > 16)
     fail("ReSTIR GI: resolution divisor {} must be 1 to 16", s.divisor);
+  if (!(s.settleHistoryScale > 0.0f && s.settleHistoryScale <= 1.0f))
+    fail("ReSTIR GI: settle history scale {} must be in (0, 1]", s.settleHistoryScale);
+  settleFramesLeft_ = s.settleFrames;  // the first frames: the cache starts empty
   giResolution_ = {(settings.width + s.divisor - 1) / s.divisor,
                    (settings.height + s.divisor - 1) / s.divisor};
 
@@ -119,7 +122,8 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
 
 gpu::RestirGiPassConstants RestirGi::passConstants(const FrameInputs& inputs, bool historyValid,
                                                    uint32_t variant) const {
-  return {inputs.frameConstantsAddress, constants_.address(), historyValid ? 1u : 0u, variant};
+  return {inputs.frameConstantsAddress, constants_.address(), historyValid ? 1u : 0u, variant,
+          historyScale_, 0u};
 }
 
 // A reservoir-to-reservoir pass at GI resolution (gi-restir-spatial-0/1, patch): `estimate`
@@ -224,10 +228,18 @@ std::vector<GiStatistic> RestirGi::statistics() const {
 
 void RestirGi::resetHistory() {
   if (cache_) cache_->resetHistory();
+  settleFramesLeft_ = settings_.settleFrames;
+}
+
+void RestirGi::lightingCut() {
+  if (cache_) cache_->beginFullRefresh();
+  settleFramesLeft_ = settings_.settleFrames;
 }
 
 void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::ImageHandle output) {
   if (cache_) cache_->declareUpdate(graph, in);
+  historyScale_ = settleFramesLeft_ > 0 ? settings_.settleHistoryScale : 1.0f;
+  if (settleFramesLeft_ > 0) --settleFramesLeft_;
   const ImageSize giSize = ImageSize::dividedRes(settings_.divisor);
   const VkExtent2D gi = giResolution_;
   const VkExtent2D full = in.resolution;

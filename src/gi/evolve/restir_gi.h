@@ -54,6 +54,7 @@ class RestirGi final : public DiffuseGi {
   void afterFrame() override;
   std::vector<GiStatistic> statistics() const override;
   void resetHistory() override;
+  void lightingCut() override;
 
  private:
   using ReservoirImages = std::array<graph::ImageHandle, 4>;  // sample, radiance, origin, normals
@@ -67,6 +68,10 @@ class RestirGi final : public DiffuseGi {
                                       const std::optional<graph::HistoryImage>& occlusionValidity);
 
   RestirGiSettings settings_;
+  // Frames of settling still to come (RestirGiSettings::settleFrames) and this frame's scale
+  // of the temporal histories (RestirGiPassConstants::historyScale).
+  uint32_t settleFramesLeft_ = 0;
+  float historyScale_ = 1.0f;
   // The light tables for NEE at the 2nd vertex (and in the cache, which shares them).
   GiLightTables lights_;
   std::unique_ptr<ClipmapCache> cache_;  // only with RestirGiSecondVertex::Cache

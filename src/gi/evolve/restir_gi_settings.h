@@ -124,6 +124,14 @@ struct RestirGiSettings {
   // gi-temporal-denoise: running mean of up to denoiseMaxHistory frames with the history clipped
   // to mean +- denoiseClipSigma standard deviations of the 3x3 neighbourhood. More frames or a
   // wider box: smoother, more ghosting after a change. Off for unbiased measurements.
+  // After a reset (the first frames) or a lighting cut, while the cache rebuilds its light
+  // (ClipmapCacheSettings::fullRefreshFrames), the stored radiance of every history is that of
+  // a darker (or otherwise different) cache: for settleFrames frames temporalMaxM and
+  // denoiseMaxHistory are scaled by settleHistoryScale (at least 1 frame), so that reservoirs
+  // and the denoiser follow the new light instead of averaging it with the old. Longer or
+  // lower: faster convergence of the mean, noisier frames while it lasts. 0 frames = off.
+  uint32_t settleFrames = 16;
+  float settleHistoryScale = 0.2f;
   bool temporalDenoise = true;
   float denoiseMaxHistory = 16.0f;
   float denoiseClipSigma = 2.0f;
