@@ -43,7 +43,7 @@ BOUNCE_CONST uint RESTIR_GI_FLAG_PATCH = 32u;               // gi-restir-patch-r
 BOUNCE_CONST uint RESTIR_GI_FLAG_VALIDATION = 64u;  // validation traces every validationPeriod
 BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_DENOISE = 128u;  // gi-spatial-denoise
 BOUNCE_CONST uint RESTIR_GI_FLAG_OCCLUDER_VISIBILITY = 256u;  // gi-trace-resolve-visibility
-BOUNCE_CONST uint RESTIR_GI_FLAG_PRODUCER_NORMALISATION = 512u;  // 1/Z in spatial reuse and resolve
+BOUNCE_CONST uint RESTIR_GI_FLAG_PRODUCER_NORMALISATION = 512u;  // 1/Z in spatial reuse
 
 // Constants of the whole chain, uploaded once (RestirGi's constructor).
 struct RestirGiConstants {

@@ -77,40 +77,6 @@ bool shiftedSample(RestirGiConstants gi, PrimaryVertex x, Reservoir r, out vec3 
   return c > 0.0 && jacobian > 0.0 && jacobian <= gi.maxJacobian && r.W > 0.0;
 }
 
-// The samples whose primary vertex lies on this pixel's surface (bit i: sample i), with those
-// vertices, for the 1/Z normalisation of their average.
-struct Producers {
-  uint mask;
-  vec3 origin[4];
-  vec3 normal[4];
-};
-
-Producers surfaceProducers(RestirGiConstants gi, PrimaryVertex x, ivec2 home, uint samples,
-                           float rotation) {
-  Producers p;
-  p.mask = 0u;
-  for (uint i = 0u; i < samples; ++i) {
-    ivec2 q = resolveSampleGiPixel(gi, home, i, samples, rotation);
-    vec4 origin = imageLoad(reservoirOrigin, q);
-    p.origin[i] = origin.xyz;
-    p.normal[i] = decodeOctahedral(imageLoad(reservoirNormals, q).xy);
-    bool live = uint(origin.w + 0.5) != RESTIR_GI_KIND_NONE && imageLoad(reservoirRadiance, q).w > 0.0;
-    if (live && sameSurface(gi, x, p.origin[i], p.normal[i])) p.mask |= 1u << i;
-  }
-  return p;
-}
-
-// How many of the samples could have produced r's sample at x (couldProduce): the average
-// weighs each sample by 1 / that count instead of 1 / all samples, which darkened every region
-// that some neighbours' shifts cannot reach (1/Z, as in the spatial passes; at least 1: r's
-// own reservoir produced it).
-uint countProducersOf(RestirGiConstants gi, PrimaryVertex x, Reservoir r, Producers p) {
-  uint n = 0u;
-  for (uint j = 0u; j < 4u; ++j)
-    if ((p.mask & (1u << j)) != 0u && couldProduce(p.origin[j], p.normal[j], x, r, gi.maxJacobian)) ++n;
-  return max(n, 1u);
-}
-
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
@@ -127,9 +93,6 @@ void main() {
   float rotation = resolveRotation(f, pixel);
   bool occlusionKnown = (gi.flags & RESTIR_GI_FLAG_OCCLUDER_VISIBILITY) != 0u;
   uint hidden = occlusionKnown ? imageLoad(resolveOcclusion, pixel).x : 0u;
-  Producers producers = surfaceProducers(gi, x, home, samples, rotation);
-  bool normalise = (gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) != 0u;
-  float producerCount = float(bitCount(producers.mask));  // 1/M: every sample on this surface
   ShL1 sh = ShL1(vec4(0.0), vec4(0.0), vec4(0.0));
   vec3 exact = vec3(0.0);           // the direct estimate L cos / pi W at the shading normal
   vec3 exactGeometric = vec3(0.0);  // ... and at the geometric normal
@@ -144,10 +107,9 @@ void main() {
     vec3 direction, lw;
     bool valid = shiftedSample(gi, x, r, direction, lw);
     float planeDistance = abs(dot(x.geometricNormal, r.origin - x.position)) / max(x.depth, 1e-6);
-    if ((producers.mask & (1u << i)) != 0u) {
+    if (sameSurface(gi, x, r.origin, r.originNormal)) {
       count += 1.0;
       if (!valid || (hidden & (1u << i)) != 0u) continue;
-      lw /= normalise ? float(countProducersOf(gi, x, r, producers)) : producerCount;
       shAdd(sh, direction, lw);
       exact += lw * (max(dot(direction, x.shadingNormal), 0.0) / PI);
       exactGeometric += lw * (max(dot(direction, x.geometricNormal), 0.0) / PI);
@@ -158,12 +120,10 @@ void main() {
       if (valid) shAdd(fallback, direction, lw);
     }
   }
-  // Each sample's estimate is already divided by the number of samples that could have
-  // produced it (1/Z, countProducersOf), so the sums are the estimates.
   vec3 result;
-  if (!reuse) result = count > 0.0 ? exact : shIrradianceOverPiAt(fallback, x.shadingNormal);
+  if (!reuse) result = count > 0.0 ? exact / count : shIrradianceOverPiAt(fallback, x.shadingNormal);
   else if (count > 0.0) {
-    result = exactGeometric * normalVariation(sh, x);
+    result = (exactGeometric / count) * normalVariation(sh, x);
   } else {
     result = shIrradianceOverPiAt(fallback, x.shadingNormal);
   }
