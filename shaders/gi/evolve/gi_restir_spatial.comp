@@ -33,8 +33,6 @@ Reservoir loadReservoir(ivec2 q) {
                          imageLoad(inNormals, q));
 }
 
-
-
 // 1/Z normalisation: the confidence (M) of the reservoirs that could have produced the chosen
 // sample, the own one (the chosen sample has a positive target at x1) and those of the merged
 // neighbours whose surface and shift reach it (couldProduce).

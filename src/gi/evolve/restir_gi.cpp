@@ -68,6 +68,10 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
     fail("ReSTIR GI: resolution divisor {} must be 1 to 16", s.divisor);
   if (!(s.settleHistoryScale > 0.0f && s.settleHistoryScale <= 1.0f))
     fail("ReSTIR GI: settle history scale {} must be in (0, 1]", s.settleHistoryScale);
+  // gi_restir_spatial.comp keeps the merged neighbours for its 1/Z normalisation.
+  for (uint32_t n : s.spatialSamples)
+    if (n > gpu::RESTIR_GI_MAX_SPATIAL_SAMPLES)
+      fail("ReSTIR GI: {} spatial samples per pass, at most {}", n, gpu::RESTIR_GI_MAX_SPATIAL_SAMPLES);
   settleFramesLeft_ = s.settleFrames;  // the first frames: the cache starts empty
   giResolution_ = {(settings.width + s.divisor - 1) / s.divisor,
                    (settings.height + s.divisor - 1) / s.divisor};
@@ -99,8 +103,7 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
   c.resolveSamples = s.resolveSamples;
   c.cache = cache_ ? cache_->constantsAddress() : 0;
   for (int i = 0; i < 2; ++i) {
-    // gi_restir_spatial.comp keeps the merged neighbours for its 1/Z normalisation: at most 8.
-    c.spatialSamples[i] = std::min(s.spatialSamples[i], gpu::RESTIR_GI_MAX_SPATIAL_SAMPLES);
+    c.spatialSamples[i] = s.spatialSamples[i];
     c.spatialRadius[i] = s.spatialRadius[i];
   }
   c.spatialMinRadius = std::max(s.spatialMinRadius, 0.5f);
