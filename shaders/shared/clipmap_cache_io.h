@@ -156,7 +156,10 @@ struct ClipmapPassConstants {
   DeviceAddress frame;  // FrameConstants (shared/hybrid_frame_io.h)
   ClipmapCacheAddresses buffers;
   uint maxStaleFrames;
-  uint pad0;
+  // cache-trace-diffuse-rays: 0 for the frame's trace; k >= 1 for the k-th extra bounce of a
+  // full refresh (ClipmapCacheSettings::fullRefreshBounces), whose lookups neither allocate nor
+  // touch cells (the frame's trace did) and whose candidates draw other directions.
+  uint bounce;
 };
 BOUNCE_CHECK_SIZE(ClipmapPassConstants, 80);
 

@@ -194,7 +194,10 @@ bool LightingCutDetector::next(const Sun& sun, const Sky& sky) {
 }
 
 void HybridFrame::setSunAndSky(const Sun& sun, const Sky& sky) {
-  if (lightingCuts_.next(sun, sky) && gi_) gi_->lightingCut();
+  if (lightingCuts_.next(sun, sky)) {
+    lightingCutPending_ = true;
+    if (gi_) gi_->lightingCut();
+  }
   sun_ = sun;
   sky_ = sky;
 }
@@ -213,6 +216,7 @@ std::vector<vk::PassTiming> HybridFrame::render(const Camera& camera) {
     graph_.execute(cmd, &timer_);
   });
   if (gi_) gi_->afterFrame();
+  lightingCutPending_ = false;
   previousViewProjection_ = constants_.viewProjection;
   hasPreviousFrame_ = true;
   return timer_.available() ? timer_.read() : std::vector<vk::PassTiming>{};
@@ -390,7 +394,7 @@ void HybridFrame::recordFrame() {
       .read(shadows.previous, Access::StorageRead)
       .write(shadows.current, Access::StorageWrite)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-        bool valid = r.historyValid(shadows) && r.historyValid(depth);
+        bool valid = r.historyValid(shadows) && r.historyValid(depth) && !lightingCutPending_;
         shadowsDenoise_.record(
             cmd,
             {{gpu::SHADOWS_DENOISE_BINDING_RAW, r.image(shadowsRaw)},

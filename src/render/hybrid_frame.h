@@ -114,6 +114,10 @@ class HybridFrame {
   Sun sun_;
   Sky sky_;
   LightingCutDetector lightingCuts_;
+  // Set by setSunAndSky on a lighting cut, cleared after the next frame: that frame's shadow
+  // denoiser starts afresh (its running mean would otherwise show the old shadows for up to
+  // shadowMaxHistory frames).
+  bool lightingCutPending_ = false;
   float nearPlane_ = 1e-3f;
   std::vector<Draw> opaqueDraws_, alphaTestedDraws_;  // every (instance, geometry) with triangles
   std::vector<Draw> visibleOpaque_, visibleAlphaTested_;  // this frame's, capacity reserved once

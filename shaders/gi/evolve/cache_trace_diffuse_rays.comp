@@ -6,7 +6,8 @@
 // after it was allocated instead of filling in over 16 frames (the talk leaves this open; the
 // cost is bounded by the allocations per frame). During a full refresh (the frames after a reset
 // or a lighting cut, ClipmapCacheSettings::fullRefreshFrames) every live cell is traced that way,
-// its entries' history capped at fullRefreshHistoryCap: light then crosses one bounce per frame
+// its entries' history capped at fullRefreshHistoryCap, and the pass runs fullRefreshBounces
+// times (each followed by cache-build-sh): light then crosses that many bounces per frame
 // instead of one per refresh round.
 // Cells touched last frame at a level below CLIPMAP_TOUCH_LEVELS allocate and keep alive the
 // cells their rays look up (shared/clipmap_cache_io.h); the others only read, so that cells
@@ -26,7 +27,7 @@ uint rayTouch(uint cellFlags) {
 
 void traceCandidate(FrameConstants f, ClipmapCacheView cache, uint cell, ClipmapCell c, uint e,
                     bool alphaTest, uint touch, float historyCap) {
-  uvec4 seed = uvec4(cell, f.frameIndex, e, 0x0CAC4E01u);
+  uvec4 seed = uvec4(cell, f.frameIndex, e, 0x0CAC4E01u + pc.bounce);
   vec4 u = uniformFromHash(pcg4d(seed));
   vec3 dir = clipmapEntryDirection(e, u.xy);
   float hitDistance;
@@ -83,7 +84,7 @@ void main() {
   settings = ReferenceSettingsBlock(k.lights).v;
   FrameConstants f = FrameBlock(pc.frame).v;
   ClipmapCell c = cache.cells.v[cell];
-  uint touch = rayTouch(c.flags);
+  uint touch = pc.bounce == 0u ? rayTouch(c.flags) : 0u;
   bool alphaTest = (k.flags & CLIPMAP_FLAG_ALPHA_TEST) != 0u;
 
   bool fullRefresh = k.fullRefresh != 0u;

@@ -41,6 +41,8 @@ void checkSettings(const ClipmapCacheSettings& s) {
   if (!(s.historyCap >= 1.0f)) fail("clipmap cache: history cap {} must be >= 1", s.historyCap);
   if (!(s.fullRefreshHistoryCap >= 0.0f) || !std::isfinite(s.fullRefreshHistoryCap))
     fail("clipmap cache: full-refresh history cap {} must be >= 0", s.fullRefreshHistoryCap);
+  if (s.fullRefreshBounces < 1 || s.fullRefreshBounces > 8)
+    fail("clipmap cache: full-refresh bounces {} must be in [1, 8]", s.fullRefreshBounces);
   if (s.maxStaleFrames < 1) fail("clipmap cache: max stale frames must be >= 1");
   if (s.maxLiveCells < 1 || s.maxLiveCells > gpu::CLIPMAP_MAX_CELLS)
     fail("clipmap cache: {} live cells at most; expected 1 to {}", s.maxLiveCells,
@@ -147,6 +149,7 @@ void ClipmapCache::declareUpdate(graph::FrameGraph& graph, const FrameInputs& in
   }
 
   constantsData_ = makeConstants(inputs);
+  const uint32_t bounces = fullRefreshLeft_ > 0 ? settings_.fullRefreshBounces : 1u;
   if (fullRefreshLeft_ > 0) --fullRefreshLeft_;
   gpu::ClipmapPassConstants push{};
   push.cache = constants_.address();
@@ -185,30 +188,36 @@ void ClipmapCache::declareUpdate(graph::FrameGraph& graph, const FrameInputs& in
         clipmap_.bind(cmd, push);
         vkCmdDispatch(cmd, groupsFor(kTotalSlots), 1, 1);
       });
-  declareLookup(graph.addPass("cache-trace-diffuse-rays", QueueKind::Compute))
-      .read(b.frame, Access::StorageRead)
-      .read(b.frame, Access::IndirectRead)
-      .read(b.liveList, Access::StorageRead)
-      .read(inputs.frameConstants, Access::StorageRead)
-      .read(inputs.instances, Access::StorageRead)
-      .read(inputs.tlas, Access::StorageRead)
-      .sideEffects()
-      .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-        trace_.bind(cmd, push);
-        vkCmdDispatchIndirect(cmd, r.buffer(b.frame).buffer,
-                              offsetof(gpu::ClipmapFrameCounters, rayDispatch));
-      });
-  graph.addPass("cache-build-sh", QueueKind::Compute)
-      .read(b.frame, Access::StorageRead)
-      .read(b.frame, Access::IndirectRead)
-      .read(b.liveList, Access::StorageRead)
-      .read(b.entries, Access::StorageRead)
-      .write(b.cells, Access::StorageReadWrite)
-      .sideEffects()
-      .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-        buildSh_.bind(cmd, push);
-        vkCmdDispatchIndirect(cmd, r.buffer(b.frame).buffer, 0);
-      });
+  // A full refresh's extra bounces repeat the pair (ClipmapCacheSettings::fullRefreshBounces).
+  for (uint32_t bounce = 0; bounce < bounces; ++bounce) {
+    const std::string suffix = bounce == 0 ? "" : fmt::format("-bounce-{}", bounce + 1);
+    gpu::ClipmapPassConstants bouncePush = push;
+    bouncePush.bounce = bounce;
+    declareLookup(graph.addPass("cache-trace-diffuse-rays" + suffix, QueueKind::Compute))
+        .read(b.frame, Access::StorageRead)
+        .read(b.frame, Access::IndirectRead)
+        .read(b.liveList, Access::StorageRead)
+        .read(inputs.frameConstants, Access::StorageRead)
+        .read(inputs.instances, Access::StorageRead)
+        .read(inputs.tlas, Access::StorageRead)
+        .sideEffects()
+        .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
+          trace_.bind(cmd, bouncePush);
+          vkCmdDispatchIndirect(cmd, r.buffer(b.frame).buffer,
+                                offsetof(gpu::ClipmapFrameCounters, rayDispatch));
+        });
+    graph.addPass("cache-build-sh" + suffix, QueueKind::Compute)
+        .read(b.frame, Access::StorageRead)
+        .read(b.frame, Access::IndirectRead)
+        .read(b.liveList, Access::StorageRead)
+        .read(b.entries, Access::StorageRead)
+        .write(b.cells, Access::StorageReadWrite)
+        .sideEffects()
+        .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
+          buildSh_.bind(cmd, bouncePush);
+          vkCmdDispatchIndirect(cmd, r.buffer(b.frame).buffer, 0);
+        });
+  }
 
   // Debug views; culled unless requested.
   constexpr VkFormat rgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;

@@ -236,11 +236,14 @@ void RestirGi::resetHistory() {
 
 void RestirGi::lightingCut() {
   if (cache_) cache_->beginFullRefresh();
+  lightCutPending_ = true;
   settleFramesLeft_ = settings_.settleFrames;
 }
 
 void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::ImageHandle output) {
   if (cache_) cache_->declareUpdate(graph, in);
+  dropLightHistory_ = lightCutPending_;
+  lightCutPending_ = false;
   historyScale_ = settleFramesLeft_ > 0 ? settings_.settleHistoryScale : 1.0f;
   if (settleFramesLeft_ > 0) --settleFramesLeft_;
   const ImageSize giSize = ImageSize::dividedRes(settings_.divisor);
@@ -295,7 +298,7 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       .read(reservoir[2].previous, Access::StorageRead)
       .read(reservoir[3].previous, Access::StorageRead)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-        bool valid = true;
+        bool valid = !dropLightHistory_;
         for (int i = 0; i < 4; ++i) valid = valid && r.historyValid(reservoir[i]);
         prepare_.record(cmd,
                         {{gpu::GI_PREPARE_BINDING_NORMALS, r.image(in.normals)},
@@ -413,7 +416,7 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
     graph::ImageHandle occlusion = occlusionValidity ? occlusionValidity->previous : neeVisibility;
     pass.read(occlusion, Access::StorageRead);
     pass.record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-      bool valid = true;
+      bool valid = !dropLightHistory_;
       for (int i = 0; i < 4; ++i) valid = valid && r.historyValid(reservoir[i]);
       valid = valid && r.historyValid(candidateMean);
       std::vector<ImageBinding> images = {
@@ -498,8 +501,8 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       .write(denoised.current, Access::StorageWrite)
       .write(denoisedFast.current, Access::StorageWrite)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-        bool valid = r.historyValid(denoised) && r.historyValid(denoisedFast) &&
-                     r.historyValid(in.depth);
+        bool valid = !dropLightHistory_ && r.historyValid(denoised) &&
+                     r.historyValid(denoisedFast) && r.historyValid(in.depth);
         denoise_.record(cmd,
                         {{gpu::GI_DENOISE_BINDING_INPUT, r.image(resolved)},
                          {gpu::GI_DENOISE_BINDING_NORMALS, r.image(in.normals)},

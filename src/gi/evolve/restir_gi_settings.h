@@ -134,6 +134,7 @@ struct RestirGiSettings {
   // denoiseMaxHistory are scaled by settleHistoryScale (at least 1 frame), so that reservoirs
   // and the denoiser follow the new light instead of averaging it with the old. Longer or
   // lower: faster convergence of the mean, noisier frames while it lasts. 0 frames = off.
+  // (A lighting cut also drops the light-holding histories for one frame: RestirGi::lightingCut.)
   uint32_t settleFrames = 16;
   float settleHistoryScale = 0.2f;
   bool temporalDenoise = true;
