@@ -695,3 +695,37 @@ TEST(RestirGiDiag, Configurations) {
 }
 }  // namespace
 }  // namespace bounce
+
+namespace bounce {
+namespace {
+// The README's sun-jump pictures (skipped unless RESTIR_LOOK_DIR names a folder): sunroom
+// 240x135, desktop preset, traced VBuffer; 48 frames under the mirrored sun, then the sun
+// jumps back; the composite before the jump and 1, 2, 4, 8, 10, 16 and 64 frames after it.
+TEST(RestirGiLook, SunJumpFrames) {
+  const char* dir = std::getenv("RESTIR_LOOK_DIR");
+  if (!dir) GTEST_SKIP();
+  const uint32_t width = 240, height = 135;
+  Scene scene = loadScene("sunroom");
+  Camera camera = effectiveCamera(scene);
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  RestirGiSettings gi = RestirGiSettings::desktopPreset();
+  HybridSettings settings = giSettings(width, height, gi);
+  settings.vbuffer = VBufferMode::Trace;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("composite");
+  Sun other = scene.sun;
+  other.direction = glm::vec3(-other.direction.x, other.direction.y, -other.direction.z);
+  frame.setSunAndSky(other, scene.sky);
+  for (int i = 0; i < 48; ++i) frame.render(camera);
+  writeImage(std::string(dir) + "/before.png", frame.debugViewImage("composite"), 0.03f);
+  frame.setSunAndSky(scene.sun, scene.sky);
+  for (int i = 1; i <= 64; ++i) {
+    frame.render(camera);
+    if (i == 1 || i == 2 || i == 4 || i == 8 || i == 10 || i == 16 || i == 64)
+      writeImage(std::string(dir) + "/after-" + std::to_string(i) + ".png",
+                 frame.debugViewImage("composite"), 0.03f);
+  }
+}
+}  // namespace
+}  // namespace bounce

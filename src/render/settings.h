@@ -62,7 +62,7 @@ struct ClipmapCacheSettings {
   // raysPerCell frames, each diluted by the entry's 1/M). Cost: 16 rays per cell and bounce in
   // those frames (desktop 2x, mobile 16x the usual cache rays, per bounce). With three bounces
   // per frame, 8 frames (24 bounces) bring sunroom's cache to 0.97 of converged; 16 frames
-  // measured no better after a sun jump, at twice the cost. 0 = off.
+  // recovered from a sun jump a little faster (README), at twice the cost. 0 = off.
   uint32_t fullRefreshFrames = 8;
   float fullRefreshHistoryCap = 1.0f;
   // Bounces the cache adds per full-refresh frame: cache-trace-diffuse-rays and cache-build-sh
