@@ -599,7 +599,7 @@ TEST(RestirGiDiag, Configurations) {
     const char* kStagesAt[] = {"cache", "gi.hit-radiance", "gi.candidate-estimate", "gi.reservoir-estimate",
                                "gi.spatial-0-estimate", "gi.spatial-1-estimate", "gi.validated-estimate",
                                "gi.patched-estimate", "gi.resolve-occlusion", "gi.resolved", "gi.temporal-denoised",
-                               "gi.diffuse", "shadows-denoise", "gbuffer.base-color", "composite"};
+                               "gi.diffuse", "gbuffer.base-color", "composite"};
     unsigned atX = 0, atY = 0;
     const bool stagesAt = std::getenv("RESTIR_STAGES_AT") &&
                           std::sscanf(std::getenv("RESTIR_STAGES_AT"), "%u,%u", &atX, &atY) == 2;

@@ -223,6 +223,7 @@ RestirGi::ReservoirImages RestirGi::declareSpatialChain(
 // The chain, top to bottom (restir_gi.h). GI-resolution images follow the render resolution.
 void RestirGi::afterFrame() {
   if (cache_) cache_->afterFrame();
+  lightCutPending_ = false;
 }
 
 std::vector<GiStatistic> RestirGi::statistics() const {
@@ -242,8 +243,6 @@ void RestirGi::lightingCut() {
 
 void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::ImageHandle output) {
   if (cache_) cache_->declareUpdate(graph, in);
-  dropLightHistory_ = lightCutPending_;
-  lightCutPending_ = false;
   historyScale_ = settleFramesLeft_ > 0 ? settings_.settleHistoryScale : 1.0f;
   if (settleFramesLeft_ > 0) --settleFramesLeft_;
   const ImageSize giSize = ImageSize::dividedRes(settings_.divisor);
@@ -298,7 +297,7 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       .read(reservoir[2].previous, Access::StorageRead)
       .read(reservoir[3].previous, Access::StorageRead)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-        bool valid = !dropLightHistory_;
+        bool valid = !lightCutPending_;
         for (int i = 0; i < 4; ++i) valid = valid && r.historyValid(reservoir[i]);
         prepare_.record(cmd,
                         {{gpu::GI_PREPARE_BINDING_NORMALS, r.image(in.normals)},
@@ -416,7 +415,7 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
     graph::ImageHandle occlusion = occlusionValidity ? occlusionValidity->previous : neeVisibility;
     pass.read(occlusion, Access::StorageRead);
     pass.record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-      bool valid = !dropLightHistory_;
+      bool valid = !lightCutPending_;
       for (int i = 0; i < 4; ++i) valid = valid && r.historyValid(reservoir[i]);
       valid = valid && r.historyValid(candidateMean);
       std::vector<ImageBinding> images = {
@@ -501,7 +500,7 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       .write(denoised.current, Access::StorageWrite)
       .write(denoisedFast.current, Access::StorageWrite)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-        bool valid = !dropLightHistory_ && r.historyValid(denoised) &&
+        bool valid = !lightCutPending_ && r.historyValid(denoised) &&
                      r.historyValid(denoisedFast) && r.historyValid(in.depth);
         denoise_.record(cmd,
                         {{gpu::GI_DENOISE_BINDING_INPUT, r.image(resolved)},

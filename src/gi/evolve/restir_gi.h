@@ -72,11 +72,10 @@ class RestirGi final : public DiffuseGi {
   // of the temporal histories (RestirGiPassConstants::historyScale).
   uint32_t settleFramesLeft_ = 0;
   float historyScale_ = 1.0f;
-  // A lighting cut came (lightingCut()): the next frame drops the histories whose values hold
-  // the old light (reservoirs, candidate mean, denoiser), keeping the geometric ones (the
-  // spatial occlusion validity) and the cache (which refreshes instead).
+  // Set by lightingCut(), cleared after the next frame (afterFrame): that frame drops the
+  // histories whose values hold the old light (reservoirs, candidate mean, denoiser), keeping
+  // the geometric ones (the spatial occlusion validity) and the cache (which refreshes instead).
   bool lightCutPending_ = false;
-  bool dropLightHistory_ = false;  // this frame's copy, read when the passes record
   // The light tables for NEE at the 2nd vertex (and in the cache, which shares them).
   GiLightTables lights_;
   std::unique_ptr<ClipmapCache> cache_;  // only with RestirGiSecondVertex::Cache
