@@ -508,8 +508,9 @@ void expectSameClosestHit(const TraceHit& bvh, const TraceHit& brute, size_t ray
   EXPECT_EQ(bvh.frontFacing, brute.frontFacing) << "ray " << rayIndex;
 }
 
-Agreement compareWithBruteForce(const Scene& scene, const std::vector<RayQuery>& rays) {
-  SceneBvh bvh = buildSceneBvh(scene);
+Agreement compareWithBruteForce(const Scene& scene, const std::vector<RayQuery>& rays,
+                                const SceneBvhOptions& options = {}) {
+  SceneBvh bvh = buildSceneBvh(scene, options);
   CpuTracer tracer(bvh);
   const AlphaTest alpha = evenPrimitivesOpaque;
   Agreement agreement;
@@ -551,6 +552,23 @@ TEST(CpuTrace, MatchesBruteForceOnRandomScenes) {
   EXPECT_GT(total.hits, total.rays / 2);
   EXPECT_LT(total.hits, 2 * total.rays * 95 / 100);
   EXPECT_GT(total.alphaChanged, total.rays / 100);
+}
+
+// The traversal stack packs a leaf's triangle count into 4 bits (shared/scene_layout.h): the
+// largest leaves it allows still find every closest hit, and larger ones are refused.
+TEST(CpuTrace, LargestStackableLeavesMatchBruteForce) {
+  Scene scene = randomScene(4);
+  SceneBvhOptions options;
+  options.blas.maxLeafSize = 16;
+  options.blas.traversalCost = 8.0f;  // nodes made dear: the SAH then keeps full leaves
+  uint32_t largestLeaf = 0;
+  for (const gpu::GpuBvhNode& node : buildSceneBvh(scene, options).blasNodes)
+    largestLeaf = std::max({largestLeaf, node.leftCount, node.rightCount});
+  EXPECT_GT(largestLeaf, 8u) << "no leaf uses the count bits beyond the default leaf size";
+  Agreement a = compareWithBruteForce(scene, randomRays(scene, 2000, 404), options);
+  EXPECT_GT(a.hits, a.rays / 2);
+  options.blas.maxLeafSize = 17;
+  EXPECT_THROW(buildSceneBvh(scene, options), Error);
 }
 
 TEST(CpuTrace, MatchesBruteForceOnABuiltinScene) {

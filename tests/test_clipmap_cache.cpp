@@ -200,12 +200,21 @@ TEST(ClipmapCache, FurnaceConvergesToAnalyticIrradiance) {
 // (ClipmapCacheSettings::fullRefreshFrames): every cell traces all 16 entries each frame,
 // fullRefreshBounces (3) times, so light crosses three bounces per frame. On `sunroom`, lit
 // through one window, most of the light is several bounces deep. Mean of gi-cache-lookup over
-// frames 5-8 and 13-16 against frames 49-64 of the same run (the converged level). Measured:
-// three bounces per frame 0.971 | 1.002; one bounce per frame 0.742 | 0.952; no refresh
-// (desktop: each entry refreshed every 4 frames, diluted by its running mean) 0.500 | 0.670.
-// Bounds: three
-// bounces >= 0.9 by frames 5-8; one bounce >= 0.88 by frames 13-16 and at least 0.05 behind
-// three bounces at frames 5-8; no refresh at least 0.1 behind one bounce at frames 13-16.
+// frames 5-8 and 13-16 against frames 49-64 of the same run (the converged level).
+// The levels vary from run to run (cells are allocated in a racing order) and with the CPU
+// lavapipe runs on: without AVX/FMA the converged level comes out ~3 % higher and the early
+// frames ~2 % lower (the path tracer's images agree to an MSE of 6e-16 between the two, so traversal is
+// not it; the cause inside the cache is not pinned down). Measured, frames 5-8 | 13-16:
+//   with AVX2 + FMA (this workstation, 8 runs): three bounces per frame 0.92-0.98 | 0.97-1.04,
+//     one bounce 0.70-0.75 | 0.92-1.01, no refresh (desktop: each entry refreshed every 4
+//     frames, diluted by its running mean) 0.48-0.57 | 0.66-0.73;
+//   without AVX (CI's machine; GALLIUM_OVERRIDE_CPU_CAPS=sse4.1 reproduces its numbers, 5
+//     runs): three bounces 0.89-0.94 | 0.94-0.96, one bounce 0.71-0.74 | 0.90-0.94, no
+//     refresh 0.50-0.51 | 0.66-0.68.
+// Bounds, below the lowest seen by about the spread of a run: three bounces >= 0.85 by frames
+// 5-8 and at most half of one bounce's shortfall there (measured 0.12-0.39 of it); one bounce
+// >= 0.85 by frames 13-16 and at least 0.05 behind three bounces at frames 5-8; no refresh at
+// least 0.1 behind one bounce at frames 13-16.
 TEST(ClipmapCache, FullRefreshRebuildsMultiBounceLightWithinSixteenFrames) {
   struct Levels {
     double frames5to8, frames13to16;
@@ -230,8 +239,9 @@ TEST(ClipmapCache, FullRefreshRebuildsMultiBounceLightWithinSixteenFrames) {
               "frame %.3f | %.3f, 1 bounce %.3f | %.3f, no refresh %.3f | %.3f\n",
               three.frames5to8, three.frames13to16, one.frames5to8, one.frames13to16,
               none.frames5to8, none.frames13to16);
-  EXPECT_GE(three.frames5to8, 0.9);
-  EXPECT_GE(one.frames13to16, 0.88);
+  EXPECT_GE(three.frames5to8, 0.85);
+  EXPECT_LE(1.0 - three.frames5to8, 0.5 * (1.0 - one.frames5to8));
+  EXPECT_GE(one.frames13to16, 0.85);
   EXPECT_LE(one.frames5to8, three.frames5to8 - 0.05);
   EXPECT_LE(none.frames13to16, one.frames13to16 - 0.1);
 }

@@ -20,6 +20,15 @@ BOUNCE_BEGIN_SHARED
 BOUNCE_CONST uint BVH_INVALID = 0xFFFFFFFFu;
 BOUNCE_CONST uint BVH_MAX_LEAF_TRIANGLES = 8u;
 BOUNCE_CONST uint BVH_STACK_SIZE = 64u;
+// Traversal stack entries (src/rt/scene_bvh.h, "traversal contract"): an interior node index;
+// at the TLAS level, an instance index | BVH_STACK_INSTANCE; in a BLAS, a leaf:
+// BVH_STACK_LEAF | (count - 1) << BVH_STACK_LEAF_COUNT_SHIFT | first triangle. Hence every
+// scene has fewer than BVH_MAX_SCENE_TRIANGLES triangles and BLAS leaves at most 16.
+BOUNCE_CONST uint BVH_STACK_INSTANCE = 0x80000000u;
+BOUNCE_CONST uint BVH_STACK_LEAF = 0x40000000u;
+BOUNCE_CONST uint BVH_STACK_LEAF_COUNT_SHIFT = 26u;
+BOUNCE_CONST uint BVH_STACK_LEAF_INDEX_MASK = 0x03FFFFFFu;
+BOUNCE_CONST uint BVH_MAX_SCENE_TRIANGLES = 0x04000000u;
 
 struct GpuBvhNode {
   vec3 leftMin;

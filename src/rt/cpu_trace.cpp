@@ -14,8 +14,9 @@ constexpr float kRobustFarScale = 1.0000004f;
 // Direction components smaller than this are replaced by it (with their sign) before
 // inverting, so a slab distance is never 0 * inf = NaN.
 constexpr float kMinDirection = 1e-20f;
-// Stack entries at the TLAS level with this bit set name an instance to enter.
-constexpr uint32_t kInstanceEntry = 0x80000000u;
+// The end of a level's entries (never a valid stack entry).
+constexpr uint32_t kNoEntry = 0xFFFFFFFFu;
+constexpr uint32_t kEntryKindBits = gpu::BVH_STACK_INSTANCE | gpu::BVH_STACK_LEAF;
 
 // A ray prepared for one space (world, or one instance's object space).
 struct SpaceRay {
@@ -72,14 +73,17 @@ BoxHit intersectBox(const SpaceRay& ray, const glm::vec3& lo, const glm::vec3& h
   return {tNear <= tFar, tNear};
 }
 
-struct Child {
-  uint32_t index;
-  uint32_t count;
-  BoxHit box;
-};
+// The stack entry of a child slot that is a leaf or an interior node (shared/scene_layout.h).
+uint32_t childEntry(bool inBlas, uint32_t index, uint32_t count) {
+  if (count == 0) return index;
+  return inBlas ? (gpu::BVH_STACK_LEAF | ((count - 1) << gpu::BVH_STACK_LEAF_COUNT_SHIFT) | index)
+                : (index | gpu::BVH_STACK_INSTANCE);
+}
 
 }  // namespace
 
+// The loop of shaders/rt/trace.glsl, step by step: interior nodes until a leaf, an instance or
+// nothing is next; then BLAS leaves; then a level change.
 template <bool kAnyHit>
 TraceHit CpuTracer::traverse(const Ray& ray, float tMax, const AlphaTest& alphaTest) const {
   TraceHit result;
@@ -94,75 +98,74 @@ TraceHit CpuTracer::traverse(const Ray& ray, float tMax, const AlphaTest& alphaT
   uint32_t instanceIndex = 0;
   bool mirrored = false;
   uint32_t entry = 0;  // the TLAS root
+  auto popWithinLevel = [&] {
+    const uint32_t base = inBlas ? blasStackBase : 0;
+    return stackSize > base ? stack[--stackSize] : kNoEntry;
+  };
 
   while (true) {
-    if (entry & kInstanceEntry) {
-      // Enter the instance: same t in both spaces, because the direction is not normalised.
-      instanceIndex = entry & ~kInstanceEntry;
-      const gpu::GpuInstance& instance = arrays_.instances[instanceIndex];
-      current = prepareRay(transformPoint(instance.worldToObject, ray.origin),
-                           transformVector(instance.worldToObject, ray.direction));
-      mirrored = mirrors(instance.worldToObject);
-      inBlas = true;
-      blasStackBase = stackSize;
-      entry = instance.blasRoot;
-    }
-
-    const gpu::GpuBvhNode& node = inBlas ? arrays_.blasNodes[entry] : arrays_.tlasNodes[entry];
-    Child left{node.leftIndex, node.leftCount,
-               intersectBox(current, node.leftMin, node.leftMax, tMin, tMax)};
-    Child right{node.rightIndex, node.rightCount,
-                intersectBox(current, node.rightMin, node.rightMax, tMin, tMax)};
-    const bool rightFirst = right.box.hit && (!left.box.hit || right.box.tNear < left.box.tNear);
-    const Child& nearChild = rightFirst ? right : left;
-    const Child& farChild = rightFirst ? left : right;
-
-    // BLAS leaves are intersected right away; interior children and instances wait their turn.
-    Child next[2];
-    uint32_t nextCount = 0;
-    for (const Child* child : {&nearChild, &farChild}) {
-      if (!child->box.hit) continue;
-      if (child->count == 0) {
-        next[nextCount++] = *child;
-      } else if (!inBlas) {
-        next[nextCount++] = {child->index | kInstanceEntry, 0, child->box};
+    while ((entry & kEntryKindBits) == 0) {  // interior nodes
+      const gpu::GpuBvhNode& node = inBlas ? arrays_.blasNodes[entry] : arrays_.tlasNodes[entry];
+      const BoxHit left = intersectBox(current, node.leftMin, node.leftMax, tMin, tMax);
+      const BoxHit right = intersectBox(current, node.rightMin, node.rightMax, tMin, tMax);
+      const uint32_t leftEntry = childEntry(inBlas, node.leftIndex, node.leftCount);
+      const uint32_t rightEntry = childEntry(inBlas, node.rightIndex, node.rightCount);
+      if (left.hit && right.hit) {
+        const bool leftNear = left.tNear <= right.tNear;
+        if (stackSize == gpu::BVH_STACK_SIZE)
+          throw std::logic_error("BVH traversal stack overflow: tree deeper than its contract");
+        stack[stackSize++] = leftNear ? rightEntry : leftEntry;
+        entry = leftNear ? leftEntry : rightEntry;
+      } else if (left.hit) {
+        entry = leftEntry;
+      } else if (right.hit) {
+        entry = rightEntry;
       } else {
-        for (uint32_t k = child->index; k < child->index + child->count; ++k) {
-          const gpu::GpuTriangle& tri = arrays_.triangles[k];
-          gpu::TriangleHit h = gpu::intersectTriangle(current.origin, current.shear, tri.v0, tri.v1,
-                                                      tri.v2, tMin, tMax);
-          if (!h.hit) continue;
-          const gpu::GpuInstance& instance = arrays_.instances[instanceIndex];
-          const uint32_t geometry =
-              instance.geometryBase + (tri.geometry & ~gpu::GPU_TRIANGLE_ALPHA_TESTED);
-          if ((tri.geometry & gpu::GPU_TRIANGLE_ALPHA_TESTED) && alphaTest &&
-              !alphaTest(instanceIndex, geometry, tri.primitive, h.b1, h.b2))
-            continue;
-          result = {true,          h.t,  instanceIndex, geometry,
-                    tri.primitive, h.b1, h.b2,          h.frontFacing != mirrored};
-          if constexpr (kAnyHit) return result;
-          tMax = h.t;
-        }
+        entry = popWithinLevel();
       }
     }
-    // A leaf hit may have moved tMax in front of a waiting child (next is sorted near first).
-    while (nextCount > 0 && next[nextCount - 1].box.tNear > tMax) --nextCount;
-
-    if (nextCount == 2) {
-      if (stackSize == gpu::BVH_STACK_SIZE)
-        throw std::logic_error("BVH traversal stack overflow: tree deeper than its contract");
-      stack[stackSize++] = next[1].index;
+    while ((entry & kEntryKindBits) == gpu::BVH_STACK_LEAF) {  // BLAS leaves
+      const uint32_t first = entry & gpu::BVH_STACK_LEAF_INDEX_MASK;
+      const uint32_t count = ((entry & ~kEntryKindBits) >> gpu::BVH_STACK_LEAF_COUNT_SHIFT) + 1;
+      for (uint32_t k = first; k < first + count; ++k) {
+        const gpu::GpuTriangle& tri = arrays_.triangles[k];
+        gpu::TriangleHit h = gpu::intersectTriangle(current.origin, current.shear, tri.v0, tri.v1,
+                                                    tri.v2, tMin, tMax);
+        if (!h.hit) continue;
+        const gpu::GpuInstance& instance = arrays_.instances[instanceIndex];
+        const uint32_t geometry =
+            instance.geometryBase + (tri.geometry & ~gpu::GPU_TRIANGLE_ALPHA_TESTED);
+        if ((tri.geometry & gpu::GPU_TRIANGLE_ALPHA_TESTED) && alphaTest &&
+            !alphaTest(instanceIndex, geometry, tri.primitive, h.b1, h.b2))
+          continue;
+        result = {true,          h.t,  instanceIndex, geometry,
+                  tri.primitive, h.b1, h.b2,          h.frontFacing != mirrored};
+        if constexpr (kAnyHit) return result;
+        tMax = h.t;
+      }
+      entry = popWithinLevel();
     }
-    if (nextCount >= 1) {
-      entry = next[0].index;
+    if (entry == kNoEntry) {
+      if (inBlas && stackSize == blasStackBase) {  // the instance is done: back to the world ray
+        inBlas = false;
+        current = worldRay;
+      }
+      if (stackSize == 0) return result;
+      entry = stack[--stackSize];
       continue;
     }
-    if (inBlas && stackSize == blasStackBase) {
-      inBlas = false;
-      current = worldRay;
-    }
-    if (stackSize == 0) return result;
-    entry = stack[--stackSize];
+    if ((entry & kEntryKindBits) == 0) continue;  // a node popped after the leaves
+    if (inBlas || (entry & kEntryKindBits) != gpu::BVH_STACK_INSTANCE)
+      throw std::logic_error("BVH traversal: an instance entry inside a BLAS");
+    // Enter the instance: same t in both spaces, because the direction is not normalised.
+    instanceIndex = entry & ~gpu::BVH_STACK_INSTANCE;
+    const gpu::GpuInstance& instance = arrays_.instances[instanceIndex];
+    current = prepareRay(transformPoint(instance.worldToObject, ray.origin),
+                         transformVector(instance.worldToObject, ray.direction));
+    mirrored = mirrors(instance.worldToObject);
+    inBlas = true;
+    blasStackBase = stackSize;
+    entry = instance.blasRoot;
   }
 }
 

@@ -203,8 +203,14 @@ void concatenateBlas(const Scene& scene, const std::vector<MeshBlas>& blas, uint
     triangleOffset[m] = uint32_t(triangles);
     nodes += blas[m].bvh.nodes.size();
     triangles += blas[m].bvh.primitiveOrder.size();
-    if (nodes >= gpu::BVH_INVALID || triangles >= gpu::BVH_INVALID)
-      fail("scene BVH: {} triangles exceed the 32-bit index range", triangles);
+    // The traversal stack packs a leaf's first triangle into 26 bits and a node index into 30
+    // (shared/scene_layout.h).
+    if (triangles >= gpu::BVH_MAX_SCENE_TRIANGLES)
+      fail("scene BVH: {} triangles; at most {} fit the traversal's stack entries", triangles,
+           gpu::BVH_MAX_SCENE_TRIANGLES - 1);
+    if (nodes >= gpu::BVH_STACK_LEAF)
+      fail("scene BVH: {} BLAS nodes; at most {} fit the traversal's stack entries", nodes,
+           gpu::BVH_STACK_LEAF - 1);
   }
   out.blasNodes.resize(nodes);
   out.triangles.resize(triangles);
@@ -329,6 +335,10 @@ SceneBvh buildSceneBvh(const Scene& scene, const SceneBvhOptions& options) {
   SceneBvh out;
   flattenGeometries(scene, out);
 
+  const uint32_t leafLimit = 1u << (30 - gpu::BVH_STACK_LEAF_COUNT_SHIFT);
+  if (options.blas.maxLeafSize > leafLimit)
+    fail("scene BVH: BLAS leaves of up to {} triangles; the traversal's stack entries hold {}",
+         options.blas.maxLeafSize, leafLimit);
   const auto blasStart = Clock::now();
   std::vector<MeshBlas> blas = buildAllBlas(scene, options.blas);
   concatenateBlas(scene, blas, resolveThreads(options.blas.threadCount), out);

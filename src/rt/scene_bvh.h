@@ -39,13 +39,17 @@
 //   The child is entered when tNear <= tFar.
 //
 // Traversal (cpu_trace.cpp is the reference implementation; it mirrors this step by step):
-//   - One stack of BVH_STACK_SIZE uint entries. An entry is an interior node index of the
-//     current level, or, at the TLAS level, an instance index with bit 31 set.
-//   - Visiting a node tests both child boxes. Hit BLAS leaves are intersected at once (near
-//     child first). Hit interior children, and hit TLAS leaves (as instance entries), are
-//     ordered by tNear, ties to the left: with two, push the far one and continue with the near
-//     one; with one, continue with it; with none, pop. (A waiting child whose tNear is beyond a
-//     tMax just shortened by a leaf hit may be dropped; cpu_trace.cpp does.)
+//   - One stack of BVH_STACK_SIZE uint entries (shared/scene_layout.h, BVH_STACK_*). An entry is
+//     an interior node index of the current level; at the TLAS level, an instance index with
+//     BVH_STACK_INSTANCE set; at the BLAS level, a leaf: BVH_STACK_LEAF | (count - 1) << 26 |
+//     first triangle (so a scene has fewer than 2^26 triangles, a leaf at most 16).
+//   - The loop runs in three steps (Aila and Laine 2009, "while-while"): (1) interior nodes:
+//     visiting one tests both child boxes; hit children (interior, leaf or instance entries)
+//     are ordered by tNear, ties to the left: with two, push the far one and continue with the
+//     near one; with one, continue with it; with none, pop (within the level). (2) While the
+//     entry is a BLAS leaf, intersect its triangles, then pop (within the level). (3) With no
+//     entry left in the level, change level or stop (below); with an instance entry, enter it.
+//     Popped entries are not re-tested against a tMax that leaf hits shortened since.
 //   - Popping at the BLAS level when the stack is back at the height it had when the BLAS was
 //     entered returns to the TLAS level (world-space ray). An empty stack at the TLAS level
 //     ends the traversal.
