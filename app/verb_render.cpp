@@ -41,6 +41,7 @@ struct RenderOptions {
   std::string restirSecondVertex;
   bool restirUnbiased = false;
   int restirValidationPeriod = -1;
+  int restirMaxSampleAge = -1;  // -1: the settings' default
   float restirHistoryBrightening = -1.0f;
   bool noGiDenoise = false;
   int materialTextureSide = -1;  // -1: the settings' default
@@ -103,6 +104,12 @@ void applyRestirOptions(const RenderOptions& options, RestirGiSettings& gi) {
     gi.secondVertex = *v;
   }
   if (options.restirValidationPeriod >= 0) gi.validationPeriod = uint32_t(options.restirValidationPeriod);
+  if (options.restirMaxSampleAge != -1) {
+    if (options.restirMaxSampleAge < 0 || options.restirMaxSampleAge > 100000)
+      fail("--restir-max-sample-age {}: expected 0 (no limit) to 100000 frames",
+           options.restirMaxSampleAge);
+    gi.maxSampleAge = uint32_t(options.restirMaxSampleAge);
+  }
   if (options.restirHistoryBrightening >= 0.0f) {
     if (options.restirHistoryBrightening != 0.0f && options.restirHistoryBrightening <= 1.0f)
       fail("--restir-history-brightening {}: expected 0 (off) or a ratio above 1",
@@ -318,6 +325,9 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
   cmd->add_flag("--restir-unbiased", options->restirUnbiased,
                 "The unbiased configuration: full-resolution GI, temporal reuse only, a "
                 "continued path at the 2nd vertex, no denoisers");
+  cmd->add_option("--restir-max-sample-age", options->restirMaxSampleAge,
+                  "Drop ReSTIR GI history samples older than this many frames (0: no limit, the "
+                  "default; see README, slow boiling)");
   cmd->add_option("--restir-validation-period", options->restirValidationPeriod,
                   "Validation rays every N frames (0: off, the default; seed 000 uses 3, for "
                   "light or geometry that jumps: see README)");

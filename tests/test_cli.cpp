@@ -50,6 +50,7 @@ TEST(Cli, BadInputGetsAClearError) {
       {"render --scene cornell --gi-divisor 3 --res 8x8", "--gi-divisor 3"},
       {"render --scene cornell --restir-second-vertex foo --res 8x8", "--restir-second-vertex"},
       {"render --scene cornell --gi-texture-side 5000 --res 8x8", "--gi-texture-side 5000"},
+      {"render --scene cornell --restir-max-sample-age -3 --res 8x8", "--restir-max-sample-age -3"},
       {"compare " + dir + "/a.png " + dir + "/b.png", "a.png"},
   };
   for (const BadInvocation& c : cases) {

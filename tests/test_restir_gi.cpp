@@ -27,6 +27,7 @@
 #include "scene/animation.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
+#include "shared/restir_gi_io.h"
 #include "tools/image_io.h"
 #include "tools/metrics.h"
 #include "vk/context.h"
@@ -314,6 +315,53 @@ void sunroomFullChain(double maxRelMse) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
+// maxSampleAge (RestirGiSettings): a reservoir's sample ages a frame each frame it stays in
+// history, fresh candidates start at 0, and gi-restir-temporal drops history samples older than
+// the limit; the age is stored with the reservoir (gi.reservoir.origin's w: kind | age << 2).
+// Static `sunroom`, 32x24, 40 frames: with a limit of 6, no stored sample is older than 7 (a
+// validation re-trace ages its sample once more before the next frame drops it); without one,
+// some samples outlive 12 frames (else the limit would not be what bounds them).
+TEST(RestirGi, MaxSampleAgeBoundsHowLongSamplesLive) {
+  const uint32_t width = 32, height = 24;
+  Scene scene = loadScene("sunroom");
+  Camera camera = effectiveCamera(scene);
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  auto oldestSample = [&](uint32_t maxSampleAge, double& meanAge) {
+    RestirGiSettings gi = RestirGiSettings::desktopPreset();
+    gi.maxSampleAge = maxSampleAge;
+    HybridFrame frame(context, gpuScene, scene, giSettings(width, height, gi));
+    frame.requestDebugView("gi.reservoir.origin");
+    uint32_t oldest = 0;
+    double ageSum = 0.0;
+    int samples = 0;
+    for (int i = 0; i < 40; ++i) {
+      frame.render(camera);
+      if (i < 20) continue;
+      ImageRGBA32F origin = frame.debugViewImage("gi.reservoir.origin");
+      for (size_t k = 0; k < origin.pixelCount(); ++k) {
+        const uint32_t packed = uint32_t(origin.pixels[4 * k + 3] + 0.5f);
+        if ((packed & 3u) == gpu::RESTIR_GI_KIND_NONE) continue;
+        oldest = std::max(oldest, packed >> 2);
+        ageSum += double(packed >> 2);
+        ++samples;
+      }
+    }
+    EXPECT_GT(samples, 1000);
+    EXPECT_EQ(context.validationErrorCount(), 0u);
+    meanAge = ageSum / std::max(samples, 1);
+    return oldest;
+  };
+  double meanLimited = 0.0, meanFree = 0.0;
+  const uint32_t limited = oldestSample(6, meanLimited);
+  const uint32_t free = oldestSample(0, meanFree);
+  std::printf("sunroom 32x24, frames 21-40: oldest sample %u frames (mean %.2f) with maxSampleAge 6, "
+              "%u (mean %.2f) without\n", limited, meanLimited, free, meanFree);
+  EXPECT_LE(limited, 7u);
+  EXPECT_GT(free, 12u);
+  EXPECT_LT(meanLimited, meanFree);
+}
+
 TEST(RestirGi, FullChainOnSunroom) {
   sunroomFullChain(0.05);
 }
@@ -554,6 +602,11 @@ RestirGiSettings diagnosticSettings(const std::string& name) {
   if (has("bright13")) gi.historyBrightening = 1.3f;
   if (has("bright15")) gi.historyBrightening = 1.5f;
   if (has("bright2")) gi.historyBrightening = 2.0f;
+  if (has("age0")) gi.maxSampleAge = 0;
+  if (has("age4")) gi.maxSampleAge = 4;
+  if (has("age8")) gi.maxSampleAge = 8;
+  if (has("age16")) gi.maxSampleAge = 16;
+  if (has("age32")) gi.maxSampleAge = 32;
   return gi;
 }
 
@@ -608,6 +661,7 @@ TEST(RestirGiDiag, Configurations) {
       for (const char* stage : kStagesAt) frame.requestDebugView(stage);
     if (stagesAt) frame.requestDebugView("gbuffer.normals");
     ImageRGBA32F sum;
+    double frameRelMse = 0.0;  // mean over the 2nd half of each frame's relMSE: noise, boiling and bias
     const int frames = std::getenv("RESTIR_FRAMES") ? std::atoi(std::getenv("RESTIR_FRAMES")) : 64;
     for (int i = 0; i < frames; ++i) {
       frame.render(camera);
@@ -617,7 +671,10 @@ TEST(RestirGiDiag, Configurations) {
           size_t x = atX * v.width / width, y = atY * v.height / height;
           stageAt[k] += luminance(v, y * v.width + x) / double(frames - frames / 2);
         }
-      if (i >= frames / 2) accumulate(sum, frame.debugViewImage("composite"));
+      if (i >= frames / 2) {
+        accumulate(sum, frame.debugViewImage("composite"));
+        frameRelMse += compare(frame.debugViewImage("composite"), reference).relMse / double(frames - frames / 2);
+      }
       // RESTIR_CURVE: the convergence curve, relMSE and mean ratio at frames 2^k.
       // RESTIR_CURVE=all: every frame.
       const bool everyFrame = curve && std::string(std::getenv("RESTIR_CURVE")) == "all";
@@ -635,8 +692,9 @@ TEST(RestirGiDiag, Configurations) {
     }
     Comparison last = compare(frame.debugViewImage("composite"), reference);
     Comparison mean = compare(scaled(sum, 1.0f / float(frames - frames / 2)), reference);
-    std::printf("%s: last frame relMSE %.4f ratio %.4f; mean of 2nd half relMSE %.4f ratio %.4f\n",
-                name.c_str(), last.relMse, last.meanRatio, mean.relMse, mean.meanRatio);
+    std::printf("%s: last frame relMSE %.4f ratio %.4f; mean of 2nd half relMSE %.4f ratio %.4f; "
+                "frames of the 2nd half: mean relMSE %.4f\n",
+                name.c_str(), last.relMse, last.meanRatio, mean.relMse, mean.meanRatio, frameRelMse);
     writePair("diag-" + name, frame.debugViewImage("composite"), reference);
     printWorstPixels(scaled(sum, 1.0f / float(frames - frames / 2)), reference, 8);
     if (stagesAt && std::getenv("RESTIR_STAGES_NEIGHBOURS")) {

@@ -10,7 +10,7 @@
 //   *.sample    RGBA32F  x2 (xyz; for a sky sample x1 + direction * RESTIR_GI_SKY_DISTANCE),
 //                        W, the unbiased contribution weight (solid angle at x1, 1/sr)
 //   *.radiance  RGBA32F  outgoing radiance at x2 towards x1 (rgb), M (confidence, samples seen)
-//   *.origin    RGBA32F  x1, the primary vertex the sample belongs to (xyz), RESTIR_GI_KIND_*
+//   *.origin    RGBA32F  x1, the primary vertex the sample belongs to (xyz), RESTIR_GI_KIND_* | age << 2
 //   *.normals   RGBA16F  octahedral shading normal at x1 (xy), geometric normal at x2 (zw)
 // The target function is p_hat(x2) = luminance(radiance) * max(0, cos(n1, x2 - x1)), zero
 // where x2 lies below x1's geometric surface; the estimate of gi.diffuse (irradiance / pi per
@@ -80,7 +80,8 @@ struct RestirGiConstants {
   // RESTIR_GI_BLUE_NOISE_SIDE^2 uints, row-major: two blue-noise rank maps (src/core/blue_noise.h)
   // packed as rankA | rankB << 16, for gi-prepare-diffuse-rays' ray directions
   DeviceAddress blueNoise;
-  uint pad0, pad1;
+  uint maxSampleAge;  // temporal: history samples older than this many frames are dropped (0 = off)
+  uint pad1;
 };
 BOUNCE_CHECK_SIZE(RestirGiConstants, 144);
 

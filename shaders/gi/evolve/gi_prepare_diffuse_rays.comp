@@ -37,7 +37,7 @@ vec4 validationRay(RestirGiConstants gi, ivec2 pixel, PrimaryVertex x1) {
   vec4 sampleW = imageLoad(previousSample, q);
   vec4 origin = imageLoad(previousOrigin, q);
   vec3 originNormal = decodeOctahedral(imageLoad(previousNormals, q).xy);
-  if (uint(origin.w + 0.5) == RESTIR_GI_KIND_NONE || !(sampleW.w > 0.0) ||
+  if (reservoirKind(origin.w) == RESTIR_GI_KIND_NONE || !(sampleW.w > 0.0) ||
       !sameSurface(gi, x1, origin.xyz, originNormal))
     return vec4(0.0);
   vec3 direction;

@@ -42,9 +42,14 @@ layout(set = 1, binding = GI_TEMPORAL_BINDING_CURRENT_CANDIDATE_MEAN, rg32f) uni
 
 const uint RANDOM_GI_PERMUTATION = 0x47490006u;
 
-Reservoir loadPrevious(ivec2 q) {
-  return unpackReservoir(imageLoad(previousSample, q), imageLoad(previousRadiance, q),
-                         imageLoad(previousOrigin, q), imageLoad(previousNormals, q));
+// Last frame's reservoir at q, one frame older; none when its sample has outlived
+// maxSampleAge (RestirGiSettings).
+Reservoir loadPrevious(RestirGiConstants gi, ivec2 q) {
+  Reservoir r = unpackReservoir(imageLoad(previousSample, q), imageLoad(previousRadiance, q),
+                                imageLoad(previousOrigin, q), imageLoad(previousNormals, q));
+  r.age += 1u;
+  if (gi.maxSampleAge > 0u && r.age > gi.maxSampleAge) return emptyReservoir();
+  return r;
 }
 
 bool insideGi(RestirGiConstants gi, ivec2 q) {
@@ -78,7 +83,7 @@ ivec2 canonicalHistoryPixel(FrameConstants f, RestirGiConstants gi, ivec2 pixel,
     ivec2 q = base + ivec2(i & 1, i >> 1);
     candidates[i] = emptyReservoir();
     if (weights[i] <= 1e-4 || !insideGi(gi, q)) continue;
-    Reservoir r = loadPrevious(q);
+    Reservoir r = loadPrevious(gi, q);
     if (r.M <= 0.0 || !sameSurface(gi, x1, r.origin, r.originNormal)) continue;
     candidates[i] = r;
     total += weights[i];
@@ -109,7 +114,7 @@ Reservoir permutedHistory(FrameConstants f, RestirGiConstants gi, ivec2 q, uint 
   if (!insideGi(gi, p)) return emptyReservoir();
   if ((gi.flags & RESTIR_GI_FLAG_SPATIAL_VALIDATION) != 0u && imageLoad(occlusionValidity, p).x < 0.5)
     return emptyReservoir();
-  Reservoir r = loadPrevious(p);
+  Reservoir r = loadPrevious(gi, p);
   if (r.M <= 0.0 || !sameSurface(gi, x1, r.origin, r.originNormal)) return emptyReservoir();
   return r;
 }
@@ -234,6 +239,7 @@ void main() {
     // freshly selected samples are biased bright, the ratio with them too.)
     vec2 sums = neighbourhoodLuminances(gi, g);  // stored, re-traced
     result.M = max(min(result.M, gi.temporalMaxM) * radianceValidity(gi, sums.x, sums.y), 1.0);
+    result.age += 1u;  // a history sample, re-traced: its age as of this frame
   }
   result.origin = x1.position;
   result.originNormal = x1.shadingNormal;

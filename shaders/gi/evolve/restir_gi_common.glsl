@@ -45,6 +45,7 @@ struct Reservoir {
   float M;              // confidence
   vec3 origin;          // x1
   uint kind;            // RESTIR_GI_KIND_*
+  uint age;             // frames since the sample was traced as a fresh candidate
   vec3 originNormal;    // shading normal at x1
   vec3 sampleNormal;    // geometric normal at x2 (surface samples)
 };
@@ -57,10 +58,14 @@ Reservoir emptyReservoir() {
   r.M = 0.0;
   r.origin = vec3(0.0);
   r.kind = RESTIR_GI_KIND_NONE;
+  r.age = 0u;
   r.originNormal = vec3(0.0, 0.0, 1.0);
   r.sampleNormal = vec3(0.0, 0.0, 1.0);
   return r;
 }
+
+// The kind from the origin image's w, which holds kind | age << 2 (exact in a float up to 2^24).
+uint reservoirKind(float originW) { return uint(originW + 0.5) & 3u; }
 
 Reservoir unpackReservoir(vec4 sampleW, vec4 radianceM, vec4 originKind, vec4 normals) {
   Reservoir r;
@@ -69,7 +74,8 @@ Reservoir unpackReservoir(vec4 sampleW, vec4 radianceM, vec4 originKind, vec4 no
   r.radiance = radianceM.rgb;
   r.M = radianceM.w;
   r.origin = originKind.xyz;
-  r.kind = uint(originKind.w + 0.5);
+  r.kind = reservoirKind(originKind.w);
+  r.age = uint(originKind.w + 0.5) >> 2u;
   r.originNormal = decodeOctahedral(normals.xy);
   r.sampleNormal = decodeOctahedral(normals.zw);
   // Nothing non-finite survives into history (DESIGN.md §1).
@@ -83,7 +89,7 @@ void packReservoir(Reservoir r, out vec4 sampleW, out vec4 radianceM, out vec4 o
                    out vec4 normals) {
   sampleW = vec4(r.samplePosition, r.W);
   radianceM = vec4(r.radiance, r.M);
-  originKind = vec4(r.origin, float(r.kind));
+  originKind = vec4(r.origin, float(r.kind | (min(r.age, 1u << 20u) << 2u)));
   normals = vec4(encodeOctahedral(r.originNormal), encodeOctahedral(r.sampleNormal));
 }
 

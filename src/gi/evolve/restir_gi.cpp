@@ -94,6 +94,7 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
       (s.spatialReuse && s.spatialValidation && s.patchReservoir ? gpu::RESTIR_GI_FLAG_PATCH : 0u);
   c.maxPathBounces = s.maxBounces;
   c.temporalMaxM = s.temporalMaxM;
+  c.maxSampleAge = s.maxSampleAge;
   c.planeTolerance = s.planeTolerance;
   c.normalTolerance = s.normalTolerance;
   c.maxJacobian = s.maxJacobian;

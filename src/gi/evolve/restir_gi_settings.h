@@ -41,6 +41,16 @@ struct RestirGiSettings {
   // temporal reuse (the unbiased configuration: neighbours' samples carry a Jacobian and no
   // visibility test).
   uint32_t temporalHistorySamples = 5;
+  // Frames a sample may live in history (frames since it was traced as a fresh candidate;
+  // validation re-traces and reuse keep its age): gi-restir-temporal drops older history
+  // reservoirs, so the pixel starts again from its fresh candidate. A sample much brighter
+  // than its neighbourhood's mean is rarely outweighed by new candidates (a weight of ~1 against
+  // a sum of ~20 at M = 10) and permutation reuse hands it to neighbours meanwhile: without a
+  // limit it lingers for tens of frames as a blotch (slow boiling). Lower: shorter blotches,
+  // more noise, darker (8 frames: -3 % on sunroom). 0 = no limit, the default: on static
+  // sunroom (RestirGiDiag, README "known gaps") 16 frames gave no gain in per-frame error above
+  // the run-to-run spread.
+  uint32_t maxSampleAge = 0;
   // Validation rays (gi-prepare-diffuse-rays): every validationPeriod-th frame (seed 000: 3)
   // each pixel with history re-traces its reservoir's direction instead of a fresh candidate.
   // Smaller: faster reaction to moved geometry and changed light, fewer new candidates (slower
