@@ -201,16 +201,17 @@ TEST(ClipmapCache, FurnaceConvergesToAnalyticIrradiance) {
 // fullRefreshBounces (3) times, so light crosses three bounces per frame. On `sunroom`, lit
 // through one window, most of the light is several bounces deep. Mean of gi-cache-lookup over
 // frames 5-8 and 13-16 against frames 49-64 of the same run (the converged level).
-// The levels vary from run to run (cells are allocated in a racing order) and with the CPU
-// lavapipe runs on: without AVX/FMA the converged level comes out ~3 % higher and the early
-// frames ~2 % lower (the path tracer's images agree to an MSE of 6e-16 between the two, so traversal is
-// not it; the cause inside the cache is not pinned down). Measured, frames 5-8 | 13-16:
+// The levels vary from run to run (cells are allocated in a racing order). They also varied
+// with the CPU lavapipe runs on until the cell wobble's sine got its phase reduced to one period
+// first (cache_lookup.glsl): without AVX/FMA the converged level came out ~3 % higher and the
+// early frames ~2 % lower. Measured, frames 5-8 | 13-16, before that change:
 //   with AVX2 + FMA (this workstation, 8 runs): three bounces per frame 0.92-0.98 | 0.97-1.04,
 //     one bounce 0.70-0.75 | 0.92-1.01, no refresh (desktop: each entry refreshed every 4
 //     frames, diluted by its running mean) 0.48-0.57 | 0.66-0.73;
 //   without AVX (CI's machine; GALLIUM_OVERRIDE_CPU_CAPS=sse4.1 reproduces its numbers, 5
 //     runs): three bounces 0.89-0.94 | 0.94-0.96, one bounce 0.71-0.74 | 0.90-0.94, no
-//     refresh 0.50-0.51 | 0.66-0.68.
+//     refresh 0.50-0.51 | 0.66-0.68;
+// after it: three bounces 0.94-0.98 with AVX2 (2 runs), 0.935-0.948 without AVX (3 runs).
 // Bounds, below the lowest seen by about the spread of a run: three bounces >= 0.85 by frames
 // 5-8 and at most half of one bounce's shortfall there (measured 0.12-0.39 of it); one bounce
 // >= 0.85 by frames 13-16 and at least 0.05 behind three bounces at frames 5-8; no refresh at

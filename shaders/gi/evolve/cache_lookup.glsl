@@ -41,7 +41,10 @@ vec3 clipmapSamplePoint(vec3 position, vec3 normal, float cellSize, vec2 jitter)
   vec3 p = position + normal * (0.5 * cellSize);
   // Periodic wobble of a quarter cell with a period of about 3.7 cells (an irrational ratio,
   // so it does not line up with the grid).
-  p += (0.25 * cellSize) * sin(p.yzx * (2.0 * PI / (3.7 * cellSize)));
+  // The phase is reduced to one period before the sine: p / cellSize reaches thousands far from
+  // the origin, where sin's own range reduction differs between devices (GPU fast paths,
+  // lavapipe with and without FMA) and would move cell boundaries.
+  p += (0.25 * cellSize) * sin((2.0 * PI) * fract(p.yzx / (3.7 * cellSize)));
   vec3 t, b;
   orthonormalBasis(normal, t, b);
   p += cellSize * (jitter.x * t + jitter.y * b);
