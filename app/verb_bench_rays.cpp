@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common_options.h"
-#include "render/gpu_scene.h"
-#include "render/ray_bench.h"
+#include "rt/gpu_scene.h"
+#include "passes/ray_bench.h"
 #include "verbs.h"
 
 namespace bounce::app {

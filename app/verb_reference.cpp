@@ -15,7 +15,7 @@
 #include "common_options.h"
 #include "core/error.h"
 #include "reference/path_tracer.h"
-#include "render/gpu_scene.h"
+#include "rt/gpu_scene.h"
 #include "tools/image_io.h"
 #include "verbs.h"
 

@@ -15,10 +15,10 @@
 #include "common_options.h"
 #include "core/error.h"
 #include "passes/primary_view.h"
-#include "render/animation_player.h"
-#include "render/gpu_scene.h"
-#include "render/hybrid_frame.h"
-#include "render/settings.h"
+#include "frame/animation_player.h"
+#include "rt/gpu_scene.h"
+#include "frame/hybrid_frame.h"
+#include "frame/presets.h"
 #include "scene/animation.h"
 #include "tools/image_io.h"
 #include "verbs.h"
@@ -32,6 +32,7 @@ constexpr const char* kDefaultResolution = "640x360";
 struct RenderOptions {
   CommonOptions common;
   std::string view = "tonemap";
+  bool listViews = false;
   std::string out = "out/render.png";
   uint32_t frames = 8;
   std::string gi = "evolve";  // seed 000's full diffuse GI (issue 6)
@@ -157,7 +158,7 @@ HybridSettings settingsFrom(const RenderOptions& options) {
   settings.skyAmbientStrength = options.skyAmbient;
   if (options.shadowDivisor > 8)
     fail("--shadow-divisor {}: expected 1 .. 8", options.shadowDivisor);
-  if (options.shadowDivisor != 0) settings.shadowDivisor = options.shadowDivisor;
+  if (options.shadowDivisor != 0) settings.shadows.divisor = options.shadowDivisor;
   settings.lambert = options.lambert;
   return settings;
 }
@@ -248,6 +249,16 @@ SceneAnimation animationFrom(const RenderOptions& options, const Scene& scene) {
   return animation;
 }
 
+// The frame graph's names, in declaration order.
+int listViews(HybridFrame& frame) {
+  std::printf("passes:\n");
+  for (const std::string& name : frame.passNames()) std::printf("  %s\n", name.c_str());
+  std::printf("resources:\n");
+  for (const std::string& name : frame.resourceNames()) std::printf("  %s\n", name.c_str());
+  std::printf("ray-cast views: %s\n", primaryViewNames());
+  return 0;
+}
+
 int renderHybridFrame(const RenderOptions& options) {
   if (options.frames == 0) fail("--frames 0: render at least one frame");
   HybridSettings settings = settingsFrom(options);
@@ -256,6 +267,7 @@ int renderHybridFrame(const RenderOptions& options) {
   std::unique_ptr<vk::Context> context = options.common.createContext();
   GpuScene gpuScene(*context, scene);
   HybridFrame frame(*context, gpuScene, scene, settings);
+  if (options.listViews) return listViews(frame);
   frame.requestDebugView(options.view);
   AnimationPlayer player(scene, std::move(animation));
   bool everyFrame = outIsDirectory(options.out);
@@ -327,14 +339,14 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                 "continued path at the 2nd vertex, no denoisers");
   cmd->add_option("--restir-max-sample-age", options->restirMaxSampleAge,
                   "Drop ReSTIR GI history samples older than this many frames (0: no limit, the "
-                  "default; see README, slow boiling)");
+                  "default; see docs/gi/restir-gi.md, slow boiling)");
   cmd->add_option("--restir-validation-period", options->restirValidationPeriod,
                   "Validation rays every N frames (0: off, the default; seed 000 uses 3, for "
-                  "light or geometry that jumps: see README)");
+                  "light or geometry that jumps: see docs/gi/restir-gi.md)");
   cmd->add_option("--restir-history-brightening", options->restirHistoryBrightening,
                   "Cut ReSTIR GI history where a neighbourhood's fresh candidates stay brighter "
                   "than their running mean by this ratio (0: off, the default; 1.3 with "
-                  "--restir-validation-period 3 for jumping light: see README)");
+                  "--restir-validation-period 3 for jumping light: see docs/gi/restir-gi.md)");
   cmd->add_flag("--no-gi-denoise", options->noGiDenoise, "Turn the GI denoisers off");
   cmd->add_flag("--no-occluder-visibility", options->noOccluderVisibility,
                 "Pixels beside an occluder reuse ReSTIR GI samples without a visibility test and "
@@ -343,12 +355,14 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                   "GI and cache rays read textures at the mip at most this many texels wide "
                   "(default 16, seed 000's coarse mip; 0: full resolution)");
   cmd->add_option("--view", options->view,
-                  std::string("What to write: a pass of the frame (scene-update, vbuffer, gbuffer, "
-                              "shadows-trace, shadows-denoise, sky, composite, tonemap; with GI "
-                              "the cache-* and gi-* passes, e.g. cache, gi-restir-temporal) or a "
-                              "resource (gbuffer.normals, gi.diffuse, ...), or a ray-cast view: ") +
+                  std::string("What to write: any pass or resource of the frame (its first "
+                              "written image), as --list-views prints them for the chosen --gi "
+                              "and --preset, or a ray-cast view: ") +
                       primaryViewNames())
       ->capture_default_str();
+  cmd->add_flag("--list-views", options->listViews,
+                "Print the passes and resources the frame declares for these settings (what "
+                "--view accepts) and exit");
   cmd->add_option("--out", options->out,
                   "Output image (.png sRGB, .exr linear) of the last frame, or a directory that "
                   "gets every frame as frame_NNNN.png")

@@ -21,14 +21,15 @@
 
 #include <gtest/gtest.h>
 
+#include "frame/presets.h"
 #include "harness.h"
 
 #include "gi/gi_light_tables.h"
 #include "passes/image_pass.h"
 #include "passes/primary_view.h"
-#include "render/animation_player.h"
-#include "render/gpu_scene.h"
-#include "render/hybrid_frame.h"
+#include "frame/animation_player.h"
+#include "rt/gpu_scene.h"
+#include "frame/hybrid_frame.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
 #include "shared/camera.h"

@@ -9,11 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include "frame/presets.h"
 #include "harness.h"
 
 #include "reference/path_tracer.h"
-#include "render/gpu_scene.h"
-#include "render/hybrid_frame.h"
+#include "rt/gpu_scene.h"
+#include "frame/hybrid_frame.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
 #include "tools/flip.h"
@@ -62,8 +63,8 @@ DirectLightComparison compareDirectLight(const DirectLightCase& c) {
   HybridSettings settings;
   settings.width = c.width;
   settings.height = c.height;
-  settings.shadowDivisor = c.shadowDivisor;
-  settings.shadowMaxHistory = c.shadowMaxHistory;
+  settings.shadows.divisor = c.shadowDivisor;
+  settings.shadows.maxHistory = c.shadowMaxHistory;
   HybridFrame frame(context, gpuScene, scene, settings);
   frame.requestDebugView("composite");
   for (int i = 0; i < c.frames; ++i) frame.render(camera);

@@ -10,8 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "render/gpu_scene.h"
-#include "render/trace_rays.h"
+#include "rt/gpu_scene.h"
+#include "passes/trace_rays.h"
 #include "rt/cpu_trace.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"

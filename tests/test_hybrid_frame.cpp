@@ -13,13 +13,14 @@
 
 #include <gtest/gtest.h>
 
+#include "frame/presets.h"
 #include "harness.h"
 #include <glm/gtc/packing.hpp>
 
 #include "passes/primary_view.h"
-#include "render/gpu_scene.h"
-#include "render/hybrid_frame.h"
-#include "render/trace_rays.h"
+#include "rt/gpu_scene.h"
+#include "frame/hybrid_frame.h"
+#include "passes/trace_rays.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
 #include "shared/camera.h"

@@ -23,12 +23,13 @@
 #include <glm/gtc/packing.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "frame/presets.h"
 #include "core/error.h"
 #include "harness.h"
 #include "passes/primary_view.h"
-#include "render/animation_player.h"
-#include "render/gpu_scene.h"
-#include "render/hybrid_frame.h"
+#include "frame/animation_player.h"
+#include "rt/gpu_scene.h"
+#include "frame/hybrid_frame.h"
 #include "scene/animation.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
@@ -328,7 +329,7 @@ TEST(Motion, LastCompositeReprojectedByVelocityMatchesThisCompositeOutsideDisocc
   GpuScene gpuScene(context, scene);
   HybridSettings settings = smallSettings(128, 72);
   settings.skyAmbientStrength = 1.0f;
-  settings.shadowDivisor = 1;  // a half-res shadow grid shifts against the scene as it moves
+  settings.shadows.divisor = 1;  // a half-res shadow grid shifts against the scene as it moves
   HybridFrame frame(context, gpuScene, scene, settings);
   for (const char* view : {"composite", "gbuffer.depth", "gbuffer.velocity", "gbuffer.flags"})
     frame.requestDebugView(view);

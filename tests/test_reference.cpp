@@ -21,7 +21,7 @@
 #include "harness.h"
 #include "reference/light_table.h"
 #include "reference/path_tracer.h"
-#include "render/gpu_scene.h"
+#include "rt/gpu_scene.h"
 #include "scene/load.h"
 #include "scene/procedural/furnace.h"
 #include "scene/procedural/mesh_builder.h"

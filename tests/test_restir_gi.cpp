@@ -19,11 +19,12 @@
 
 #include <gtest/gtest.h>
 
+#include "frame/presets.h"
 #include "harness.h"
 
 #include "reference/path_tracer.h"
-#include "render/gpu_scene.h"
-#include "render/hybrid_frame.h"
+#include "rt/gpu_scene.h"
+#include "frame/hybrid_frame.h"
 #include "scene/animation.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
@@ -88,7 +89,7 @@ HybridSettings giSettings(uint32_t width, uint32_t height, const RestirGiSetting
   HybridSettings settings = presetSettings(Preset::Desktop);
   settings.width = width;
   settings.height = height;
-  settings.shadowDivisor = 1;
+  settings.shadows.divisor = 1;
   settings.lambert = true;
   settings.gi = GiMode::Evolve;
   settings.restirGi = gi;

@@ -1,7 +1,7 @@
 // The slot through which a diffuse-GI system plugs into the hybrid frame (DESIGN.md §4).
-// HybridFrame::recordFrame declares the GBuffer and scene resources, hands their handles to the
-// system in FrameInputs, and the system declares its own passes on the same frame graph; they
-// must end by writing `gi.diffuse`, which `composite` reads.
+// The frame declares the GBuffer and scene resources, hands their handles to the system in
+// GiInputs, and the system declares its own passes on the same frame graph; they end by
+// writing `gi.diffuse`, which `composite` reads.
 //
 // What `gi.diffuse` holds: at each pixel, the outgoing diffuse radiance per unit albedo,
 // i.e. irradiance / pi at the primary hit (composite multiplies it by the diffuse albedo).
@@ -18,7 +18,9 @@
 #include <vulkan/vulkan.h>
 
 #include "graph/frame_graph.h"
-#include "render/settings.h"
+#include "passes/frame_context.h"
+#include "passes/gbuffer.h"
+#include "passes/shadows_denoise.h"
 #include "shared/hybrid_frame_io.h"
 
 namespace bounce {
@@ -29,23 +31,17 @@ namespace vk {
 class Context;
 }
 
-// This frame's resources, as the hybrid frame declared them.
-struct FrameInputs {
-  graph::BufferHandle frameConstants;  // gpu::FrameConstants (camera, sun, sky, resolution, ...)
-  VkDeviceAddress frameConstantsAddress = 0;
-  const gpu::FrameConstants* constants = nullptr;  // the CPU copy of this frame's constants
-  graph::BufferHandle instances;          // scene.instances (moving objects)
-  graph::BufferHandle previousInstances;  // scene.previous-instances
-  graph::BufferHandle tlas;               // scene.tlas-nodes
-  graph::ImageHandle baseColor;           // gbuffer.base-color: rgb base colour, a metallic
-  graph::ImageHandle normals;             // gbuffer.normals: xy shading, zw geometric (octahedral)
-  graph::HistoryImage depth;              // gbuffer.depth: view depth, current and previous
-  graph::ImageHandle uv;                  // gbuffer.uv
-  graph::ImageHandle velocity;            // gbuffer.velocity: pixels moved since last frame
-  graph::ImageHandle emissive;            // gbuffer.emissive: rgb emission, a roughness
-  graph::ImageHandle flags;               // gbuffer.flags: GBUFFER_FLAG_*
-  graph::ImageHandle sunVisibility;       // shadows.visibility (current): denoised, full res
-  VkExtent2D resolution{};
+// What a GI system reads from the frame: the frame's constants and scene arrays, the GBuffer and
+// the sun's denoised visibility.
+struct GiInputs {
+  FrameContext frame;
+  GBuffer gbuffer;
+  Shadows shadows;
+};
+
+// What a GI system produces.
+struct DiffuseGiOutput {
+  graph::ImageHandle diffuse;  // gi.diffuse (see above)
 };
 
 // One numbered fact about the last frame for `--timings` JSON (e.g. live cache cells).
@@ -57,9 +53,12 @@ struct GiStatistic {
 class DiffuseGi {
  public:
   virtual ~DiffuseGi() = default;
-  // Declares this frame's GI passes, which must write `output` (gi.diffuse, see above).
-  virtual void declare(graph::FrameGraph& graph, const FrameInputs& inputs,
-                       graph::ImageHandle output) = 0;
+  // Declares this frame's GI passes, the last of which writes gi.diffuse (see above).
+  virtual DiffuseGiOutput declare(graph::FrameGraph& graph, const GiInputs& inputs) = 0;
+  // The image a system creates for gi.diffuse.
+  static graph::ImageHandle createOutput(graph::FrameGraph& graph) {
+    return graph.createImage("gi.diffuse", {VK_FORMAT_R16G16B16A16_SFLOAT});
+  }
   // After the frame's submission has completed: read back statistics, advance counters.
   virtual void afterFrame() {}
   // Facts about the last completed frame, for `--timings` JSON and the README tables.
@@ -70,9 +69,5 @@ class DiffuseGi {
   // but the light it holds does not; rebuild it quickly.
   virtual void lightingCut() {}
 };
-
-// The system for `settings.gi`; nullptr for GiMode::None (gi.diffuse then stays zero).
-std::unique_ptr<DiffuseGi> makeDiffuseGi(vk::Context& context, GpuScene& gpuScene,
-                                         const Scene& scene, const HybridSettings& settings);
 
 }  // namespace bounce

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "reference/light_table.h"
-#include "render/gpu_scene.h"
+#include "rt/gpu_scene.h"
 #include "scene/scene.h"
 #include "shared/reference_io.h"
 

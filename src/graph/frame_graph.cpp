@@ -206,6 +206,16 @@ PassBuilder& PassBuilder::write(BufferHandle buffer, Access access) {
   return use(buffer.index, access, true);
 }
 
+PassBuilder& PassBuilder::read(ImageHandle image, Access access, uint32_t binding) {
+  graph_.resourceDecl(image.index, "image");
+  return use(image.index, access, false, binding);
+}
+
+PassBuilder& PassBuilder::write(ImageHandle image, Access access, uint32_t binding) {
+  graph_.resourceDecl(image.index, "image");
+  return use(image.index, access, true, binding);
+}
+
 PassBuilder& PassBuilder::sideEffects() {
   graph_.passes_[pass_].sideEffects = true;
   return *this;
@@ -218,7 +228,7 @@ PassBuilder& PassBuilder::record(RecordFn callback) {
 
 // One declaration per resource and pass: two reads in the same layout merge (a texture read in
 // the vertex and fragment stages); anything else is ambiguous about layout or ordering.
-PassBuilder& PassBuilder::use(uint32_t resource, Access access, bool asWrite) {
+PassBuilder& PassBuilder::use(uint32_t resource, Access access, bool asWrite, uint32_t binding) {
   FrameGraph::PassDecl& pass = graph_.passes_[pass_];
   const FrameGraph::ResourceDecl& decl = graph_.resources_[resource];
   AccessInfo info = accessInfo(access, pass.kind);
@@ -231,8 +241,15 @@ PassBuilder& PassBuilder::use(uint32_t resource, Access access, bool asWrite) {
   if (decl.role == FrameGraph::HistoryRole::Previous && info.writes)
     fail("pass '{}' writes '{}': the previous frame's history is read-only; write '{}'", pass.name,
          decl.name, decl.group);
+  for (const FrameGraph::ResourceUse& other : pass.uses)
+    if (binding != kNoBinding && other.binding == binding && other.resource != resource)
+      fail("pass '{}' binds '{}' and '{}' both at binding {}", pass.name,
+           graph_.resources_[other.resource].name, decl.name, binding);
   for (FrameGraph::ResourceUse& earlier : pass.uses) {
     if (earlier.resource != resource) continue;
+    if (binding != kNoBinding && earlier.binding != kNoBinding && earlier.binding != binding)
+      fail("pass '{}' binds '{}' twice (bindings {} and {}): one image, one binding", pass.name,
+           decl.name, earlier.binding, binding);
     bool mergeable = !info.writes && !earlier.info.writes &&
                      (!decl.isImage || earlier.info.layout == info.layout);
     if (!mergeable)
@@ -242,9 +259,10 @@ PassBuilder& PassBuilder::use(uint32_t resource, Access access, bool asWrite) {
           pass.name, decl.name, accessName(earlier.access), accessName(access));
     earlier.info.stages |= info.stages;
     earlier.info.access |= info.access;
+    if (binding != kNoBinding) earlier.binding = binding;
     return *this;
   }
-  pass.uses.push_back({resource, access, info});
+  pass.uses.push_back({resource, access, info, binding});
   return *this;
 }
 

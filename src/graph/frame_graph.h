@@ -90,12 +90,18 @@ class PassBuilder {
   PassBuilder& read(BufferHandle buffer, Access access);
   PassBuilder& write(ImageHandle image, Access access);
   PassBuilder& write(BufferHandle buffer, Access access);
+  // The same, and the image is bound to the pass's shader at `binding` (a storage image of set
+  // 1; the binding constants live in the pass's shaders/shared/*_io.h). The pass's record
+  // callback finds every bound image in PassResources::boundImages(): an image is named once
+  // in C++, where it is declared, and once in GLSL.
+  PassBuilder& read(ImageHandle image, Access access, uint32_t binding);
+  PassBuilder& write(ImageHandle image, Access access, uint32_t binding);
   // Keeps the pass even when nothing reads what it writes (it talks to the host, say).
   PassBuilder& sideEffects();
   PassBuilder& record(RecordFn callback);
 
  private:
-  PassBuilder& use(uint32_t resource, Access access, bool asWrite);
+  PassBuilder& use(uint32_t resource, Access access, bool asWrite, uint32_t binding = kNoBinding);
   FrameGraph& graph_;
   uint32_t pass_;
 };
@@ -147,6 +153,10 @@ class FrameGraph {
   // calls it; tests without a GPU call it instead.
   void endFrame();
   uint64_t frameIndex() const { return frameIndex_; }
+  // The names this frame declared (the graph's own debug-view passes and readbacks left out):
+  // what --view and requestDebugView() accept.
+  std::vector<std::string> declaredPassNames() const;
+  std::vector<std::string> declaredResourceNames() const;
   // The compiled plan as text: passes, barriers, culled passes.
   std::string describe() const;
 
@@ -181,6 +191,7 @@ class FrameGraph {
     uint32_t resource = 0;
     Access access = Access::StorageRead;
     AccessInfo info;
+    uint32_t binding = kNoBinding;  // the shader binding of a bound image
   };
   struct PassDecl {
     std::string name;
@@ -268,6 +279,7 @@ class FrameGraph {
   VkExtent2D resolution_{};
   std::map<std::string, PhysicalResource> physical_;
   std::vector<Resolved> resolved_;
+  std::vector<BoundImage> boundImages_;  // the recording pass's, scratch reused every frame
   std::vector<VkImageMemoryBarrier2> imageBarriers_;  // scratch, reused every frame
   std::vector<VkBufferMemoryBarrier2> bufferBarriers_;
 };

@@ -36,6 +36,18 @@ void FrameGraph::removeInternalDeclarations() {
 
 // ---- debug views ----------------------------------------------------------------------------
 
+std::vector<std::string> FrameGraph::declaredPassNames() const {
+  std::vector<std::string> names;
+  for (size_t i = 0; i < declaredPasses_; ++i) names.push_back(passes_[i].name);
+  return names;
+}
+
+std::vector<std::string> FrameGraph::declaredResourceNames() const {
+  std::vector<std::string> names;
+  for (size_t i = 0; i < declaredResources_; ++i) names.push_back(resources_[i].name);
+  return names;
+}
+
 std::string FrameGraph::validNames() const {
   std::string passes, resources;
   for (size_t i = 0; i < declaredPasses_; ++i)

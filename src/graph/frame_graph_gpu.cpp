@@ -224,8 +224,13 @@ void FrameGraph::recordPass(VkCommandBuffer cmd, const PassPlan& pass, vk::GpuTi
   recordBarriers(cmd, pass.barriers);
   if (timer) timer->begin(cmd, pass.name);
   context_->beginDebugLabel(cmd, pass.name);
-  const RecordFn& record = passes_[pass.pass].record;
-  if (record) record(cmd, PassResources(*this, pass.pass));
+  const PassDecl& decl = passes_[pass.pass];
+  PassResources resources(*this, pass.pass);
+  boundImages_.clear();  // keeps its capacity
+  for (const ResourceUse& use : decl.uses)
+    if (use.binding != kNoBinding)
+      boundImages_.push_back({use.binding, resources.image({use.resource})});
+  if (decl.record) decl.record(cmd, resources);
   context_->endDebugLabel(cmd);
   if (timer) timer->end(cmd);
 }
@@ -321,6 +326,8 @@ bool PassResources::historyValid(const HistoryImage& history) const {
 bool PassResources::historyValid(const HistoryBuffer& history) const {
   return graph_.historyValid(history);
 }
+
+std::span<const BoundImage> PassResources::boundImages() const { return graph_.boundImages_; }
 
 const std::string& PassResources::passName() const {
   return graph_.passes_[pass_].name;

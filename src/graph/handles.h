@@ -6,6 +6,7 @@
 namespace bounce::graph {
 
 constexpr uint32_t kNoResource = UINT32_MAX;
+constexpr uint32_t kNoBinding = UINT32_MAX;
 
 struct ImageHandle {
   uint32_t index = kNoResource;

@@ -3,6 +3,7 @@
 // not have synchronized it.
 #pragma once
 #include <cstdint>
+#include <span>
 #include <string>
 
 #include <vulkan/vulkan.h>
@@ -30,6 +31,12 @@ struct ResolvedBuffer {
   void* mapped = nullptr;  // host pointer of readback buffers
 };
 
+// An image the pass declared with a shader binding (PassBuilder::read/write with a binding).
+struct BoundImage {
+  uint32_t binding = kNoBinding;
+  ResolvedImage image;
+};
+
 class PassResources {
  public:
   PassResources(const FrameGraph& graph, uint32_t pass) : graph_(graph), pass_(pass) {}
@@ -39,6 +46,9 @@ class PassResources {
   // False in a history's first frame and after FrameGraph::resetHistory(): ignore `previous`.
   bool historyValid(const HistoryImage& history) const;
   bool historyValid(const HistoryBuffer& history) const;
+
+  // Every image this pass declared with a binding, in declaration order.
+  std::span<const BoundImage> boundImages() const;
 
   const std::string& passName() const;
   VkExtent2D renderResolution() const;

@@ -6,12 +6,13 @@
 // flight then).
 #pragma once
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "graph/pass_resources.h"
-#include "render/gpu_scene.h"
+#include "rt/gpu_scene.h"
 #include "shared/hybrid_frame_io.h"
 #include "vk/pipeline.h"
 
@@ -33,10 +34,21 @@ class ComputePass {
     bindSets(cmd, images);
     pipeline_.push(cmd, constants);
   }
+  // The same with the images the pass declared with bindings (graph::PassBuilder::read/write
+  // with a binding): every binding of set 1 exactly once.
+  template <typename T>
+  void bind(VkCommandBuffer cmd, const T& constants, const graph::PassResources& resources) {
+    bindSets(cmd, resources.boundImages());
+    pipeline_.push(cmd, constants);
+  }
   const vk::ComputePipeline& pipeline() const { return pipeline_; }
 
  private:
   void bindSets(VkCommandBuffer cmd, const std::vector<ImageBinding>& images);
+  void bindSets(VkCommandBuffer cmd, std::span<const graph::BoundImage> images);
+  void writeImage(size_t slot, uint32_t binding, const graph::ResolvedImage& image,
+                  uint64_t& seen);
+  std::vector<graph::BoundImage> scratch_;  // the pair form, converted; reused
 
   vk::Context& context_;
   const GpuScene& scene_;
@@ -58,6 +70,9 @@ class ImageComputePass : public ComputePass {
 
   // bind(), then covers `extent` with HYBRID_GROUP_SIZE^2 groups.
   void record(VkCommandBuffer cmd, const std::vector<ImageBinding>& images,
+              const gpu::HybridPassConstants& constants, VkExtent2D extent);
+  // bind() with the pass's declared bindings, then covers `extent`.
+  void record(VkCommandBuffer cmd, const graph::PassResources& resources,
               const gpu::HybridPassConstants& constants, VkExtent2D extent);
 };
 

@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "render/gpu_scene.h"
+#include "rt/gpu_scene.h"
 #include "scene/scene.h"
 #include "shared/camera.h"
 #include "tools/image_io.h"

@@ -9,7 +9,7 @@
 #include <functional>
 
 #include "reference/light_table.h"
-#include "render/gpu_scene.h"
+#include "rt/gpu_scene.h"
 #include "scene/scene.h"
 #include "tools/image_io.h"
 #include "vk/pipeline.h"

@@ -1,7 +1,7 @@
 // Time-varying scene state (issue 4, "Motion and time"): per-instance transform tracks, a
 // camera path and a time-of-day track, evaluated at a time t in seconds. Evaluation allocates
 // nothing on the GPU side: the renderer uploads the evaluated transforms into buffers it made
-// at init (render/gpu_scene.h, GpuScene::setInstanceTransforms).
+// at init (rt/gpu_scene.h, GpuScene::setInstanceTransforms).
 //
 // Transform tracks follow glTF animation semantics (glTF 2.0 §3.11): each of translation,
 // rotation (unit quaternion, slerp) and scale is a separate channel of keyframes; a missing

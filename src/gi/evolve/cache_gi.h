@@ -12,10 +12,9 @@ namespace bounce {
 class CacheGi final : public DiffuseGi {
  public:
   CacheGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
-          const HybridSettings& settings);
+          const ClipmapCacheSettings& settings);
 
-  void declare(graph::FrameGraph& graph, const FrameInputs& inputs,
-               graph::ImageHandle output) override;
+  DiffuseGiOutput declare(graph::FrameGraph& graph, const GiInputs& inputs) override;
   void afterFrame() override { cache_.afterFrame(); }
   std::vector<GiStatistic> statistics() const override { return cache_.statistics(); }
   void resetHistory() override { cache_.resetHistory(); }

@@ -95,11 +95,11 @@ gpu::ClipmapCacheAddresses ClipmapCache::addresses() const {
 
 // Cascade c's window is the 32^3 cells of side finestCellSize * 2^c centred on the cell that
 // holds the camera; it moves by whole cells, so cells inside both windows keep their slot.
-gpu::ClipmapCacheConstants ClipmapCache::makeConstants(const FrameInputs& inputs) const {
+gpu::ClipmapCacheConstants ClipmapCache::makeConstants(const GiInputs& inputs) const {
   gpu::ClipmapCacheConstants c{};
   c.buffers = addresses();
   c.lights = lights_.address();
-  glm::vec3 camera = inputs.constants ? inputs.constants->camera.position : glm::vec3(0.0f);
+  glm::vec3 camera = inputs.frame.hostConstants ? inputs.frame.hostConstants->camera.position : glm::vec3(0.0f);
   for (uint32_t cascade = 0; cascade < gpu::CLIPMAP_CASCADES; ++cascade) {
     float cell = settings_.finestCellSize * float(1u << cascade);
     glm::ivec3 centre = glm::ivec3(glm::floor(camera / cell));
@@ -107,7 +107,7 @@ gpu::ClipmapCacheConstants ClipmapCache::makeConstants(const FrameInputs& inputs
   }
   c.cameraPosition = camera;
   c.finestCellSize = settings_.finestCellSize;
-  c.frameIndex = inputs.constants ? inputs.constants->frameIndex : uint32_t(frames_);
+  c.frameIndex = inputs.frame.hostConstants ? inputs.frame.hostConstants->frameIndex : uint32_t(frames_);
   c.raysPerCell = settings_.raysPerCell;
   c.validationRaysPerCell = settings_.validationRaysPerCell;
   c.flags = settings_.alphaTest ? gpu::CLIPMAP_FLAG_ALPHA_TEST : 0u;
@@ -120,7 +120,7 @@ gpu::ClipmapCacheConstants ClipmapCache::makeConstants(const FrameInputs& inputs
   return c;
 }
 
-void ClipmapCache::declareUpdate(graph::FrameGraph& graph, const FrameInputs& inputs) {
+void ClipmapCache::declareUpdate(graph::FrameGraph& graph, const GiInputs& inputs) {
   using graph::ImportedBuffer;
   CacheBuffers& b = handles_;
   b.constants = graph.importBuffer("cache.constants", ImportedBuffer::from(constants_));
@@ -153,7 +153,7 @@ void ClipmapCache::declareUpdate(graph::FrameGraph& graph, const FrameInputs& in
   if (fullRefreshLeft_ > 0) --fullRefreshLeft_;
   gpu::ClipmapPassConstants push{};
   push.cache = constants_.address();
-  push.frame = inputs.frameConstantsAddress;
+  push.frame = inputs.frame.constantsAddress;
   push.buffers = addresses();
   push.maxStaleFrames = settings_.maxStaleFrames;
   gpu::ClipmapFrameCounters frameStart{};
@@ -197,9 +197,9 @@ void ClipmapCache::declareUpdate(graph::FrameGraph& graph, const FrameInputs& in
         .read(b.frame, Access::StorageRead)
         .read(b.frame, Access::IndirectRead)
         .read(b.liveList, Access::StorageRead)
-        .read(inputs.frameConstants, Access::StorageRead)
-        .read(inputs.instances, Access::StorageRead)
-        .read(inputs.tlas, Access::StorageRead)
+        .read(inputs.frame.constants, Access::StorageRead)
+        .read(inputs.frame.instances, Access::StorageRead)
+        .read(inputs.frame.tlas, Access::StorageRead)
         .sideEffects()
         .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
           trace_.bind(cmd, bouncePush);
@@ -222,21 +222,21 @@ void ClipmapCache::declareUpdate(graph::FrameGraph& graph, const FrameInputs& in
   // Debug views; culled unless requested.
   constexpr VkFormat rgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
   graph::ImageHandle view = graph.createImage("cache", {rgba16f});
-  VkExtent2D extent = inputs.resolution;
+  VkExtent2D extent = inputs.frame.resolution;
   graph.addPass("cache-debug", QueueKind::Compute)
       .read(b.constants, Access::StorageRead)
       .read(b.grid, Access::StorageRead)
       .read(b.cells, Access::StorageRead)
-      .read(inputs.frameConstants, Access::StorageRead)
-      .read(inputs.normals, Access::StorageRead)
-      .read(inputs.depth.current, Access::StorageRead)
-      .read(inputs.flags, Access::StorageRead)
+      .read(inputs.frame.constants, Access::StorageRead)
+      .read(inputs.gbuffer.normals, Access::StorageRead)
+      .read(inputs.gbuffer.depth.current, Access::StorageRead)
+      .read(inputs.gbuffer.flags, Access::StorageRead)
       .write(view, Access::StorageWrite)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
         debugView_.bind(cmd, push,
-                        {{gpu::CACHE_LOOKUP_BINDING_NORMALS, r.image(inputs.normals)},
-                         {gpu::CACHE_LOOKUP_BINDING_DEPTH, r.image(inputs.depth.current)},
-                         {gpu::CACHE_LOOKUP_BINDING_FLAGS, r.image(inputs.flags)},
+                        {{gpu::CACHE_LOOKUP_BINDING_NORMALS, r.image(inputs.gbuffer.normals)},
+                         {gpu::CACHE_LOOKUP_BINDING_DEPTH, r.image(inputs.gbuffer.depth.current)},
+                         {gpu::CACHE_LOOKUP_BINDING_FLAGS, r.image(inputs.gbuffer.flags)},
                          {gpu::CACHE_LOOKUP_BINDING_OUTPUT, r.image(view)}});
         vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height,
                                               gpu::HYBRID_GROUP_SIZE, gpu::HYBRID_GROUP_SIZE);

@@ -27,7 +27,7 @@
 #include "gi/diffuse_gi.h"
 #include "gi/gi_light_tables.h"
 #include "passes/image_pass.h"
-#include "render/settings.h"
+#include "gi/evolve/clipmap_cache_settings.h"
 #include "shared/clipmap_cache_io.h"
 #include "vk/resources.h"
 
@@ -52,7 +52,7 @@ class ClipmapCache {
                const ClipmapCacheSettings& settings);
 
   // Declares the four cache passes and the two debug-view passes (culled unless requested).
-  void declareUpdate(graph::FrameGraph& graph, const FrameInputs& inputs);
+  void declareUpdate(graph::FrameGraph& graph, const GiInputs& inputs);
   // Adds what a pass calling cacheLookupIrradiance() needs: the constants (read) and the
   // buffers a lookup marks and allocates in (read-write). Returns `pass`.
   graph::PassBuilder declareLookup(graph::PassBuilder pass) const;
@@ -80,7 +80,7 @@ class ClipmapCache {
 
  private:
   gpu::ClipmapCacheAddresses addresses() const;
-  gpu::ClipmapCacheConstants makeConstants(const FrameInputs& inputs) const;
+  gpu::ClipmapCacheConstants makeConstants(const GiInputs& inputs) const;
 
   vk::Context& context_;
   const GiLightTables& lights_;

@@ -7,7 +7,7 @@
 
 #include "core/blue_noise.h"
 #include "core/error.h"
-#include "render/gpu_scene.h"
+#include "rt/gpu_scene.h"
 
 namespace bounce {
 
@@ -38,8 +38,9 @@ const std::vector<uint32_t>& directionBlueNoise() {
 }  // namespace
 
 RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
-                   const HybridSettings& settings)
-    : settings_(settings.restirGi),
+                   const RestirGiSettings& settings, const ClipmapCacheSettings& cache,
+                   VkExtent2D resolution)
+    : settings_(settings),
       lights_(context, gpuScene, scene),
       prepare_(context, gpuScene, "gi/evolve/gi_prepare_diffuse_rays",
                gpu::GI_PREPARE_BINDING_COUNT),
@@ -63,7 +64,7 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
       denoise_(context, gpuScene, "gi/evolve/gi_temporal_denoise", gpu::GI_DENOISE_BINDING_COUNT) {
   const RestirGiSettings& s = settings_;
   if (s.secondVertex == RestirGiSecondVertex::Cache)
-    cache_ = std::make_unique<ClipmapCache>(context, gpuScene, lights_, settings.cache);
+    cache_ = std::make_unique<ClipmapCache>(context, gpuScene, lights_, cache);
   if (s.divisor == 0 || s.divisor > 16)
     fail("ReSTIR GI: resolution divisor {} must be 1 to 16", s.divisor);
   if (!(s.settleHistoryScale > 0.0f && s.settleHistoryScale <= 1.0f))
@@ -73,8 +74,8 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
     if (n > gpu::RESTIR_GI_MAX_SPATIAL_SAMPLES)
       fail("ReSTIR GI: {} spatial samples per pass, at most {}", n, gpu::RESTIR_GI_MAX_SPATIAL_SAMPLES);
   settleFramesLeft_ = s.settleFrames;  // the first frames: the cache starts empty
-  giResolution_ = {(settings.width + s.divisor - 1) / s.divisor,
-                   (settings.height + s.divisor - 1) / s.divisor};
+  giResolution_ = {(resolution.width + s.divisor - 1) / s.divisor,
+                   (resolution.height + s.divisor - 1) / s.divisor};
 
   blueNoise_ = upload(context, std::span<const uint32_t>(directionBlueNoise()), "gi.blue-noise");
   gpu::RestirGiConstants c{};
@@ -124,29 +125,29 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
   constants_ = upload(context, std::span<const gpu::RestirGiConstants>(&c, 1), "gi.constants");
 }
 
-gpu::RestirGiPassConstants RestirGi::passConstants(const FrameInputs& inputs, bool historyValid,
+gpu::RestirGiPassConstants RestirGi::passConstants(const GiInputs& inputs, bool historyValid,
                                                    uint32_t variant) const {
-  return {inputs.frameConstantsAddress, constants_.address(), historyValid ? 1u : 0u, variant,
+  return {inputs.frame.constantsAddress, constants_.address(), historyValid ? 1u : 0u, variant,
           historyScale_, 0u};
 }
 
 // A reservoir-to-reservoir pass at GI resolution (gi-restir-spatial-0/1, patch): `estimate`
 // first, so that it is the pass's debug view.
-void RestirGi::declareReservoirPass(graph::FrameGraph& graph, const FrameInputs& in,
+void RestirGi::declareReservoirPass(graph::FrameGraph& graph, const GiInputs& in,
                                     const char* name, RestirGiPass& pass, uint32_t variant,
                                     const ReservoirImages& input, const ReservoirImages& output,
                                     graph::ImageHandle estimate) {
   graph::PassBuilder b = graph.addPass(name, QueueKind::Compute);
   b.write(estimate, Access::StorageWrite)
-      .read(in.frameConstants, Access::StorageRead)
-      .read(in.normals, Access::StorageRead)
-      .read(in.depth.current, Access::StorageRead);
+      .read(in.frame.constants, Access::StorageRead)
+      .read(in.gbuffer.normals, Access::StorageRead)
+      .read(in.gbuffer.depth.current, Access::StorageRead);
   for (int i = 0; i < 4; ++i)
     b.read(input[i], Access::StorageRead).write(output[i], Access::StorageWrite);
   const VkExtent2D gi = giResolution_;
   b.record([=, this, &pass](VkCommandBuffer cmd, const graph::PassResources& r) {
-    std::vector<ImageBinding> images = {{gpu::GI_SPATIAL_BINDING_NORMALS, r.image(in.normals)},
-                                        {gpu::GI_SPATIAL_BINDING_DEPTH, r.image(in.depth.current)},
+    std::vector<ImageBinding> images = {{gpu::GI_SPATIAL_BINDING_NORMALS, r.image(in.gbuffer.normals)},
+                                        {gpu::GI_SPATIAL_BINDING_DEPTH, r.image(in.gbuffer.depth.current)},
                                         {gpu::GI_SPATIAL_BINDING_ESTIMATE, r.image(estimate)}};
     for (uint32_t i = 0; i < 4; ++i) {
       images.push_back({gpu::GI_SPATIAL_BINDING_INPUT + i, r.image(input[i])});
@@ -159,7 +160,7 @@ void RestirGi::declareReservoirPass(graph::FrameGraph& graph, const FrameInputs&
 // gi-restir-spatial-0, -1, gi-trace-spatial-validation-rays, gi-restir-patch-reservoir, as
 // enabled; returns the reservoir that gi-restir-resolve reads.
 RestirGi::ReservoirImages RestirGi::declareSpatialChain(
-    graph::FrameGraph& graph, const FrameInputs& in, const ReservoirImages& temporal,
+    graph::FrameGraph& graph, const GiInputs& in, const ReservoirImages& temporal,
     const std::optional<graph::HistoryImage>& occlusionValidity) {
   if (!settings_.spatialReuse) return temporal;
   const ImageSize giSize = ImageSize::dividedRes(settings_.divisor);
@@ -186,12 +187,12 @@ RestirGi::ReservoirImages RestirGi::declareSpatialChain(
   const graph::HistoryImage validity = *occlusionValidity;
   graph::PassBuilder b = graph.addPass("gi-trace-spatial-validation-rays", QueueKind::Compute);
   b.write(estimate, Access::StorageWrite)
-      .read(in.frameConstants, Access::StorageRead)
-      .read(in.instances, Access::StorageRead)
-      .read(in.tlas, Access::StorageRead)
-      .read(in.normals, Access::StorageRead)
-      .read(in.depth.current, Access::StorageRead)
-      .read(in.velocity, Access::StorageRead)
+      .read(in.frame.constants, Access::StorageRead)
+      .read(in.frame.instances, Access::StorageRead)
+      .read(in.frame.tlas, Access::StorageRead)
+      .read(in.gbuffer.normals, Access::StorageRead)
+      .read(in.gbuffer.depth.current, Access::StorageRead)
+      .read(in.gbuffer.velocity, Access::StorageRead)
       .read(temporal[0], Access::StorageRead)
       .read(validity.previous, Access::StorageRead)
       .write(validity.current, Access::StorageWrite)
@@ -203,9 +204,9 @@ RestirGi::ReservoirImages RestirGi::declareSpatialChain(
   b.record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
     std::vector<ImageBinding> images = {
         {gpu::GI_VALIDATION_BINDING_TEMPORAL_SAMPLE, r.image(temporalSample)},
-        {gpu::GI_VALIDATION_BINDING_NORMALS, r.image(in.normals)},
-        {gpu::GI_VALIDATION_BINDING_DEPTH, r.image(in.depth.current)},
-        {gpu::GI_VALIDATION_BINDING_VELOCITY, r.image(in.velocity)},
+        {gpu::GI_VALIDATION_BINDING_NORMALS, r.image(in.gbuffer.normals)},
+        {gpu::GI_VALIDATION_BINDING_DEPTH, r.image(in.gbuffer.depth.current)},
+        {gpu::GI_VALIDATION_BINDING_VELOCITY, r.image(in.gbuffer.velocity)},
         {gpu::GI_VALIDATION_BINDING_VALIDITY_PREVIOUS, r.image(validity.previous)},
         {gpu::GI_VALIDATION_BINDING_VALIDITY_CURRENT, r.image(validity.current)},
         {gpu::GI_VALIDATION_BINDING_SAMPLE_OUT, r.image(validated[0])},
@@ -242,13 +243,14 @@ void RestirGi::lightingCut() {
   settleFramesLeft_ = settings_.settleFrames;
 }
 
-void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::ImageHandle output) {
+DiffuseGiOutput RestirGi::declare(graph::FrameGraph& graph, const GiInputs& in) {
+  graph::ImageHandle output = createOutput(graph);
   if (cache_) cache_->declareUpdate(graph, in);
   historyScale_ = settleFramesLeft_ > 0 ? settings_.settleHistoryScale : 1.0f;
   if (settleFramesLeft_ > 0) --settleFramesLeft_;
   const ImageSize giSize = ImageSize::dividedRes(settings_.divisor);
   const VkExtent2D gi = giResolution_;
-  const VkExtent2D full = in.resolution;
+  const VkExtent2D full = in.frame.resolution;
   graph::ImageHandle rays = graph.createImage("gi.rays", {kRgba32f, giSize});
   graph::ImageHandle hit = graph.createImage("gi.hit", {kRgba32f, giSize});
   graph::ImageHandle hitNormal = graph.createImage("gi.hit-normal", {kRgba16f, giSize});
@@ -289,11 +291,11 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
 
   graph.addPass("gi-prepare-diffuse-rays", QueueKind::Compute)
       .write(rays, Access::StorageWrite)
-      .read(in.frameConstants, Access::StorageRead)
-      .read(in.normals, Access::StorageRead)
-      .read(in.depth.current, Access::StorageRead)
-      .read(in.flags, Access::StorageRead)
-      .read(in.velocity, Access::StorageRead)
+      .read(in.frame.constants, Access::StorageRead)
+      .read(in.gbuffer.normals, Access::StorageRead)
+      .read(in.gbuffer.depth.current, Access::StorageRead)
+      .read(in.gbuffer.flags, Access::StorageRead)
+      .read(in.gbuffer.velocity, Access::StorageRead)
       .read(reservoir[0].previous, Access::StorageRead)
       .read(reservoir[2].previous, Access::StorageRead)
       .read(reservoir[3].previous, Access::StorageRead)
@@ -301,23 +303,23 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
         bool valid = !lightCutPending_;
         for (int i = 0; i < 4; ++i) valid = valid && r.historyValid(reservoir[i]);
         prepare_.record(cmd,
-                        {{gpu::GI_PREPARE_BINDING_NORMALS, r.image(in.normals)},
-                         {gpu::GI_PREPARE_BINDING_DEPTH, r.image(in.depth.current)},
-                         {gpu::GI_PREPARE_BINDING_FLAGS, r.image(in.flags)},
+                        {{gpu::GI_PREPARE_BINDING_NORMALS, r.image(in.gbuffer.normals)},
+                         {gpu::GI_PREPARE_BINDING_DEPTH, r.image(in.gbuffer.depth.current)},
+                         {gpu::GI_PREPARE_BINDING_FLAGS, r.image(in.gbuffer.flags)},
                          {gpu::GI_PREPARE_BINDING_RAYS, r.image(rays)},
                          {gpu::GI_PREPARE_BINDING_PREVIOUS_SAMPLE, r.image(reservoir[0].previous)},
                          {gpu::GI_PREPARE_BINDING_PREVIOUS_ORIGIN, r.image(reservoir[2].previous)},
                          {gpu::GI_PREPARE_BINDING_PREVIOUS_NORMALS, r.image(reservoir[3].previous)},
-                         {gpu::GI_PREPARE_BINDING_VELOCITY, r.image(in.velocity)}},
+                         {gpu::GI_PREPARE_BINDING_VELOCITY, r.image(in.gbuffer.velocity)}},
                         passConstants(in, valid), gi);
       });
   graph::PassBuilder tracePass = graph.addPass("gi-trace-diffuse-rays", QueueKind::Compute);
   if (cache_) cache_->declareLookup(tracePass);
-  tracePass.read(in.frameConstants, Access::StorageRead)
-      .read(in.instances, Access::StorageRead)
-      .read(in.tlas, Access::StorageRead)
-      .read(in.normals, Access::StorageRead)
-      .read(in.depth.current, Access::StorageRead)
+  tracePass.read(in.frame.constants, Access::StorageRead)
+      .read(in.frame.instances, Access::StorageRead)
+      .read(in.frame.tlas, Access::StorageRead)
+      .read(in.gbuffer.normals, Access::StorageRead)
+      .read(in.gbuffer.depth.current, Access::StorageRead)
       .read(rays, Access::StorageRead)
       .write(hit, Access::StorageWrite)
       .write(hitNormal, Access::StorageWrite)
@@ -326,8 +328,8 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       .write(neeRadiance, Access::StorageWrite)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
         trace_.record(cmd,
-                      {{gpu::GI_TRACE_BINDING_NORMALS, r.image(in.normals)},
-                       {gpu::GI_TRACE_BINDING_DEPTH, r.image(in.depth.current)},
+                      {{gpu::GI_TRACE_BINDING_NORMALS, r.image(in.gbuffer.normals)},
+                       {gpu::GI_TRACE_BINDING_DEPTH, r.image(in.gbuffer.depth.current)},
                        {gpu::GI_TRACE_BINDING_RAYS, r.image(rays)},
                        {gpu::GI_TRACE_BINDING_HIT, r.image(hit)},
                        {gpu::GI_TRACE_BINDING_HIT_NORMAL, r.image(hitNormal)},
@@ -338,9 +340,9 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       });
   if (cache_) cache_->declareStatisticsReadback(graph);
   graph.addPass("gi-trace-diffuse-nee-rays", QueueKind::Compute)
-      .read(in.frameConstants, Access::StorageRead)
-      .read(in.instances, Access::StorageRead)
-      .read(in.tlas, Access::StorageRead)
+      .read(in.frame.constants, Access::StorageRead)
+      .read(in.frame.instances, Access::StorageRead)
+      .read(in.frame.tlas, Access::StorageRead)
       .read(hit, Access::StorageRead)
       .read(hitNormal, Access::StorageRead)
       .read(neeRay, Access::StorageRead)
@@ -354,9 +356,9 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
                          passConstants(in, false), gi);
       });
   graph.addPass("gi-resolve-diffuse-rays", QueueKind::Compute)
-      .read(in.frameConstants, Access::StorageRead)
-      .read(in.normals, Access::StorageRead)
-      .read(in.depth.current, Access::StorageRead)
+      .read(in.frame.constants, Access::StorageRead)
+      .read(in.gbuffer.normals, Access::StorageRead)
+      .read(in.gbuffer.depth.current, Access::StorageRead)
       .read(rays, Access::StorageRead)
       .read(hit, Access::StorageRead)
       .read(hitNormal, Access::StorageRead)
@@ -381,8 +383,8 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
              {gpu::GI_CANDIDATES_BINDING_PREVIOUS + 2, r.image(reservoir[2].previous)},
              {gpu::GI_CANDIDATES_BINDING_PREVIOUS + 3, r.image(reservoir[3].previous)},
              {gpu::GI_CANDIDATES_BINDING_VALIDITY, r.image(reservoirValidity)},
-             {gpu::GI_CANDIDATES_BINDING_NORMALS, r.image(in.normals)},
-             {gpu::GI_CANDIDATES_BINDING_DEPTH, r.image(in.depth.current)},
+             {gpu::GI_CANDIDATES_BINDING_NORMALS, r.image(in.gbuffer.normals)},
+             {gpu::GI_CANDIDATES_BINDING_DEPTH, r.image(in.gbuffer.depth.current)},
              {gpu::GI_CANDIDATES_BINDING_RAYS, r.image(rays)},
              {gpu::GI_CANDIDATES_BINDING_HIT, r.image(hit)},
              {gpu::GI_CANDIDATES_BINDING_HIT_NORMAL, r.image(hitNormal)},
@@ -398,10 +400,10 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       });
   {
     graph::PassBuilder pass = graph.addPass("gi-restir-temporal", QueueKind::Compute);
-    pass.read(in.frameConstants, Access::StorageRead)
-        .read(in.normals, Access::StorageRead)
-        .read(in.depth.current, Access::StorageRead)
-        .read(in.velocity, Access::StorageRead);
+    pass.read(in.frame.constants, Access::StorageRead)
+        .read(in.gbuffer.normals, Access::StorageRead)
+        .read(in.gbuffer.depth.current, Access::StorageRead)
+        .read(in.gbuffer.velocity, Access::StorageRead);
     // The first image written is the reservoir's estimate: the pass's debug view.
     pass.write(reservoirEstimate, Access::StorageWrite);
     for (int i = 0; i < 4; ++i)
@@ -422,9 +424,9 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       std::vector<ImageBinding> images = {
           {gpu::GI_TEMPORAL_BINDING_VALIDITY, r.image(reservoirValidity)},
           {gpu::GI_TEMPORAL_BINDING_OCCLUSION_VALIDITY, r.image(occlusion)},
-          {gpu::GI_TEMPORAL_BINDING_NORMALS, r.image(in.normals)},
-          {gpu::GI_TEMPORAL_BINDING_DEPTH, r.image(in.depth.current)},
-          {gpu::GI_TEMPORAL_BINDING_VELOCITY, r.image(in.velocity)},
+          {gpu::GI_TEMPORAL_BINDING_NORMALS, r.image(in.gbuffer.normals)},
+          {gpu::GI_TEMPORAL_BINDING_DEPTH, r.image(in.gbuffer.depth.current)},
+          {gpu::GI_TEMPORAL_BINDING_VELOCITY, r.image(in.gbuffer.velocity)},
           {gpu::GI_TEMPORAL_BINDING_ESTIMATE, r.image(reservoirEstimate)},
           {gpu::GI_TEMPORAL_BINDING_CANDIDATE_ESTIMATE, r.image(candidateEstimate)},
           {gpu::GI_TEMPORAL_BINDING_PREVIOUS_CANDIDATE_MEAN, r.image(candidateMean.previous)},
@@ -445,26 +447,26 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
   // Without the pass its binding gets the (R32UI) GBuffer flags, which the shaders then ignore.
   graph::ImageHandle resolveOcclusion =
       settings_.occluderVisibility ? graph.createImage("gi.resolve-occlusion", {VK_FORMAT_R32_UINT})
-                                   : in.flags;
+                                   : in.gbuffer.flags;
   // gi-trace-resolve-visibility and gi-restir-resolve read the same reservoir and GBuffer
   // images (the resolve's bindings) and write one image each; the resolve also reads the
   // occlusion (binding 0: none).
   auto declareResolveStage = [&](const char* name, RestirGiPass& shader, uint32_t outputBinding,
                                  graph::ImageHandle output, uint32_t occlusionBinding) {
     graph::PassBuilder pass = graph.addPass(name, QueueKind::Compute);
-    pass.read(in.frameConstants, Access::StorageRead)
+    pass.read(in.frame.constants, Access::StorageRead)
         .write(output, Access::StorageWrite)
-        .read(in.normals, Access::StorageRead)
-        .read(in.depth.current, Access::StorageRead)
-        .read(in.flags, Access::StorageRead);
+        .read(in.gbuffer.normals, Access::StorageRead)
+        .read(in.gbuffer.depth.current, Access::StorageRead)
+        .read(in.gbuffer.flags, Access::StorageRead);
     if (occlusionBinding != 0) pass.read(resolveOcclusion, Access::StorageRead);
     for (int i = 0; i < 4; ++i) pass.read(final[i], Access::StorageRead);
     RestirGiPass* stage = &shader;  // a member: outlives the graph's recorded lambdas
     pass.record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
       std::vector<ImageBinding> images = {
-          {gpu::GI_RESOLVE_BINDING_NORMALS, r.image(in.normals)},
-          {gpu::GI_RESOLVE_BINDING_DEPTH, r.image(in.depth.current)},
-          {gpu::GI_RESOLVE_BINDING_FLAGS, r.image(in.flags)},
+          {gpu::GI_RESOLVE_BINDING_NORMALS, r.image(in.gbuffer.normals)},
+          {gpu::GI_RESOLVE_BINDING_DEPTH, r.image(in.gbuffer.depth.current)},
+          {gpu::GI_RESOLVE_BINDING_FLAGS, r.image(in.gbuffer.flags)},
           {outputBinding, r.image(output)}};
       if (occlusionBinding != 0) images.push_back({occlusionBinding, r.image(resolveOcclusion)});
       for (uint32_t i = 0; i < 4; ++i)
@@ -477,7 +479,7 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
                         gpu::GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, resolveOcclusion, 0);
   declareResolveStage("gi-restir-resolve", resolve_, gpu::GI_RESOLVE_BINDING_OUTPUT, resolved,
                       gpu::GI_RESOLVE_BINDING_OCCLUSION);
-  if (!denoise) return;
+  if (!denoise) return {output};
   graph::HistoryImage denoised = graph.createHistoryImage("gi.denoised", {kRgba16f});
   graph::HistoryImage denoisedFast = graph.createHistoryImage("gi.denoised-fast", {kRgba16f});
   const bool spatialDenoise = settings_.spatialDenoise;
@@ -486,14 +488,14 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
   graph::ImageHandle temporalOut =
       spatialDenoise ? graph.createImage("gi.temporal-denoised", {kRgba16f}) : output;
   graph.addPass("gi-temporal-denoise", QueueKind::Compute)
-      .read(in.frameConstants, Access::StorageRead)
+      .read(in.frame.constants, Access::StorageRead)
       .write(temporalOut, Access::StorageWrite)
       .read(resolved, Access::StorageRead)
-      .read(in.normals, Access::StorageRead)
-      .read(in.depth.current, Access::StorageRead)
-      .read(in.depth.previous, Access::StorageRead)
-      .read(in.flags, Access::StorageRead)
-      .read(in.velocity, Access::StorageRead)
+      .read(in.gbuffer.normals, Access::StorageRead)
+      .read(in.gbuffer.depth.current, Access::StorageRead)
+      .read(in.gbuffer.depth.previous, Access::StorageRead)
+      .read(in.gbuffer.flags, Access::StorageRead)
+      .read(in.gbuffer.velocity, Access::StorageRead)
       .read(denoised.previous, Access::StorageRead)
       .read(denoisedFast.previous, Access::StorageRead)
       .read(reservoirValidity, Access::StorageRead)
@@ -502,14 +504,14 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
       .write(denoisedFast.current, Access::StorageWrite)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
         bool valid = !lightCutPending_ && r.historyValid(denoised) &&
-                     r.historyValid(denoisedFast) && r.historyValid(in.depth);
+                     r.historyValid(denoisedFast) && r.historyValid(in.gbuffer.depth);
         denoise_.record(cmd,
                         {{gpu::GI_DENOISE_BINDING_INPUT, r.image(resolved)},
-                         {gpu::GI_DENOISE_BINDING_NORMALS, r.image(in.normals)},
-                         {gpu::GI_DENOISE_BINDING_DEPTH, r.image(in.depth.current)},
-                         {gpu::GI_DENOISE_BINDING_PREVIOUS_DEPTH, r.image(in.depth.previous)},
-                         {gpu::GI_DENOISE_BINDING_FLAGS, r.image(in.flags)},
-                         {gpu::GI_DENOISE_BINDING_VELOCITY, r.image(in.velocity)},
+                         {gpu::GI_DENOISE_BINDING_NORMALS, r.image(in.gbuffer.normals)},
+                         {gpu::GI_DENOISE_BINDING_DEPTH, r.image(in.gbuffer.depth.current)},
+                         {gpu::GI_DENOISE_BINDING_PREVIOUS_DEPTH, r.image(in.gbuffer.depth.previous)},
+                         {gpu::GI_DENOISE_BINDING_FLAGS, r.image(in.gbuffer.flags)},
+                         {gpu::GI_DENOISE_BINDING_VELOCITY, r.image(in.gbuffer.velocity)},
                          {gpu::GI_DENOISE_BINDING_PREVIOUS, r.image(denoised.previous)},
                          {gpu::GI_DENOISE_BINDING_CURRENT, r.image(denoised.current)},
                          {gpu::GI_DENOISE_BINDING_OUTPUT, r.image(temporalOut)},
@@ -519,25 +521,26 @@ void RestirGi::declare(graph::FrameGraph& graph, const FrameInputs& in, graph::I
                          {gpu::GI_DENOISE_BINDING_CURRENT_FAST, r.image(denoisedFast.current)}},
                         passConstants(in, valid), full);
       });
-  if (!spatialDenoise) return;
+  if (!spatialDenoise) return {output};
   graph.addPass("gi-spatial-denoise", QueueKind::Compute)
       .write(output, Access::StorageWrite)
-      .read(in.frameConstants, Access::StorageRead)
+      .read(in.frame.constants, Access::StorageRead)
       .read(temporalOut, Access::StorageRead)
-      .read(in.normals, Access::StorageRead)
-      .read(in.depth.current, Access::StorageRead)
-      .read(in.flags, Access::StorageRead)
+      .read(in.gbuffer.normals, Access::StorageRead)
+      .read(in.gbuffer.depth.current, Access::StorageRead)
+      .read(in.gbuffer.flags, Access::StorageRead)
       .read(resolveOcclusion, Access::StorageRead)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
         spatialDenoise_.record(cmd,
                                {{gpu::GI_SPATIAL_DENOISE_BINDING_INPUT, r.image(temporalOut)},
-                                {gpu::GI_SPATIAL_DENOISE_BINDING_NORMALS, r.image(in.normals)},
-                                {gpu::GI_SPATIAL_DENOISE_BINDING_DEPTH, r.image(in.depth.current)},
-                                {gpu::GI_SPATIAL_DENOISE_BINDING_FLAGS, r.image(in.flags)},
+                                {gpu::GI_SPATIAL_DENOISE_BINDING_NORMALS, r.image(in.gbuffer.normals)},
+                                {gpu::GI_SPATIAL_DENOISE_BINDING_DEPTH, r.image(in.gbuffer.depth.current)},
+                                {gpu::GI_SPATIAL_DENOISE_BINDING_FLAGS, r.image(in.gbuffer.flags)},
                                 {gpu::GI_SPATIAL_DENOISE_BINDING_OUTPUT, r.image(output)},
                                 {gpu::GI_SPATIAL_DENOISE_BINDING_OCCLUSION, r.image(resolveOcclusion)}},
                                passConstants(in, false), full);
       });
+  return {output};
 }
 
 }  // namespace bounce

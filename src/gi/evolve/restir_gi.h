@@ -46,10 +46,12 @@ namespace bounce {
 
 class RestirGi final : public DiffuseGi {
  public:
+  // `cache`: the clipmap cache's settings, used when settings.secondVertex is Cache;
+  // `resolution`: the frame's render resolution.
   RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
-           const HybridSettings& settings);
-  void declare(graph::FrameGraph& graph, const FrameInputs& inputs,
-               graph::ImageHandle output) override;
+           const RestirGiSettings& settings, const ClipmapCacheSettings& cache,
+           VkExtent2D resolution);
+  DiffuseGiOutput declare(graph::FrameGraph& graph, const GiInputs& inputs) override;
   // The clipmap cache (CACHE second vertex) has state outside the frame graph.
   void afterFrame() override;
   std::vector<GiStatistic> statistics() const override;
@@ -58,12 +60,12 @@ class RestirGi final : public DiffuseGi {
 
  private:
   using ReservoirImages = std::array<graph::ImageHandle, 4>;  // sample, radiance, origin, normals
-  gpu::RestirGiPassConstants passConstants(const FrameInputs& inputs, bool historyValid,
+  gpu::RestirGiPassConstants passConstants(const GiInputs& inputs, bool historyValid,
                                            uint32_t variant = 0) const;
-  void declareReservoirPass(graph::FrameGraph& graph, const FrameInputs& in, const char* name,
+  void declareReservoirPass(graph::FrameGraph& graph, const GiInputs& in, const char* name,
                             RestirGiPass& pass, uint32_t variant, const ReservoirImages& input,
                             const ReservoirImages& output, graph::ImageHandle estimate);
-  ReservoirImages declareSpatialChain(graph::FrameGraph& graph, const FrameInputs& in,
+  ReservoirImages declareSpatialChain(graph::FrameGraph& graph, const GiInputs& in,
                                       const ReservoirImages& temporal,
                                       const std::optional<graph::HistoryImage>& occlusionValidity);
 

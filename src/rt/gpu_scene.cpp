@@ -1,4 +1,4 @@
-#include "render/gpu_scene.h"
+#include "rt/gpu_scene.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,4 +1,4 @@
-#include "render/ray_bench.h"
+#include "passes/ray_bench.h"
 
 #include <algorithm>
 #include <cmath>

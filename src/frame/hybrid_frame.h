@@ -1,7 +1,9 @@
-// The hybrid frame without GI (DESIGN.md §4; seed 000's mobile hybrid renderer): scene-update,
-// vbuffer, gbuffer, shadows-trace, shadows-denoise, sky, composite, tonemap, declared on the
-// frame graph once per frame by recordFrame(). Resources are created by the first frame (and a
-// resize); later frames only update the frame constants and record.
+// The hybrid frame (DESIGN.md §4; seed 000's hybrid renderer): scene-update, vbuffer, gbuffer,
+// shadows-trace, shadows-denoise, sky, the diffuse GI system, composite, tonemap; each a pass
+// unit of src/passes/ (or src/gi/) declared on the frame graph once per frame by recordFrame(),
+// a straight chain in which each pass takes the typed outputs of the ones before. Resources are
+// created by the first frame (and a resize); later frames only update the frame constants and
+// record.
 //
 //   HybridFrame frame(context, gpuScene, scene, settings);
 //   frame.requestDebugView("composite");      // any pass or resource by name
@@ -16,41 +18,29 @@
 
 #include <memory>
 
+#include "frame/frame_settings.h"
+#include "frame/lighting_cut.h"
 #include "gi/diffuse_gi.h"
 #include "graph/frame_graph.h"
-#include "passes/image_pass.h"
-#include "render/gpu_scene.h"
-#include "render/settings.h"
+#include "passes/composite.h"
+#include "passes/gbuffer.h"
+#include "passes/scene_update.h"
+#include "passes/shadows_denoise.h"
+#include "passes/shadows_trace.h"
+#include "passes/sky.h"
+#include "passes/tonemap.h"
+#include "passes/vbuffer.h"
+#include "rt/gpu_scene.h"
 #include "scene/scene.h"
 #include "shared/hybrid_frame_io.h"
 #include "tools/image_io.h"
 #include "vk/gpu_timer.h"
-#include "vk/graphics_pipeline.h"
 
 namespace bounce {
 
 // World to Vulkan clip space for the camera that shoots rays through pixel centres
 // (shared/camera.h): y down, reversed Z with an infinite far plane, depth = near / view depth.
 glm::mat4 viewProjection(const gpu::GpuCamera& camera, float nearPlane);
-
-// Tells a lighting cut from motion (HybridSettings::lightingCutDegrees): from one sun and sky
-// to the next, the lit sun turned by more than cutDegrees, or the sun's irradiance or the
-// sky's radiance changed by more than half of the brightest seen so far (so that a sun
-// fading out at dusk, step by small step, is motion, and switching it off is a cut), or the
-// sky model changed. cutDegrees < 0: never a cut.
-class LightingCutDetector {
- public:
-  LightingCutDetector(const Sun& sun, const Sky& sky, float cutDegrees);
-  // Takes the next sun and sky; whether they are a cut from the last ones.
-  bool next(const Sun& sun, const Sky& sky);
-
- private:
-  Sun sun_;
-  Sky sky_;
-  float cutDegrees_;
-  float brightestSun_;  // irradiance, W/m^2
-  float brightestSky_;  // radiance summed over r, g, b
-};
 
 class HybridFrame {
  public:
@@ -90,43 +80,43 @@ class HybridFrame {
     return gi_ ? gi_->statistics() : std::vector<GiStatistic>{};
   }
 
+  // A new render resolution from the next frame on: every resolution-dependent size (shadow and
+  // GI images) follows from settings, the GI system is rebuilt and history is reset.
+  void resize(uint32_t width, uint32_t height);
+
+  // The passes and resources a frame of these settings declares (declaring one first if none
+  // was): the names requestDebugView() accepts, as the graph knows them.
+  std::vector<std::string> passNames();
+  std::vector<std::string> resourceNames();
+
   const HybridSettings& settings() const { return settings_; }
   const graph::FrameGraph& graph() const { return graph_; }
 
  private:
-  struct Draw {
-    uint32_t instance;
-    uint32_t geometry;  // global
-    uint32_t triangles;
-  };
-  // The draws whose instance box meets the camera's frustum, opaque ones first.
-  void cullDraws(const glm::mat4& viewProjection);
-
   void recordFrame();
   gpu::FrameConstants makeFrameConstants(const Camera& camera) const;
-  void drawVBuffer(VkCommandBuffer cmd, const graph::ResolvedImage& ids,
-                   const graph::ResolvedImage& depth) const;
-  gpu::HybridPassConstants passConstants(bool historyValid = false) const;
 
   vk::Context& context_;
   GpuScene& gpuScene_;
+  const Scene& scene_;
   HybridSettings settings_;
   Sun sun_;
   Sky sky_;
   LightingCutDetector lightingCuts_;
-  // Set by setSunAndSky on a lighting cut, cleared after the next frame: that frame's shadow
-  // denoiser starts afresh (its running mean would otherwise show the old shadows for up to
-  // shadowMaxHistory frames).
+  // Set by setSunAndSky on a lighting cut, cleared after the next frame.
   bool lightingCutPending_ = false;
   float nearPlane_ = 1e-3f;
-  std::vector<Draw> opaqueDraws_, alphaTestedDraws_;  // every (instance, geometry) with triangles
-  std::vector<Draw> visibleOpaque_, visibleAlphaTested_;  // this frame's, capacity reserved once
-  vk::Buffer frameConstantsBuffer_;
   vk::Buffer punctualLights_, directionalLights_;
   uint32_t punctualLightCount_ = 0, directionalLightCount_ = 0;
 
-  vk::GraphicsPipeline vbufferOpaque_, vbufferAlphaTest_;
-  ImageComputePass vbufferTrace_, gbuffer_, shadowsTrace_, shadowsDenoise_, skyPass_, composite_, tonemap_;
+  SceneUpdatePass sceneUpdate_;
+  VBufferPass vbuffer_;
+  GBufferPass gbuffer_;
+  ShadowsTracePass shadowsTrace_;
+  ShadowsDenoisePass shadowsDenoise_;
+  SkyPass skyPass_;
+  CompositePass composite_;
+  TonemapPass tonemap_;
   vk::GpuTimer timer_;
   std::unique_ptr<DiffuseGi> gi_;  // nullptr for --gi none
   graph::FrameGraph graph_;  // after what it imports: destroyed first

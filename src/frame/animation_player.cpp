@@ -1,4 +1,4 @@
-#include "render/animation_player.h"
+#include "frame/animation_player.h"
 
 #include "scene/scene_options.h"
 #include "scene/time_of_day.h"

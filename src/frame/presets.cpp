@@ -1,23 +1,6 @@
-#include "render/settings.h"
+#include "frame/presets.h"
 
 namespace bounce {
-
-std::optional<VBufferMode> vbufferModeFromName(const std::string& name) {
-  if (name == "raster") return VBufferMode::Raster;
-  if (name == "trace") return VBufferMode::Trace;
-  return std::nullopt;
-}
-
-std::optional<GiMode> giModeFromName(const std::string& name) {
-  if (name == "none") return GiMode::None;
-  if (name == "cache") return GiMode::Cache;
-  if (name == "evolve") return GiMode::Evolve;
-  return std::nullopt;
-}
-
-const char* giModeNames() {
-  return "none, evolve, cache";
-}
 
 std::optional<Preset> presetFromName(const std::string& name) {
   if (name == "mobile") return Preset::Mobile;
@@ -35,13 +18,13 @@ HybridSettings presetSettings(Preset preset) {
     case Preset::Mobile:
       s.width = 1170;
       s.height = 540;
-      s.shadowDivisor = 2;
+      s.shadows.divisor = 2;
       s.restirGi = RestirGiSettings::mobilePreset();
       break;
     case Preset::Desktop:
       s.width = 1920;
       s.height = 1080;
-      s.shadowDivisor = 2;
+      s.shadows.divisor = 2;
       s.cache.raysPerCell = 4;
       s.cache.validationRaysPerCell = 4;
       s.cache.alphaTest = true;

@@ -1,4 +1,4 @@
-#include "render/trace_rays.h"
+#include "passes/trace_rays.h"
 
 namespace bounce {
 

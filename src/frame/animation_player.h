@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "render/hybrid_frame.h"
+#include "frame/hybrid_frame.h"
 #include "scene/animation.h"
 #include "scene/scene.h"
 

@@ -4,7 +4,7 @@
 #include <span>
 #include <vector>
 
-#include "render/gpu_scene.h"
+#include "rt/gpu_scene.h"
 #include "shared/trace_io.h"
 #include "vk/pipeline.h"
 

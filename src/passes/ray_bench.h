@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "render/gpu_scene.h"
+#include "rt/gpu_scene.h"
 #include "scene/scene.h"
 #include "scene/scene_options.h"
 #include "vk/context.h"

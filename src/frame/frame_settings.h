@@ -1,0 +1,56 @@
+// Settings of the hybrid frame (DESIGN.md §4): the frame's own fields and, by value, the
+// settings structs of the components it runs (each documented where it is owned). The two
+// presets of seed 000 are one table in frame/presets.h.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <vulkan/vulkan.h>
+
+#include "gi/evolve/clipmap_cache_settings.h"
+#include "gi/evolve/restir_gi_settings.h"
+#include "passes/shadows_trace.h"
+#include "passes/vbuffer.h"
+
+namespace bounce {
+
+// Which diffuse GI the composite receives. `None`: the GI slot reads zero, so the frame shows
+// direct light (plus the optional placeholder ambient below). `Evolve`: seed 000's ReSTIR GI
+// chain (src/gi/evolve/restir_gi.h, settings in `restirGi`). `Cache`: Evolve's clipmap
+// irradiance cache alone (src/gi/evolve/cache_gi.h): irradiance at the primary hit.
+enum class GiMode { None, Evolve, Cache };
+std::optional<GiMode> giModeFromName(const std::string& name);  // "none", "evolve", "cache"
+const char* giModeNames();
+
+struct HybridSettings {
+  // Render resolution in pixels. Presets: mobile 1170x540, desktop 1920x1080 (seed 000).
+  uint32_t width = 1920;
+  uint32_t height = 1080;
+  ShadowSettings shadows;  // shadows-trace, shadows-denoise
+  // Radiance multiplier before the tone curve. At 0.03 a white Lambert surface under a sun of
+  // E = 100 W/m^2 (the built-in scenes' sun) maps to about 0.8 on the display.
+  float exposure = 0.03f;
+  // Weight of a placeholder ambient (unoccluded sky irradiance on the diffuse albedo) for
+  // previews while no GI mode exists. Off by default: it ignores occlusion, so closed rooms
+  // under a bright sky glow with light that cannot reach them.
+  float skyAmbientStrength = 0.0f;
+  // Every material pure Lambert with its base colour (--lambert), for comparisons.
+  bool lambert = false;
+  GiMode gi = GiMode::None;
+  // Raster is seed 000's choice and the default; Trace gives the same ids (pixel centres, same
+  // alpha test) and is faster on GPUs with little raster hardware (docs/frame.md).
+  VBufferMode vbuffer = VBufferMode::Raster;
+  // A sun that turns by more than this many degrees from one frame to the next (or whose
+  // irradiance, or the sky's radiance, changes by more than half) makes a lighting cut
+  // (HybridFrame::setSunAndSky). A day that lasts 24 minutes turns the sun 0.004 degrees per
+  // frame at 60 fps; a jump is a scripted change of the time of day. 0 = every change is a cut;
+  // a negative value: never.
+  float lightingCutDegrees = 5.0f;
+  RestirGiSettings restirGi;  // --gi evolve
+  ClipmapCacheSettings cache;  // --gi cache (and the cache ReSTIR GI reads)
+
+  VkExtent2D resolution() const { return {width, height}; }
+};
+
+}  // namespace bounce

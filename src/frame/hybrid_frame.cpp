@@ -1,0 +1,212 @@
+#include "frame/hybrid_frame.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/error.h"
+#include "gi/evolve/cache_gi.h"
+#include "gi/evolve/restir_gi.h"
+#include "graph/debug_view_image.h"
+#include "passes/primary_view.h"
+#include "reference/light_table.h"
+#include "rt/scene_bvh.h"
+
+namespace bounce {
+
+namespace {
+
+glm::mat4 fromRows(const glm::vec4& r0, const glm::vec4& r1, const glm::vec4& r2,
+                   const glm::vec4& r3) {
+  return glm::transpose(glm::mat4(r0, r1, r2, r3));
+}
+
+vk::Buffer uploadStorage(vk::Context& context, std::span<const std::byte> bytes,
+                         const std::string& name) {
+  return vk::uploadBuffer(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, name);
+}
+
+// The diffuse GI system for `settings.gi`; nullptr for GiMode::None (gi.diffuse then stays
+// zero).
+std::unique_ptr<DiffuseGi> makeDiffuseGi(vk::Context& context, GpuScene& gpuScene,
+                                         const Scene& scene, const HybridSettings& settings) {
+  switch (settings.gi) {
+    case GiMode::None:
+      return nullptr;
+    case GiMode::Evolve:
+      return std::make_unique<RestirGi>(context, gpuScene, scene, settings.restirGi,
+                                        settings.cache, settings.resolution());
+    case GiMode::Cache:
+      return std::make_unique<CacheGi>(context, gpuScene, scene, settings.cache);
+  }
+  return nullptr;
+}
+
+void checkSettings(const HybridSettings& settings) {
+  if (settings.width == 0 || settings.height == 0)
+    fail("hybrid frame: resolution {}x{} must be positive", settings.width, settings.height);
+  if (settings.shadows.divisor == 0 || settings.shadows.divisor > 16)
+    fail("hybrid frame: shadow divisor {} must be 1 to 16", settings.shadows.divisor);
+}
+
+}  // namespace
+
+// GpuCamera shoots dir = forward + x right - y up through NDC (x, y), with right and up scaled
+// by the half-extents of the image plane at distance 1. Projecting a point d = p - position
+// back: x = dot(d, right) / |right|^2 / dot(d, forward), likewise y with -up (Vulkan's clip y
+// points down, as pixel rows do); w = view depth; z = near, so depth = near / view depth.
+glm::mat4 viewProjection(const gpu::GpuCamera& camera, float nearPlane) {
+  glm::vec3 r = camera.right / glm::dot(camera.right, camera.right);
+  glm::vec3 u = -camera.up / glm::dot(camera.up, camera.up);
+  glm::vec3 f = camera.forward;
+  glm::vec3 p = camera.position;
+  return fromRows({r, -glm::dot(r, p)}, {u, -glm::dot(u, p)}, {0.0f, 0.0f, 0.0f, nearPlane},
+                  {f, -glm::dot(f, p)});
+}
+
+HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                         const HybridSettings& settings)
+    : context_(context),
+      gpuScene_(gpuScene),
+      scene_(scene),
+      settings_(settings),
+      sun_(scene.sun),
+      sky_(scene.sky),
+      lightingCuts_(scene.sun, scene.sky, settings.lightingCutDegrees),
+      sceneUpdate_(context, gpuScene),
+      vbuffer_(context, gpuScene, scene, settings.vbuffer),
+      gbuffer_(context, gpuScene),
+      shadowsTrace_(context, gpuScene, settings.shadows),
+      shadowsDenoise_(context, gpuScene),
+      skyPass_(context, gpuScene),
+      composite_(context, gpuScene),
+      tonemap_(context, gpuScene),
+      timer_(context) {
+  checkSettings(settings);
+  // Reversed Z keeps float depth precise far away; the near plane only has to sit in front of
+  // everything the camera should see.
+  Aabb bounds = gpuScene.bounds();
+  float radius = bounds.empty() ? 1.0f : 0.5f * glm::length(bounds.extent());
+  nearPlane_ = std::max(1e-4f, 1e-4f * radius);
+
+  gi_ = makeDiffuseGi(context, gpuScene, scene, settings);
+
+  ReferenceLightTable lights = buildReferenceLights(scene, gpuScene.bvh());
+  punctualLightCount_ = uint32_t(lights.punctualLights.size());
+  punctualLights_ = uploadStorage(context, std::as_bytes(std::span(lights.punctualLights)),
+                                  "hybrid.punctual-lights");
+  // The sun comes first in the distant-light table when it shines; it is lit with shadows
+  // separately, the KHR directional lights after it are not.
+  std::span<const gpu::ReferenceDistantLight> directional(lights.distantLights);
+  if (sun_.irradiance > 0.0f && !directional.empty()) directional = directional.subspan(1);
+  directionalLightCount_ = uint32_t(directional.size());
+  directionalLights_ =
+      uploadStorage(context, std::as_bytes(directional), "hybrid.directional-lights");
+}
+
+gpu::FrameConstants HybridFrame::makeFrameConstants(const Camera& camera) const {
+  gpu::FrameConstants c{};
+  c.camera = makeGpuCamera(camera, settings_.width, settings_.height, gpuScene_.bounds());
+  c.viewProjection = viewProjection(c.camera, nearPlane_);
+  c.previousViewProjection = hasPreviousFrame_ ? previousViewProjection_ : c.viewProjection;
+  c.towardSun = -glm::normalize(sun_.direction);
+  c.sunCosHalfAngle = std::cos(glm::radians(0.5f * sun_.angularDiameterDegrees));
+  c.sunIrradiance = sun_.irradiance * sun_.color;
+  c.skyModel = sky_.model == SkyModel::Daylight ? gpu::FRAME_SKY_DAYLIGHT : gpu::FRAME_SKY_CONSTANT;
+  c.skyRadiance = sky_.radiance;
+  c.skyTurbidity = sky_.turbidity;
+  c.skyScale = daylightSkyScale(sun_);
+  c.skyAmbientStrength = settings_.skyAmbientStrength;
+  c.exposure = settings_.exposure;
+  c.frameIndex = uint32_t(graph_.frameIndex());
+  c.resolution = {settings_.width, settings_.height};
+  c.shadowDivisor = settings_.shadows.divisor;
+  const VkExtent2D shadowResolution = settings_.shadows.resolution(settings_.resolution());
+  c.shadowResolution = {shadowResolution.width, shadowResolution.height};
+  c.flags = settings_.lambert ? gpu::FRAME_FLAG_LAMBERT : 0u;
+  c.punctualLights = punctualLights_.address();
+  c.directionalLights = directionalLights_.address();
+  c.punctualLightCount = punctualLightCount_;
+  c.directionalLightCount = directionalLightCount_;
+  c.shadowMaxHistory = settings_.shadows.maxHistory;
+  c.nearPlane = nearPlane_;
+  c.previousInstances = gpuScene_.previousInstanceBuffer().address();
+  return c;
+}
+
+void HybridFrame::setSunAndSky(const Sun& sun, const Sky& sky) {
+  if (lightingCuts_.next(sun, sky)) {
+    lightingCutPending_ = true;
+    if (gi_) gi_->lightingCut();
+  }
+  sun_ = sun;
+  sky_ = sky;
+}
+
+void HybridFrame::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
+  gpuScene_.setInstanceTransforms(objectToWorld);
+}
+
+std::vector<vk::PassTiming> HybridFrame::render(const Camera& camera) {
+  constants_ = makeFrameConstants(camera);
+  recordFrame();
+  graph_.allocate(context_, {settings_.width, settings_.height});  // a no-op after frame 0
+  context_.submitAndWait([&](VkCommandBuffer cmd) {
+    timer_.reset(cmd);
+    graph_.execute(cmd, &timer_);
+  });
+  if (gi_) gi_->afterFrame();
+  lightingCutPending_ = false;
+  previousViewProjection_ = constants_.viewProjection;
+  hasPreviousFrame_ = true;
+  return timer_.available() ? timer_.read() : std::vector<vk::PassTiming>{};
+}
+
+ImageRGBA32F HybridFrame::debugViewImage(const std::string& name) const {
+  return graph::debugViewImage(graph_.readDebugView(name));
+}
+
+void HybridFrame::resize(uint32_t width, uint32_t height) {
+  HybridSettings resized = settings_;
+  resized.width = width;
+  resized.height = height;
+  checkSettings(resized);
+  if (width == settings_.width && height == settings_.height) return;
+  settings_ = resized;
+  gi_.reset();  // its images and sizes follow the resolution
+  gi_ = makeDiffuseGi(context_, gpuScene_, scene_, settings_);
+  graph_.resetHistory();
+  hasPreviousFrame_ = false;
+}
+
+std::vector<std::string> HybridFrame::passNames() {
+  if (graph_.declaredPassNames().empty()) recordFrame();
+  return graph_.declaredPassNames();
+}
+
+std::vector<std::string> HybridFrame::resourceNames() {
+  if (graph_.declaredPassNames().empty()) recordFrame();
+  return graph_.declaredResourceNames();
+}
+
+// The frame, top to bottom (DESIGN.md §4): each pass declares its resources and accesses and
+// hands its typed outputs to the next; the graph derives every barrier from the declarations.
+void HybridFrame::recordFrame() {
+  graph_.beginFrame();
+  FrameContext frame = sceneUpdate_.declare(graph_, constants_, lightingCutPending_);
+  VBuffer vbuffer = vbuffer_.declare(graph_, frame);
+  GBuffer gbuffer = gbuffer_.declare(graph_, frame, vbuffer);
+  RawShadows rawShadows = shadowsTrace_.declare(graph_, frame, gbuffer);
+  Shadows shadows = shadowsDenoise_.declare(graph_, frame, gbuffer, rawShadows);
+  SkyImage sky = skyPass_.declare(graph_, frame, gbuffer);
+  IndirectLight indirect;
+  // Without a GI system, and for reflections (nothing writes them yet), composite reads zero.
+  indirect.diffuse = gi_ ? gi_->declare(graph_, {frame, gbuffer, shadows}).diffuse
+                         : graph_.createPersistentImage("gi.diffuse", {VK_FORMAT_R16G16B16A16_SFLOAT});
+  indirect.reflections =
+      graph_.createPersistentImage("reflections", {VK_FORMAT_R16G16B16A16_SFLOAT});
+  HdrImage hdr = composite_.declare(graph_, frame, gbuffer, shadows, sky, indirect);
+  tonemap_.declare(graph_, frame, hdr);
+}
+
+}  // namespace bounce
