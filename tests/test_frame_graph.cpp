@@ -472,6 +472,27 @@ TEST(FrameGraphErrors, BadAccessDeclarations) {
       {"'d'", "history.previous", "read-only"});
 }
 
+TEST(FrameGraphErrors, BindingsAreOneImageEach) {
+  FrameGraph graph;
+  ImageHandle a = graph.createImage("a", kColor);
+  ImageHandle b = graph.createImage("b", kColor);
+  expectError(
+      [&] {
+        graph.addPass("same-binding", QueueKind::Compute)
+            .write(a, Access::StorageWrite, 0)
+            .write(b, Access::StorageWrite, 0);
+      },
+      {"'same-binding'", "'a' and 'b'", "binding 0"});
+  graph.addPass("writer", QueueKind::Compute).write(a, Access::StorageWrite, 0);
+  expectError(
+      [&] {
+        graph.addPass("two-bindings", QueueKind::Compute)
+            .read(a, Access::StorageRead, 1)
+            .read(a, Access::StorageRead, 2);
+      },
+      {"'two-bindings'", "'a' twice", "1 and 2"});
+}
+
 TEST(FrameGraphErrors, HistoryNobodyWrites) {
   expectError(
       [] {

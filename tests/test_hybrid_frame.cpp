@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.h"
 #include "frame/presets.h"
 #include "harness.h"
 #include <glm/gtc/packing.hpp>
@@ -173,6 +174,44 @@ TEST(HybridFrame, TwentyFramesOfEveryBuiltinSceneAreCleanAndAllocateNothing) {
     EXPECT_EQ(nonFinite, 0u);
     EXPECT_EQ(context.validationErrorCount(), 0u);
   }
+}
+
+// A resize between frames: every size that follows the resolution (shadow and GI images) is
+// made anew, the frame renders at the new size without validation errors or NaN, and the GI
+// still lights the room.
+TEST(HybridFrame, ResizeBetweenFramesRendersAtTheNewSize) {
+  vk::Context context(
+      vk::contextOptionsFromEnvironment({.validation = true, .synchronizationValidation = true}));
+  ASSERT_TRUE(context.validationEnabled()) << "the Khronos validation layer is missing";
+  Scene scene = loadScene("cornell");
+  GpuScene gpuScene(context, scene);
+  HybridSettings settings = presetSettings(Preset::Desktop);
+  settings.gi = GiMode::Evolve;
+  settings.width = 40;
+  settings.height = 24;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("gi.diffuse");
+  frame.requestDebugView("composite");
+  Camera camera = effectiveCamera(scene);
+  for (int i = 0; i < 3; ++i) frame.render(camera);
+  for (auto [width, height] : {std::pair{56u, 36u}, std::pair{24u, 16u}}) {
+    frame.resize(width, height);
+    for (int i = 0; i < 3; ++i) frame.render(camera);
+    for (const char* view : {"gi.diffuse", "composite"}) {
+      SCOPED_TRACE(view);
+      ImageRGBA32F image = frame.debugViewImage(view);
+      ASSERT_EQ(image.width, int(width));
+      ASSERT_EQ(image.height, int(height));
+      double sum = 0.0;
+      for (float v : image.pixels) {
+        ASSERT_TRUE(std::isfinite(v));
+        sum += v;
+      }
+      EXPECT_GT(sum, 0.0) << "black after resizing to " << width << "x" << height;
+    }
+  }
+  EXPECT_THROW(frame.resize(0, 16), Error);
+  EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
 // A 40 m white floor (y = 0) under a sun at 50 degrees from the zenith, no sky, no other light.
