@@ -46,6 +46,8 @@ class Renderer {
   static Renderer create(const ExternalDevice& device, const Scene& scene,
                          const RendererSettings& settings = {});
 
+  // Waits for the renderer's work on the GPU, then frees what it created. Move-only; a
+  // moved-from Renderer may only be assigned to or destroyed.
   ~Renderer();
   Renderer(Renderer&& other) noexcept;
   Renderer& operator=(Renderer&& other) noexcept;

@@ -64,7 +64,8 @@ struct Sky {
 
 class Scene {
  public:
-  // An empty scene: no geometry, no sun, a black sky.
+  // An empty scene: no geometry, no sun, a black sky. Copies are deep; a moved-from Scene may
+  // only be assigned to or destroyed.
   Scene();
   ~Scene();
   Scene(const Scene& other);
