@@ -27,7 +27,7 @@ sanitize: deps
 	ctest --preset asan -j $(JOBS)
 
 format:
-	find src app include tests shaders -name '*.cpp' -o -name '*.h' | xargs clang-format -i
+	find src app include tests examples shaders -name '*.cpp' -o -name '*.h' | xargs clang-format -i
 
 clean:
 	rm -rf build build-asan out

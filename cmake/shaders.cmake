@@ -3,22 +3,22 @@
 # extension, e.g. "rt/trace_rays" (see src/vk/shader_registry.h). Graphics stages keep their
 # extension, since a pass's vertex and fragment shaders share a base name: "passes/vbuffer.vert".
 file(GLOB_RECURSE BOUNCE_SHADER_SOURCES CONFIGURE_DEPENDS
-  ${CMAKE_SOURCE_DIR}/shaders/*.comp ${CMAKE_SOURCE_DIR}/shaders/*.vert ${CMAKE_SOURCE_DIR}/shaders/*.frag)
+  ${PROJECT_SOURCE_DIR}/shaders/*.comp ${PROJECT_SOURCE_DIR}/shaders/*.vert ${PROJECT_SOURCE_DIR}/shaders/*.frag)
 
-add_executable(bounce_embed_spirv ${CMAKE_SOURCE_DIR}/cmake/embed_spirv.cpp)
+add_executable(bounce_embed_spirv ${PROJECT_SOURCE_DIR}/cmake/embed_spirv.cpp)
 
 set(spv_dir ${CMAKE_CURRENT_BINARY_DIR}/spirv)
 set(spv_files)
 set(spv_names)
 foreach(src ${BOUNCE_SHADER_SOURCES})
-  file(RELATIVE_PATH rel ${CMAKE_SOURCE_DIR}/shaders ${src})
+  file(RELATIVE_PATH rel ${PROJECT_SOURCE_DIR}/shaders ${src})
   string(REGEX REPLACE "\\.comp$" "" name ${rel})
   set(spv ${spv_dir}/${rel}.spv)
   get_filename_component(spv_parent ${spv} DIRECTORY)
   add_custom_command(
     OUTPUT ${spv}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${spv_parent}
-    COMMAND ${GLSLC} --target-env=vulkan1.3 -O -Werror -I ${CMAKE_SOURCE_DIR}/shaders
+    COMMAND ${GLSLC} --target-env=vulkan1.3 -O -Werror -I ${PROJECT_SOURCE_DIR}/shaders
             -MD -MF ${spv}.d -o ${spv} ${src}
     DEPENDS ${src}
     DEPFILE ${spv}.d

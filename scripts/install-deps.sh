@@ -12,6 +12,7 @@ packages=(
   libstb-dev libtinyexr-dev                  # PNG/JPEG and EXR image I/O
   libglm-dev libcli11-dev libfmt-dev         # maths, command line, formatting
   libgtest-dev libgmock-dev                  # tests
+  ccache                                     # compile cache (scripts/check-consumer.sh)
 )
 
 missing=()

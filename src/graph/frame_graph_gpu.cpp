@@ -37,7 +37,7 @@ void checkFormatSupport(const vk::Context& context, const std::string& name, VkF
 }  // namespace
 
 FrameGraph::~FrameGraph() {
-  if (context_) vkDeviceWaitIdle(context_->device());
+  if (context_) context_->waitIdle();
 }
 
 // ---- allocation -----------------------------------------------------------------------------
@@ -97,7 +97,7 @@ void FrameGraph::allocate(vk::Context& context, VkExtent2D renderResolution) {
     std::string key = physicalKey(resource);
     PhysicalResource& physical = physical_[key];
     if (matches(physical, r)) continue;
-    if (created.empty()) vkDeviceWaitIdle(context.device());  // the old one may be in flight
+    if (created.empty()) context.waitIdle();  // the old one may be in flight
     create(physical, r, key);
     states_.erase(key);
     if (resource.kind == ResourceKind::History) history_[resource.group].valid = false;

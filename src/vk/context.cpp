@@ -84,6 +84,22 @@ std::optional<uint32_t> findQueueFamily(VkPhysicalDevice pd, bool* timestamps) {
   return std::nullopt;
 }
 
+// The features Bounce requires (createDevice() enables them; include/bounce/external_device.h
+// lists them for hosts) that `f10`, `f12` and `f13` lack, in a fixed order.
+std::vector<const char*> missingFeatures(const VkPhysicalDeviceFeatures& f10,
+                                         const VkPhysicalDeviceVulkan12Features& f12,
+                                         const VkPhysicalDeviceVulkan13Features& f13) {
+  std::vector<const char*> missing;
+  if (!f12.bufferDeviceAddress) missing.push_back("bufferDeviceAddress");
+  if (!f12.scalarBlockLayout) missing.push_back("scalarBlockLayout");
+  if (!f12.timelineSemaphore) missing.push_back("timelineSemaphore");
+  if (!f13.synchronization2) missing.push_back("synchronization2");
+  if (!f13.dynamicRendering) missing.push_back("dynamicRendering");
+  if (!f13.maintenance4) missing.push_back("maintenance4");
+  if (!f10.shaderInt64) missing.push_back("shaderInt64");
+  return missing;
+}
+
 // Everything Bounce requires of a device (DESIGN.md §1: Vulkan 1.3 core plus what lavapipe
 // 22.3 offers). Returns the reason a device is unusable, or an empty string.
 std::string checkRequirements(VkPhysicalDevice pd, const VkPhysicalDeviceProperties& props) {
@@ -93,15 +109,80 @@ std::string checkRequirements(VkPhysicalDevice pd, const VkPhysicalDevicePropert
                                        &f13};
   VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
   vkGetPhysicalDeviceFeatures2(pd, &f2);
-  if (!f12.bufferDeviceAddress) return "no bufferDeviceAddress";
-  if (!f12.scalarBlockLayout) return "no scalarBlockLayout";
-  if (!f12.timelineSemaphore) return "no timelineSemaphore";
-  if (!f13.synchronization2) return "no synchronization2";
-  if (!f13.dynamicRendering) return "no dynamicRendering";
-  if (!f13.maintenance4) return "no maintenance4";
-  if (!f2.features.shaderInt64) return "no shaderInt64";
+  std::vector<const char*> missing = missingFeatures(f2.features, f12, f13);
+  if (!missing.empty()) return fmt::format("no {}", missing.front());
   if (!findQueueFamily(pd, nullptr)) return "no queue with compute and graphics";
   return {};
+}
+
+// What a host's VkDeviceCreateInfo enables, gathered from pEnabledFeatures and the pNext chain:
+// VkPhysicalDeviceFeatures2, the Vulkan 1.2 and 1.3 feature structs, and the per-feature structs
+// of the extensions promoted into them.
+struct EnabledFeatures {
+  VkPhysicalDeviceFeatures f10{};
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+};
+
+EnabledFeatures enabledFeatures(const VkDeviceCreateInfo& ci) {
+  EnabledFeatures e;
+  auto enable = [](VkBool32& to, VkBool32 from) { to = to || from; };
+  if (ci.pEnabledFeatures) enable(e.f10.shaderInt64, ci.pEnabledFeatures->shaderInt64);
+  for (auto* s = static_cast<const VkBaseInStructure*>(ci.pNext); s; s = s->pNext) {
+    switch (s->sType) {
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2: {
+        auto* f = reinterpret_cast<const VkPhysicalDeviceFeatures2*>(s);
+        enable(e.f10.shaderInt64, f->features.shaderInt64);
+        break;
+      }
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES: {
+        auto* f = reinterpret_cast<const VkPhysicalDeviceVulkan12Features*>(s);
+        enable(e.f12.bufferDeviceAddress, f->bufferDeviceAddress);
+        enable(e.f12.scalarBlockLayout, f->scalarBlockLayout);
+        enable(e.f12.timelineSemaphore, f->timelineSemaphore);
+        break;
+      }
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES: {
+        auto* f = reinterpret_cast<const VkPhysicalDeviceVulkan13Features*>(s);
+        enable(e.f13.synchronization2, f->synchronization2);
+        enable(e.f13.dynamicRendering, f->dynamicRendering);
+        enable(e.f13.maintenance4, f->maintenance4);
+        break;
+      }
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BUFFER_DEVICE_ADDRESS_FEATURES:
+        enable(e.f12.bufferDeviceAddress,
+               reinterpret_cast<const VkPhysicalDeviceBufferDeviceAddressFeatures*>(s)
+                   ->bufferDeviceAddress);
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SCALAR_BLOCK_LAYOUT_FEATURES:
+        enable(e.f12.scalarBlockLayout,
+               reinterpret_cast<const VkPhysicalDeviceScalarBlockLayoutFeatures*>(s)
+                   ->scalarBlockLayout);
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_TIMELINE_SEMAPHORE_FEATURES:
+        enable(e.f12.timelineSemaphore,
+               reinterpret_cast<const VkPhysicalDeviceTimelineSemaphoreFeatures*>(s)
+                   ->timelineSemaphore);
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SYNCHRONIZATION_2_FEATURES:
+        enable(
+            e.f13.synchronization2,
+            reinterpret_cast<const VkPhysicalDeviceSynchronization2Features*>(s)->synchronization2);
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES:
+        enable(
+            e.f13.dynamicRendering,
+            reinterpret_cast<const VkPhysicalDeviceDynamicRenderingFeatures*>(s)->dynamicRendering);
+        break;
+      case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES:
+        enable(e.f13.maintenance4,
+               reinterpret_cast<const VkPhysicalDeviceMaintenance4Features*>(s)->maintenance4);
+        break;
+      default:
+        break;
+    }
+  }
+  return e;
 }
 
 DeviceInfo describeDevice(VkPhysicalDevice pd, uint32_t index) {
@@ -208,19 +289,91 @@ Context::Context(const ContextOptions& options) {
   createDevice();
 }
 
+Context::Context(const AdoptedDevice& host) : adopted_(true) {
+  if (!host.instance || !host.physicalDevice || !host.device || !host.queue)
+    fail("external device: the instance, physical device, device and queue must all be given");
+  std::vector<VkPhysicalDevice> devices = physicalDevices(host.instance);
+  auto found = std::find(devices.begin(), devices.end(), host.physicalDevice);
+  if (found == devices.end())
+    fail("external device: the physical device is not one of the instance's {} device(s)",
+         devices.size());
+  info_ = describeDevice(host.physicalDevice, uint32_t(found - devices.begin()));
+
+  std::vector<std::string> problems;
+  if (!info_.suitable) problems.push_back(info_.unsuitableBecause);
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(host.physicalDevice, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(host.physicalDevice, &familyCount, families.data());
+  const VkQueueFlags need = VK_QUEUE_COMPUTE_BIT | VK_QUEUE_GRAPHICS_BIT;
+  if (host.queueFamily >= familyCount) {
+    problems.push_back(fmt::format("queue family {} does not exist (the device has {})",
+                                   host.queueFamily, familyCount));
+  } else {
+    if ((families[host.queueFamily].queueFlags & need) != need)
+      problems.push_back(
+          fmt::format("queue family {} lacks graphics or compute", host.queueFamily));
+    info_.timestampsOnComputeQueue = families[host.queueFamily].timestampValidBits > 0;
+  }
+  info_.shaderFloat16 = false;  // enabled or not, Bounce's shaders do not rely on it
+  if (const VkDeviceCreateInfo* ci = host.createInfo) {
+    EnabledFeatures enabled = enabledFeatures(*ci);
+    std::vector<const char*> missing = missingFeatures(enabled.f10, enabled.f12, enabled.f13);
+    if (!missing.empty()) {
+      std::string names;
+      for (const char* name : missing)
+        names += fmt::format("{}{}", names.empty() ? "" : ", ", name);
+      problems.push_back("not enabled at vkCreateDevice: " + names);
+    }
+    bool requested = false;
+    for (uint32_t i = 0; i < ci->queueCreateInfoCount; ++i)
+      requested = requested || ci->pQueueCreateInfos[i].queueFamilyIndex == host.queueFamily;
+    if (!requested)
+      problems.push_back(
+          fmt::format("no queue of family {} was requested at vkCreateDevice", host.queueFamily));
+  }
+  if (!problems.empty()) {
+    std::string reasons;
+    for (const std::string& p : problems)
+      reasons += fmt::format("{}{}", reasons.empty() ? "" : "; ", p);
+    fail(
+        "external device '{}' cannot run Bounce: {} (include/bounce/external_device.h lists "
+        "what Bounce needs)",
+        info_.name, reasons);
+  }
+
+  instance_ = host.instance;
+  physicalDevice_ = host.physicalDevice;
+  device_ = host.device;
+  queue_ = host.queue;
+  queueFamily_ = host.queueFamily;
+  VkPhysicalDeviceProperties props;
+  vkGetPhysicalDeviceProperties(physicalDevice_, &props);
+  limits_ = props.limits;
+  vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+  createCommandPoolAndFence();
+}
+
 Context::~Context() {
   if (device_) {
-    vkDeviceWaitIdle(device_);
+    waitIdle();
     vkDestroyFence(device_, fence_, nullptr);
     vkDestroyCommandPool(device_, commandPool_, nullptr);
-    vkDestroyDevice(device_, nullptr);
+    if (!adopted_) vkDestroyDevice(device_, nullptr);
   }
   if (messenger_) {
     auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
     if (destroy) destroy(instance_, messenger_, nullptr);
   }
-  if (instance_) vkDestroyInstance(instance_, nullptr);
+  if (instance_ && !adopted_) vkDestroyInstance(instance_, nullptr);
+}
+
+void Context::waitIdle() const {
+  if (adopted_)
+    vkQueueWaitIdle(queue_);
+  else
+    vkDeviceWaitIdle(device_);
 }
 
 void Context::createInstance(const ContextOptions& options) {
@@ -346,7 +499,10 @@ void Context::createDevice() {
   ci.pQueueCreateInfos = &queueInfo;
   VK_CHECK(vkCreateDevice(physicalDevice_, &ci, nullptr, &device_));
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+  createCommandPoolAndFence();
+}
 
+void Context::createCommandPoolAndFence() {
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   poolInfo.queueFamilyIndex = queueFamily_;

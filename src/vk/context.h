@@ -1,7 +1,8 @@
 // The Vulkan device Bounce runs on: instance (optionally with validation), physical-device
 // choice (a discrete GPU first, lavapipe as the fallback), one queue that does compute and
 // graphics, memory allocation, one-shot command submission. Fully headless: no surface, no
-// window-system extension.
+// window-system extension. Or the host's device, adopted (bring your own device,
+// include/bounce/external_device.h): checked against the same requirements, never destroyed.
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -42,6 +43,18 @@ struct ContextOptions {
   bool synchronizationValidation = false;
 };
 
+// The host's Vulkan objects for Context(const AdoptedDevice&). `createInfo`, when given, is what
+// `device` was created with: it lets the checks see which features are enabled (Vulkan has no
+// query for that), and is read only inside the constructor.
+struct AdoptedDevice {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkQueue queue = VK_NULL_HANDLE;
+  uint32_t queueFamily = 0;
+  const VkDeviceCreateInfo* createInfo = nullptr;
+};
+
 enum class MemoryUse {
   DeviceOnly,  // fastest for the GPU; filled by copies or shaders
   Upload,      // host writes, GPU reads (mapped)
@@ -51,6 +64,11 @@ enum class MemoryUse {
 class Context {
  public:
   explicit Context(const ContextOptions& options = {});
+  // Runs on the host's device. Throws bounce::Error naming the device and every requirement it
+  // misses (the features createDevice() enables, a queue with graphics and compute). Creates
+  // only its own command pool and fence; the destructor waits for the queue, not the device,
+  // and destroys nothing it adopted. No validation layer or debug labels of its own.
+  explicit Context(const AdoptedDevice& device);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -61,6 +79,7 @@ class Context {
   VkInstance instance() const { return instance_; }
   VkPhysicalDevice physicalDevice() const { return physicalDevice_; }
   VkDevice device() const { return device_; }
+  bool adopted() const { return adopted_; }
   VkQueue queue() const { return queue_; }
   uint32_t queueFamily() const { return queueFamily_; }
   const DeviceInfo& info() const { return info_; }
@@ -73,6 +92,10 @@ class Context {
   void free(VkDeviceMemory memory);
   uint64_t allocationCount() const { return allocationCount_; }
   uint64_t liveAllocationBytes() const { return liveBytes_; }
+
+  // Waits until Bounce's work on the GPU is done: the whole device when Bounce created it, its
+  // queue when adopted (waiting for the host's device would need the host's other queues).
+  void waitIdle() const;
 
   // Records commands with `record`, submits them and waits. For set-up and tests; frames use
   // their own command buffers.
@@ -92,6 +115,7 @@ class Context {
   void createInstance(const ContextOptions& options);
   void pickPhysicalDevice(const ContextOptions& options);
   void createDevice();
+  void createCommandPoolAndFence();
   static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
       VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
       const VkDebugUtilsMessengerCallbackDataEXT* data, void* self);
@@ -107,6 +131,7 @@ class Context {
   VkPhysicalDeviceMemoryProperties memoryProperties_{};
   VkPhysicalDeviceLimits limits_{};
   DeviceInfo info_;
+  bool adopted_ = false;  // instance_, device_ and queue_ belong to the host
   bool validationEnabled_ = false;
   bool debugUtils_ = false;
   PFN_vkCmdBeginDebugUtilsLabelEXT beginLabel_ = nullptr;

@@ -1,0 +1,221 @@
+// The public API (include/bounce/) as a host sees it: this test includes <bounce/bounce.h> and
+// links bounce::bounce only. Bad input gets bounce::Error with a useful message; a scene built in
+// code renders; the presets differ as bounce/settings.h documents; bring-your-own-device rejects
+// a device without the features Bounce needs and leaves the host's objects alone. CTest runs it
+// with BOUNCE_VALIDATE=1: the Khronos validation layer reports to stderr, which must stay free of
+// validation errors.
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <bounce/bounce.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace {
+
+using testing::HasSubstr;
+
+// The message of the bounce::Error that `f` throws (fails the test if it throws none).
+template <typename F>
+std::string errorOf(F&& f) {
+  try {
+    f();
+  } catch (const bounce::Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no bounce::Error thrown";
+  return {};
+}
+
+// A 2 m x 2 m white floor at y = 0, lit straight from above by a sun of 100 W/m^2, under a black
+// sky, and a camera looking down at it from 45 degrees.
+bounce::Scene litQuadScene() {
+  bounce::Scene scene;
+  bounce::MaterialId white =
+      scene.addMaterial({.baseColor = {0.8f, 0.8f, 0.8f}, .roughness = 1.0f, .doubleSided = true});
+  std::vector<bounce::Vec3> positions = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}};
+  std::vector<bounce::Vec3> normals(4, bounce::Vec3{0, 1, 0});
+  std::vector<uint32_t> indices = {0, 1, 2, 0, 2, 3};
+  bounce::MeshId quad = scene.addMesh(positions, normals, indices, white);
+  scene.addInstance(quad);
+  scene.setSun({.direction = {0, -1, 0}, .irradiance = 100.0f});
+  return scene;
+}
+
+bounce::Camera quadCamera() {
+  return {.position = {0.0f, 1.5f, 1.5f}, .target = {0, 0, 0}, .verticalFovDegrees = 50.0f};
+}
+
+bounce::RendererSettings smallSettings(bounce::Preset preset, bounce::GiMode gi) {
+  bounce::RendererSettings settings = bounce::presetSettings(preset);
+  settings.width = 64;
+  settings.height = 48;
+  settings.gi = gi;
+  return settings;
+}
+
+bool hasPass(const bounce::FrameStatistics& statistics, const std::string& name) {
+  return statistics.milliseconds(name).has_value();
+}
+
+class Api : public testing::Test {
+ protected:
+  void SetUp() override { testing::internal::CaptureStderr(); }
+  void TearDown() override {
+    std::string stderrText = testing::internal::GetCapturedStderr();
+    EXPECT_THAT(stderrText, testing::Not(HasSubstr("validation error"))) << stderrText;
+  }
+};
+
+TEST_F(Api, BadScenePathNamesThePath) {
+  const std::string path = "/nonexistent/bounce-test/missing.gltf";
+  EXPECT_THAT(errorOf([&] { bounce::Scene::load(path); }), HasSubstr(path));
+  std::string unknown = errorOf([] { bounce::Scene::load("no-such-scene"); });
+  EXPECT_THAT(unknown, HasSubstr("no-such-scene"));
+  EXPECT_THAT(unknown, HasSubstr("cornell"));  // lists the built-in names
+}
+
+TEST_F(Api, BadSceneInputIsRejected) {
+  bounce::Scene scene;
+  bounce::MaterialId m = scene.addMaterial({});
+  std::vector<bounce::Vec3> positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  std::vector<uint32_t> outOfRange = {0, 1, 3};
+  EXPECT_THAT(errorOf([&] { scene.addMesh(positions, {}, outOfRange, m); }),
+              HasSubstr("index 3 out of range"));
+  EXPECT_THAT(errorOf([&] { scene.addMesh(positions, {}, {}, bounce::MaterialId{7}); }),
+              HasSubstr("material 7 does not exist"));
+  EXPECT_THAT(errorOf([&] { scene.addMaterial({.roughness = 2.0f}); }), HasSubstr("roughness"));
+  EXPECT_THAT(errorOf([&] { bounce::Renderer::create(scene); }), HasSubstr("no instances"));
+  EXPECT_THAT(
+      errorOf([&] { bounce::Renderer::create(litQuadScene(), {.width = 0, .height = 10}); }),
+      HasSubstr("resolution 0x10"));
+}
+
+TEST_F(Api, PresetsDifferAsDocumented) {
+  bounce::RendererSettings mobile = bounce::presetSettings(bounce::Preset::Mobile);
+  bounce::RendererSettings desktop = bounce::presetSettings(bounce::Preset::Desktop);
+  EXPECT_EQ(mobile.preset, bounce::Preset::Mobile);
+  EXPECT_EQ(mobile.width, 1170u);
+  EXPECT_EQ(mobile.height, 540u);
+  EXPECT_EQ(desktop.preset, bounce::Preset::Desktop);
+  EXPECT_EQ(desktop.width, 1920u);
+  EXPECT_EQ(desktop.height, 1080u);
+  bounce::RendererSettings defaults;
+  EXPECT_EQ(defaults.preset, mobile.preset);
+  EXPECT_EQ(defaults.width, mobile.width);
+  EXPECT_EQ(defaults.height, mobile.height);
+  EXPECT_EQ(defaults.gi, bounce::GiMode::Evolve);
+
+  // Beyond the resolution: only desktop runs the GI's final spatial denoise.
+  bounce::Scene scene = litQuadScene();
+  bounce::Renderer mobileRenderer = bounce::Renderer::create(
+      scene, smallSettings(bounce::Preset::Mobile, bounce::GiMode::Evolve));
+  bounce::Renderer desktopRenderer = bounce::Renderer::create(
+      scene, smallSettings(bounce::Preset::Desktop, bounce::GiMode::Evolve));
+  bounce::FrameStatistics m = mobileRenderer.render(quadCamera());
+  bounce::FrameStatistics d = desktopRenderer.render(quadCamera());
+  ASSERT_FALSE(m.passes.empty()) << "the device has no timestamps";
+  EXPECT_TRUE(hasPass(m, "gi-restir-temporal"));
+  EXPECT_TRUE(hasPass(d, "gi-restir-temporal"));
+  EXPECT_FALSE(hasPass(m, "gi-spatial-denoise"));
+  EXPECT_TRUE(hasPass(d, "gi-spatial-denoise"));
+}
+
+TEST_F(Api, CodeBuiltLitQuadRenders) {
+  bounce::Renderer renderer = bounce::Renderer::create(
+      litQuadScene(), smallSettings(bounce::Preset::Mobile, bounce::GiMode::None));
+  renderer.requestImage("composite");
+  bounce::FrameStatistics first = renderer.render(quadCamera());
+  bounce::FrameStatistics second = renderer.render(quadCamera());
+  EXPECT_EQ(first.frameIndex, 0u);
+  EXPECT_EQ(second.frameIndex, 1u);
+  EXPECT_TRUE(hasPass(second, "gbuffer"));
+  EXPECT_TRUE(hasPass(second, "tonemap"));
+  EXPECT_FALSE(hasPass(second, "gi-restir-temporal"));  // GiMode::None
+
+  bounce::Image display = renderer.readImage();
+  ASSERT_EQ(display.width, 64u);
+  ASSERT_EQ(display.height, 48u);
+  ASSERT_EQ(display.rgba.size(), 64u * 48u * 4u);
+  for (float v : display.rgba) ASSERT_TRUE(std::isfinite(v));
+  // The image centre sees the floor; a white Lambert floor facing the sun has radiance
+  // 0.8 E / pi in the composite (some specular on top) and a bright display value.
+  const float* centre = display.pixel(32, 24);
+  EXPECT_GT(centre[0], 0.3f);
+  EXPECT_NEAR(centre[0], centre[2], 1e-3f);  // white light on a white floor
+  const float* radiance = renderer.readImage("composite").pixel(32, 24);
+  EXPECT_NEAR(radiance[1], 0.8f * 100.0f / 3.14159265f, 0.25f * 0.8f * 100.0f / 3.14159265f);
+}
+
+TEST_F(Api, UnknownImageNameGivesClearError) {
+  bounce::Renderer renderer = bounce::Renderer::create(
+      litQuadScene(), smallSettings(bounce::Preset::Mobile, bounce::GiMode::None));
+  EXPECT_THAT(errorOf([&] { renderer.readImage(); }), HasSubstr("no frame rendered yet"));
+  renderer.requestImage("no-such-pass");
+  std::string message = errorOf([&] { renderer.render(quadCamera()); });
+  EXPECT_THAT(message, HasSubstr("no-such-pass"));
+  EXPECT_THAT(message, HasSubstr("no pass or resource has that name"));
+  EXPECT_THAT(message, HasSubstr("tonemap"));  // lists the valid names
+  // The request is dropped and the renderer keeps working.
+  renderer.render(quadCamera());
+  EXPECT_EQ(renderer.readImage().width, 64u);
+  EXPECT_THAT(errorOf([&] { renderer.readImage("no-such-pass"); }), HasSubstr("no-such-pass"));
+  EXPECT_THAT(errorOf([&] { renderer.readImage("gbuffer.normals"); }), HasSubstr("requestImage"));
+}
+
+// A host device created without Bounce's features: a clear error, and the host's device and
+// instance stay alive (the host destroys them afterwards).
+TEST_F(Api, ExternalDeviceWithoutFeaturesIsRejected) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.apiVersion = VK_API_VERSION_1_3;
+  VkInstanceCreateInfo instanceInfo{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  instanceInfo.pApplicationInfo = &app;
+  VkInstance instance = VK_NULL_HANDLE;
+  ASSERT_EQ(vkCreateInstance(&instanceInfo, nullptr, &instance), VK_SUCCESS);
+  uint32_t count = 1;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  vkEnumeratePhysicalDevices(instance, &count, &physicalDevice);
+  ASSERT_NE(physicalDevice, VK_NULL_HANDLE);
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, families.data());
+  uint32_t family = 0;
+  while (family < familyCount && !(families[family].queueFlags & VK_QUEUE_GRAPHICS_BIT)) ++family;
+  ASSERT_LT(family, familyCount);
+
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queueInfo.queueFamilyIndex = family;
+  queueInfo.queueCount = 1;
+  queueInfo.pQueuePriorities = &priority;
+  VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};  // no features enabled
+  deviceInfo.queueCreateInfoCount = 1;
+  deviceInfo.pQueueCreateInfos = &queueInfo;
+  VkDevice device = VK_NULL_HANDLE;
+  ASSERT_EQ(vkCreateDevice(physicalDevice, &deviceInfo, nullptr, &device), VK_SUCCESS);
+  VkQueue queue = VK_NULL_HANDLE;
+  vkGetDeviceQueue(device, family, 0, &queue);
+
+  bounce::ExternalDevice external{.instance = instance,
+                                  .physicalDevice = physicalDevice,
+                                  .device = device,
+                                  .queue = queue,
+                                  .queueFamilyIndex = family,
+                                  .createInfo = &deviceInfo};
+  std::string message = errorOf([&] { bounce::Renderer::create(external, litQuadScene()); });
+  EXPECT_THAT(message, HasSubstr("not enabled at vkCreateDevice"));
+  EXPECT_THAT(message, HasSubstr("bufferDeviceAddress"));
+  EXPECT_THAT(message, HasSubstr("shaderInt64"));
+
+  external.queueFamilyIndex = familyCount;  // no such family
+  EXPECT_THAT(errorOf([&] { bounce::Renderer::create(external, litQuadScene()); }),
+              HasSubstr("does not exist"));
+
+  EXPECT_EQ(vkDeviceWaitIdle(device), VK_SUCCESS);  // still the host's, still alive
+  vkDestroyDevice(device, nullptr);
+  vkDestroyInstance(instance, nullptr);
+}
+
+}  // namespace
