@@ -2,14 +2,18 @@
 BUILD ?= build
 PRESET ?= release
 JOBS ?= $(shell nproc)
+# A compile cache when there is one: scripts/check-consumer.sh then reuses this build's compiles.
+LAUNCHER := $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+export CCACHE_BASEDIR := $(CURDIR)
+FORMATTED = find src app include tests examples tools shaders -name '*.cpp' -o -name '*.h'
 
-.PHONY: deps build demo test sanitize clean format
+.PHONY: deps build demo test sanitize clean format format-check consumer
 
 deps:
 	bash scripts/install-deps.sh
 
 build: deps
-	cmake --preset $(PRESET) >/dev/null
+	cmake --preset $(PRESET) $(LAUNCHER) >/dev/null
 	cmake --build --preset $(PRESET) -j $(JOBS)
 
 demo: build
@@ -26,8 +30,16 @@ sanitize: deps
 	cmake --build --preset asan -j $(JOBS)
 	ctest --preset asan -j $(JOBS)
 
+# Bounce used from another CMake project, through find_package and through add_subdirectory.
+consumer: build
+	bash scripts/check-consumer.sh
+
 format:
-	find src app include tests examples shaders -name '*.cpp' -o -name '*.h' | xargs clang-format -i
+	$(FORMATTED) | xargs clang-format -i
+
+# Fails, listing the places, where a file differs from .clang-format's style (CI runs it).
+format-check: deps
+	$(FORMATTED) | xargs clang-format --dry-run --Werror
 
 clean:
-	rm -rf build build-asan out
+	rm -rf build build-asan build-debug build-consumer out

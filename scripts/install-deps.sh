@@ -13,6 +13,7 @@ packages=(
   libglm-dev libcli11-dev libfmt-dev         # maths, command line, formatting
   libgtest-dev libgmock-dev                  # tests
   ccache                                     # compile cache (scripts/check-consumer.sh)
+  clang-format                               # make format, make format-check (CI)
 )
 
 missing=()
