@@ -35,7 +35,7 @@ struct RenderOptions {
   bool listViews = false;
   std::string out = "out/render.png";
   uint32_t frames = 8;
-  std::string gi = "evolve";  // seed 000's full diffuse GI (issue 6)
+  std::string gi = "evolve";  // seed 000's full diffuse GI
   std::string vbuffer = "raster";
   // ReSTIR GI overrides (0 / empty: the preset's value).
   uint32_t giDivisor = 0;
@@ -53,7 +53,7 @@ struct RenderOptions {
   float skyAmbient = HybridSettings{}.skyAmbientStrength;
   uint32_t shadowDivisor = 0;  // 0: the preset's
   bool lambert = false;
-  // Motion and time (issue 4).
+  // Motion and time.
   bool animate = false;
   std::string cameraPath;
   float fps = 30.0f;

@@ -108,7 +108,7 @@ DirectLightComparison compareDirectLight(const DirectLightCase& c) {
   return result;
 }
 
-// Measured on lavapipe (README, "The hybrid frame"): relMSE 0.0004 / 0.0000 / 0.0000 and mean
+// Measured on lavapipe (docs/frame.md): relMSE 0.0004 / 0.0000 / 0.0000 and mean
 // ratios within 0.2 %: with full-resolution hard shadows the frame and the reference compute the
 // same thing. The thresholds leave room for ray-offset differences at a few contact pixels; an
 // energy bug (a missing 1/pi, a wrong cosine, a wrong sun normalisation) moves the mean ratio

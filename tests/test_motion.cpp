@@ -1,4 +1,4 @@
-// Motion and time (issue 4) on lavapipe at small resolutions:
+// Motion and time on lavapipe at small resolutions:
 //   - animation math: slerp along the shorter arc, STEP keys, looping, Catmull-Rom through keys;
 //   - reprojection: last frame's composite, fetched where this frame's velocity points, matches
 //     this frame's composite on every pixel that is not disoccluded (static scene, moving

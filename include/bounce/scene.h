@@ -77,7 +77,7 @@ class Scene {
   // .glb). Throws bounce::Error naming the path and the problem (missing file, malformed glTF,
   // unknown name).
   static Scene load(const std::string& nameOrPath);
-  // cornell, sunroom, foliage, manylights, furnace, city (README.md describes each).
+  // cornell, sunroom, foliage, manylights, furnace, city (docs/scenes.md describes each).
   static std::vector<std::string> builtinNames();
 
   MaterialId addMaterial(const Material& material);

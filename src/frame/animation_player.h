@@ -1,4 +1,4 @@
-// Plays a SceneAnimation on a HybridFrame (issue 4): at each frame's time t it evaluates the
+// Plays a SceneAnimation on a HybridFrame: at each frame's time t it evaluates the
 // instance transforms, the time of day and the camera path, hands them to the frame and resets
 // temporal history at camera cuts, so no stale history shows after a jump.
 //

@@ -48,7 +48,7 @@ class HybridFrame {
   HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
               const HybridSettings& settings);
 
-  // Time-varying scene state for the next render() (issue 4; scene/animation.h evaluates it).
+  // Time-varying scene state for the next render() (scene/animation.h evaluates it).
   // Instances: one objectToWorld per scene instance; `scene-update` uploads them and the
   // rebuilt TLAS into buffers made at init, keeping this frame's placement as the previous one
   // for object motion vectors. Call it every frame while anything moves. No Vulkan allocation.

@@ -41,7 +41,7 @@ class GpuScene {
   // Accepts or rejects an alpha-tested candidate hit exactly as the GPU alpha test does.
   bool alphaAccepts(uint32_t globalGeometry, uint32_t primitive, float b1, float b2) const;
 
-  // ---- moving instances (issue 4) ----
+  // ---- moving instances ----
   // Places every instance (objectToWorld, one per Scene::instances entry), rebuilds the TLAS on
   // the CPU and stages both, with the placement before this call as the "previous" one, in a
   // mapped upload buffer made at construction. Nothing reaches the GPU until

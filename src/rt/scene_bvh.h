@@ -145,9 +145,8 @@ void setInstanceTransform(gpu::GpuInstance& instance, const glm::mat4& objectToW
 
 // The TLAS over `instances`: one leaf per instance (leaf index = instance index), boxes in
 // world space from meshBounds[instance.mesh] transformed by objectToWorld. Instances of meshes
-// without triangles are left out. Meant to run every frame: on the 2-core dev machine about
-// 0.6 ms for the 1,729 instances of the 'city' scene, 4 ms for 10k instances on one thread and
-// 2.6-3 ms on two (test_bvh prints it).
+// without triangles are left out. Cheap enough to run every frame (docs/ray-tracing.md has
+// its build times; test_bvh prints them).
 std::vector<gpu::GpuBvhNode> buildTlas(std::span<const gpu::GpuInstance> instances,
                                        std::span<const Aabb> meshBounds,
                                        const BvhBuildOptions& options = tlasBuildOptions(),

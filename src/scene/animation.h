@@ -1,4 +1,4 @@
-// Time-varying scene state (issue 4, "Motion and time"): per-instance transform tracks, a
+// Time-varying scene state: per-instance transform tracks, a
 // camera path and a time-of-day track, evaluated at a time t in seconds. Evaluation allocates
 // nothing on the GPU side: the renderer uploads the evaluated transforms into buffers it made
 // at init (rt/gpu_scene.h, GpuScene::setInstanceTransforms).

@@ -1,4 +1,4 @@
-// The sun and sky at a time of day, for --time-of-day and --day-cycle (issue 4).
+// The sun and sky at a time of day, for --time-of-day and --day-cycle.
 //
 // Solar model: a fixed latitude and declination (defaults: 45 degrees north at an equinox, so
 // the sun rises at 6 h due east, culminates at 12 h 45 degrees above the southern horizon and

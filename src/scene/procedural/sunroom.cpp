@@ -139,7 +139,7 @@ void placeOnFloor(Scene& scene, Mesh mesh, const glm::vec2& xz, float yawDegrees
               std::move(name));
 }
 
-// The default motion (issue 4): the blue panel swings 80 degrees about its vertical axis and
+// The default motion: the blue panel swings 80 degrees about its vertical axis and
 // back over 4 s, and the yellow cube in the sun patch slides 0.6 m towards the window and back,
 // so both moving shadows and object motion vectors show; the camera sways and dollies in.
 void addSunroomAnimation(Scene& scene) {
