@@ -19,7 +19,7 @@
 
 #include "core/error.h"
 #include "harness.h"
-#include "reference/light_table.h"
+#include "lighting/light_table.h"
 #include "reference/path_tracer.h"
 #include "render/gpu_scene.h"
 #include "scene/load.h"
@@ -176,7 +176,7 @@ TEST(ReferenceLights, AliasTablePicksInProportionToWeight) {
 TEST(ReferenceLights, CornellLightIsOneDownwardQuad) {
   Scene scene = loadScene(test::sharedDir() + "/scenes/cornell_box/cornell_box.gltf");
   rt::SceneBvh bvh = rt::buildSceneBvh(scene);
-  ReferenceLightTable lights = buildReferenceLights(scene, bvh);
+  LightTable lights = buildLightTable(scene, bvh);
   ASSERT_EQ(lights.emissiveTriangles.size(), 2u);
   EXPECT_TRUE(lights.punctualLights.empty());
   EXPECT_TRUE(lights.distantLights.empty());  // no sun in the file
@@ -202,7 +202,7 @@ TEST(ReferenceLights, PunctualAndDistantLightsAreConverted) {
   PunctualLight directional = point;
   directional.type = PunctualLight::Type::Directional;
   scene.lights = {point, spot, directional};
-  ReferenceLightTable lights = buildReferenceLights(scene, rt::buildSceneBvh(scene));
+  LightTable lights = buildLightTable(scene, rt::buildSceneBvh(scene));
   ASSERT_EQ(lights.punctualLights.size(), 2u);
   ASSERT_EQ(lights.distantLights.size(), 2u);  // the sun and the directional light
   EXPECT_NEAR(lights.totalLocalPower,
@@ -392,7 +392,7 @@ TEST(Reference, EmissionIsOneSidedAndFollowsMirroring) {
     EXPECT_EQ(glm::vec3(behind.image.at(2, 2)), glm::vec3(0.0f)) << "instance at x = " << x;
   }
   // Light sampling uses the same side.
-  ReferenceLightTable lights = buildReferenceLights(scene, rt::buildSceneBvh(scene));
+  LightTable lights = buildLightTable(scene, rt::buildSceneBvh(scene));
   ASSERT_EQ(lights.emissiveTriangles.size(), 4u);
   for (const auto& t : lights.emissiveTriangles) EXPECT_NEAR(t.frontNormal.z, 1.0f, 1e-6f);
 }

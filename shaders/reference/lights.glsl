@@ -1,6 +1,6 @@
 // Next-event estimation: picking a light and a point on it for a shading point, and the density
 // with which a BRDF-sampled ray that hits an emissive triangle would have been picked (for MIS).
-// The tables are built on the CPU (src/reference/light_table.cpp); their layout is described in
+// The tables are built on the CPU (src/lighting/light_table.cpp); their layout is described in
 // shared/reference_io.h.
 #ifndef BOUNCE_REFERENCE_LIGHTS_GLSL
 #define BOUNCE_REFERENCE_LIGHTS_GLSL

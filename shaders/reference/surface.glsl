@@ -80,7 +80,7 @@ Surface loadSurfaceAtCoarseMip(TraceHit hit, vec3 rayDirection, bool lambertOnly
   vec3 e1 = p1 - p0;
   vec3 e2 = p2 - p0;
   // The glTF front face, from the same world-space triangle and rule the light table uses for
-  // the emitting side (src/reference/light_table.cpp), so that light sampling and BRDF hits
+  // the emitting side (src/lighting/light_table.cpp), so that light sampling and BRDF hits
   // agree exactly on which side emits: counter-clockwise, or clockwise under a mirroring
   // instance transform. This is TraceHit.frontFacing by definition.
   vec3 frontNormal = cross(e1, e2) * (instanceMirrors(instance) ? -1.0 : 1.0);

@@ -59,7 +59,7 @@ ReferencePathTracer::ReferencePathTracer(vk::Context& context, const GpuScene& g
       gpuScene_(gpuScene),
       sky_(scene.sky),
       sun_(scene.sun),
-      lights_(buildReferenceLights(scene, gpuScene.bvh())),
+      lights_(buildLightTable(scene, gpuScene.bvh())),
       pipeline_(context, "reference/path_trace", {&gpuScene.setLayout()},
                 sizeof(gpu::ReferenceConstants)) {
   emissiveTriangles_ = uploadTable(context, lights_.emissiveTriangles, "emissive-triangles");

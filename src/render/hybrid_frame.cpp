@@ -6,8 +6,8 @@
 
 #include "core/error.h"
 #include "graph/debug_view_image.h"
+#include "lighting/light_table.h"
 #include "passes/primary_view.h"
-#include "reference/light_table.h"
 #include "rt/scene_bvh.h"
 
 namespace bounce {
@@ -119,7 +119,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
 
   gi_ = makeDiffuseGi(context, gpuScene, scene, settings);
 
-  ReferenceLightTable lights = buildReferenceLights(scene, bvh);
+  LightTable lights = buildLightTable(scene, bvh);
   punctualLightCount_ = uint32_t(lights.punctualLights.size());
   punctualLights_ = uploadOrPlaceholder(context, std::as_bytes(std::span(lights.punctualLights)),
                                         "hybrid.punctual-lights");

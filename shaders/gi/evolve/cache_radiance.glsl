@@ -1,10 +1,10 @@
 // Radiance arriving along a cache ray (cache-trace-diffuse-rays, seed 000): at the hit, light
 // reflected once from the frame's sun and from the scene's lights by next-event estimation (one
 // sample of the sun, one local light, emissive triangle or KHR punctual, picked by power, and
-// every KHR directional light; src/gi/gi_light_tables.h), plus the albedo times the cache's
+// every KHR directional light; src/lighting/gpu_light_tables.h), plus the albedo times the cache's
 // irradiance at the hit (a recursive lookup, which makes the bounces infinite), plus the
 // surface's emission; the sky on a miss.
-// Emitters are split between NEE and the cache's rays (src/gi/gi_light_tables.h): large ones
+// Emitters are split between NEE and the cache's rays (src/lighting/gpu_light_tables.h): large ones
 // are not in the light tables (area pdf 0) and count when a ray hits them, small ones count by
 // NEE only, at every consumer that adds the cache's irradiance at a point (ReSTIR GI's 2nd
 // vertex, gi-cache-lookup, the cache's own rays here), and never when hit. The sun and the KHR
@@ -20,7 +20,7 @@
 
 const float CACHE_RAY_FAR = 1e30;
 // Whether a cache ray that hit the emitter surface s counts its emission: large emitters only,
-// the ones the light tables leave out (src/gi/gi_light_tables.h).
+// the ones the light tables leave out (src/lighting/gpu_light_tables.h).
 bool cacheRayCountsEmission(Surface s) {
   return FloatArray(settings.materialLightAreaPdf).v[s.material] == 0.0;
 }

@@ -1,4 +1,4 @@
-#include "reference/light_table.h"
+#include "lighting/light_table.h"
 
 #include <cmath>
 #include <numbers>
@@ -121,9 +121,8 @@ std::vector<gpu::ReferenceDistantLight> gatherDistantLights(const Scene& scene) 
     if (l.type == PunctualLight::Type::Directional && l.intensity > 0.0f)
       lights.push_back(makeDistantLight(l.direction, l.intensity * l.color, 0.0f));
   if (lights.size() > gpu::REFERENCE_MAX_DISTANT_LIGHTS)
-    fail(
-        "{}: {} distant lights (sun and directional lights); the reference tracer takes at most {}",
-        scene.name, lights.size(), gpu::REFERENCE_MAX_DISTANT_LIGHTS);
+    fail("{}: {} distant lights (sun and directional lights); the light table takes at most {}",
+         scene.name, lights.size(), gpu::REFERENCE_MAX_DISTANT_LIGHTS);
   return lights;
 }
 
@@ -183,13 +182,14 @@ std::vector<gpu::ReferenceLightAlias> buildAliasTable(std::span<const double> we
   return table;
 }
 
-ReferenceLightTable buildReferenceLights(const Scene& scene, const rt::SceneBvh& bvh,
-                                         const std::vector<bool>& unsampledMaterials) {
-  ReferenceLightTable table;
+LightTable buildLightTable(const Scene& scene, const rt::SceneBvh& bvh,
+                           const std::vector<bool>& unsampledMaterials) {
+  LightTable table;
   std::vector<float> materialLuminance;
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     bool unsampled = m < unsampledMaterials.size() && unsampledMaterials[m];
-    materialLuminance.push_back(unsampled ? 0.0f : luminance(meanEmission(scene, scene.materials[m])));
+    materialLuminance.push_back(unsampled ? 0.0f
+                                          : luminance(meanEmission(scene, scene.materials[m])));
   }
 
   LocalLights emissive = gatherEmissiveTriangles(scene, bvh, materialLuminance);

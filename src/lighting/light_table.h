@@ -1,5 +1,6 @@
-// The lights the reference path tracer samples, gathered on the CPU once per scene (see
-// shared/reference_io.h for the GPU layout):
+// The scene's lights as next-event estimation samples them, gathered on the CPU once per scene
+// for the reference path tracer and the real-time frame alike (see shared/reference_io.h for the
+// GPU layout):
 //   - distant lights: the sun and KHR directional lights;
 //   - local lights: every emissive triangle of every instance, in world space, and the KHR
 //     point and spot lights, with an alias table that picks one in proportion to its power.
@@ -16,14 +17,14 @@
 
 namespace bounce {
 
-struct ReferenceLightTable {
+struct LightTable {
   std::vector<gpu::ReferenceEmissiveTriangle> emissiveTriangles;
   std::vector<gpu::ReferencePunctualLight> punctualLights;
   std::vector<gpu::ReferenceLightAlias> alias;  // emissive triangles first, then punctual lights
   std::vector<gpu::ReferenceDistantLight> distantLights;
-  std::vector<float> materialLightAreaPdf;  // per Scene::materials entry, see reference_io.h
+  std::vector<float> materialLightAreaPdf;   // per Scene::materials entry, see reference_io.h
   std::vector<double> materialEmissiveArea;  // per Scene::materials entry: m^2 of its emitters
-  double totalLocalPower = 0.0;             // W (luminance-weighted), the alias table's sum
+  double totalLocalPower = 0.0;              // W (luminance-weighted), the alias table's sum
 
   uint32_t localLightCount() const { return uint32_t(alias.size()); }
 };
@@ -53,7 +54,7 @@ std::vector<gpu::ReferenceLightAlias> buildAliasTable(std::span<const double> we
 // lights than REFERENCE_MAX_DISTANT_LIGHTS. Materials flagged in `unsampledMaterials` (indexed
 // like Scene::materials; empty = none) are left out of the local lights: their triangles are
 // never picked and their materialLightAreaPdf is 0, so MIS counts BRDF hits on them in full.
-ReferenceLightTable buildReferenceLights(const Scene& scene, const rt::SceneBvh& bvh,
-                                         const std::vector<bool>& unsampledMaterials = {});
+LightTable buildLightTable(const Scene& scene, const rt::SceneBvh& bvh,
+                           const std::vector<bool>& unsampledMaterials = {});
 
 }  // namespace bounce

@@ -1,10 +1,10 @@
-#include "gi/gi_light_tables.h"
+#include "lighting/gpu_light_tables.h"
 
 #include <algorithm>
 #include <span>
 #include <string>
 
-#include "reference/light_table.h"
+#include "lighting/light_table.h"
 #include "render/gpu_scene.h"
 #include "scene/scene.h"
 #include "shared/reference_io.h"
@@ -22,7 +22,7 @@ vk::Buffer upload(vk::Context& context, std::span<const T> items, const std::str
 constexpr double kLargeEmitterFraction = 0.1;
 
 // The materials whose emitters are reached by rays only (see the header).
-std::vector<bool> largeEmitters(const ReferenceLightTable& lights, const Aabb& bounds) {
+std::vector<bool> largeEmitters(const LightTable& lights, const Aabb& bounds) {
   glm::dvec3 e = glm::max(glm::dvec3(bounds.max - bounds.min), glm::dvec3(0.0));
   double boxArea = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
   std::vector<bool> large(lights.materialEmissiveArea.size(), false);
@@ -33,11 +33,11 @@ std::vector<bool> largeEmitters(const ReferenceLightTable& lights, const Aabb& b
 
 }  // namespace
 
-GiLightTables::GiLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene) {
-  ReferenceLightTable lights = buildReferenceLights(scene, gpuScene.bvh());
+GpuLightTables::GpuLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene) {
+  LightTable lights = buildLightTable(scene, gpuScene.bvh());
   std::vector<bool> large = largeEmitters(lights, gpuScene.bounds());
   if (std::find(large.begin(), large.end(), true) != large.end())
-    lights = buildReferenceLights(scene, gpuScene.bvh(), large);
+    lights = buildLightTable(scene, gpuScene.bvh(), large);
   std::span<const gpu::ReferenceDistantLight> distant(lights.distantLights);
   if (scene.sun.irradiance > 0.0f && !distant.empty()) distant = distant.subspan(1);
   emissiveTriangles_ =

@@ -1,5 +1,5 @@
-// The light tables the GI techniques' next-event estimation samples: the reference tracer's
-// (reference/light_table.h: emissive triangles and KHR punctual lights picked by power through
+// The light tables the GI techniques' next-event estimation samples: the scene's light table
+// (lighting/light_table.h: emissive triangles and KHR punctual lights picked by power through
 // an alias table, KHR directional lights) uploaded once, behind one gpu::ReferenceSettings
 // block whose address the shaders load into `settings` (shaders/reference/settings.glsl) and
 // sample with shaders/reference/lights.glsl. The sun is left out of the distant lights: it
@@ -22,9 +22,9 @@ namespace bounce {
 class GpuScene;
 struct Scene;
 
-class GiLightTables {
+class GpuLightTables {
  public:
-  GiLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene);
+  GpuLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene);
 
   // A gpu::ReferenceSettings block with the light arrays set (camera and accumulation unset).
   VkDeviceAddress address() const { return block_.address(); }
