@@ -142,7 +142,7 @@ Scene planeScene(const glm::vec3& albedo, float halfSize = 100.0f) {
 // ---- the light table (CPU) ---------------------------------------------------------------------
 
 // The exact probability with which the alias table picks each entry.
-std::vector<double> aliasProbabilities(const std::vector<gpu::ReferenceLightAlias>& table) {
+std::vector<double> aliasProbabilities(const std::vector<gpu::GpuLightAlias>& table) {
   std::vector<double> p(table.size(), 0.0);
   const double n = double(table.size());
   for (size_t i = 0; i < table.size(); ++i) {
@@ -156,7 +156,7 @@ TEST(ReferenceLights, AliasTablePicksInProportionToWeight) {
   const std::vector<std::vector<double>> cases = {
       {1.0}, {1.0, 1.0, 1.0}, {5.0, 0.0, 1.0, 2.0}, {1e-6, 1.0, 1e6, 3.0, 0.0, 7.5}};
   for (const std::vector<double>& weights : cases) {
-    std::vector<gpu::ReferenceLightAlias> table = buildAliasTable(weights);
+    std::vector<gpu::GpuLightAlias> table = buildAliasTable(weights);
     ASSERT_EQ(table.size(), weights.size());
     double sum = 0.0;
     for (double w : weights) sum += w;

@@ -23,7 +23,7 @@
 const uint PURPOSE_BRDF = 1u;
 const uint PURPOSE_LOCAL_LIGHT = 2u;
 const uint PURPOSE_ROULETTE = 3u;
-const uint PURPOSE_DISTANT_LIGHT = 4u;  // + light index, up to REFERENCE_MAX_DISTANT_LIGHTS
+const uint PURPOSE_DISTANT_LIGHT = 4u;  // + light index, up to MAX_DISTANT_LIGHTS
 
 const uint ROULETTE_FIRST_BOUNCE = 3u;
 const float NO_HIT = 3.0e38;
@@ -65,7 +65,7 @@ vec3 lightContribution(Surface s, vec3 wo, LightSample l) {
 
 vec3 directLighting(Surface s, vec3 wo, uvec4 key, uint bounce) {
   vec3 sum = vec3(0.0);
-  for (uint k = 0u; k < settings.distantLightCount; ++k)
+  for (uint k = 0u; k < lightTables.distantLightCount; ++k)
     sum += lightContribution(s, wo, sampleDistantLight(k, pathRandom(key, bounce, PURPOSE_DISTANT_LIGHT + k).xy));
   vec4 u = pathRandom(key, bounce, PURPOSE_LOCAL_LIGHT);
   sum += lightContribution(s, wo, sampleLocalLight(s.position, u));

@@ -7,7 +7,7 @@
 #include "lighting/light_table.h"
 #include "render/gpu_scene.h"
 #include "scene/scene.h"
-#include "shared/reference_io.h"
+#include "shared/lighting_io.h"
 
 namespace bounce {
 
@@ -38,20 +38,19 @@ GpuLightTables::GpuLightTables(vk::Context& context, const GpuScene& gpuScene, c
   std::vector<bool> large = largeEmitters(lights, gpuScene.bounds());
   if (std::find(large.begin(), large.end(), true) != large.end())
     lights = buildLightTable(scene, gpuScene.bvh(), large);
-  std::span<const gpu::ReferenceDistantLight> distant(lights.distantLights);
+  std::span<const gpu::GpuDistantLight> distant(lights.distantLights);
   if (scene.sun.irradiance > 0.0f && !distant.empty()) distant = distant.subspan(1);
   emissiveTriangles_ =
-      upload(context, std::span<const gpu::ReferenceEmissiveTriangle>(lights.emissiveTriangles),
+      upload(context, std::span<const gpu::GpuEmissiveTriangle>(lights.emissiveTriangles),
              "gi.emissive-triangles");
-  punctualLights_ =
-      upload(context, std::span<const gpu::ReferencePunctualLight>(lights.punctualLights),
-             "gi.punctual-lights");
+  punctualLights_ = upload(context, std::span<const gpu::GpuPunctualLight>(lights.punctualLights),
+                           "gi.punctual-lights");
   lightAlias_ =
-      upload(context, std::span<const gpu::ReferenceLightAlias>(lights.alias), "gi.light-alias");
+      upload(context, std::span<const gpu::GpuLightAlias>(lights.alias), "gi.light-alias");
   distantLights_ = upload(context, distant, "gi.distant-lights");
   materialLightAreaPdf_ = upload(context, std::span<const float>(lights.materialLightAreaPdf),
                                  "gi.material-light-area-pdf");
-  gpu::ReferenceSettings block{};
+  gpu::LightTables block{};
   block.emissiveTriangles = emissiveTriangles_.address();
   block.punctualLights = punctualLights_.address();
   block.lightAlias = lightAlias_.address();
@@ -60,7 +59,7 @@ GpuLightTables::GpuLightTables(vk::Context& context, const GpuScene& gpuScene, c
   block.emissiveTriangleCount = uint32_t(lights.emissiveTriangles.size());
   block.localLightCount = lights.localLightCount();
   block.distantLightCount = uint32_t(distant.size());
-  block_ = upload(context, std::span<const gpu::ReferenceSettings>(&block, 1), "gi.lights");
+  block_ = upload(context, std::span<const gpu::LightTables>(&block, 1), "gi.lights");
 }
 
 }  // namespace bounce

@@ -11,6 +11,7 @@
 #include "lighting/light_table.h"
 #include "render/gpu_scene.h"
 #include "scene/scene.h"
+#include "shared/reference_io.h"
 #include "tools/image_io.h"
 #include "vk/pipeline.h"
 

@@ -125,7 +125,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
                                         "hybrid.punctual-lights");
   // The sun comes first in the distant-light table when it shines; it is lit with shadows
   // separately, the KHR directional lights after it are not.
-  std::span<const gpu::ReferenceDistantLight> directional(lights.distantLights);
+  std::span<const gpu::GpuDistantLight> directional(lights.distantLights);
   if (sun_.irradiance > 0.0f && !directional.empty()) directional = directional.subspan(1);
   directionalLightCount_ = uint32_t(directional.size());
   directionalLights_ =

@@ -22,7 +22,7 @@ const float CACHE_RAY_FAR = 1e30;
 // Whether a cache ray that hit the emitter surface s counts its emission: large emitters only,
 // the ones the light tables leave out (src/lighting/gpu_light_tables.h).
 bool cacheRayCountsEmission(Surface s) {
-  return FloatArray(settings.materialLightAreaPdf).v[s.material] == 0.0;
+  return FloatArray(lightTables.materialLightAreaPdf).v[s.material] == 0.0;
 }
 
 // Light sample l's reflection at surface s towards wo when its shadow ray is unoccluded.
@@ -53,7 +53,7 @@ vec3 cacheDirectLight(FrameConstants f, Surface s, vec3 wo, vec4 u, bool alphaTe
   vec4 w = uniformFromHash(pcg4d(floatBitsToUint(u) ^ uvec4(0x2545F491u)));
   sum += cacheLightContribution(s, wo, sampleLocalLight(s.position, vec4(u.zw, w.xy)), origin,
                                 alphaTest);
-  for (uint k = 0u; k < settings.distantLightCount; ++k) {
+  for (uint k = 0u; k < lightTables.distantLightCount; ++k) {
     vec2 r = k == 0u ? w.zw : uniformFromHash(pcg4d(floatBitsToUint(w) ^ uvec4(k))).xy;
     sum += cacheLightContribution(s, wo, sampleDistantLight(k, r), origin, alphaTest);
   }

@@ -31,8 +31,8 @@ LightSample sampleFrameSun(FrameConstants f, vec2 u) {
 // of the local category, which MIS at the next BRDF hit of an emitter needs.
 LightSample sampleSecondVertexLight(FrameConstants f, vec3 x, uvec4 key, out float localPick) {
   uint sun = any(greaterThan(f.sunIrradiance, vec3(0.0))) ? 1u : 0u;
-  uint local = settings.localLightCount > 0u ? 1u : 0u;
-  uint count = sun + settings.distantLightCount + local;
+  uint local = lightTables.localLightCount > 0u ? 1u : 0u;
+  uint count = sun + lightTables.distantLightCount + local;
   localPick = count > 0u ? float(local) / float(count) : 0.0;
   if (count == 0u) return invalidLightSample();
   vec4 u = pathRandom(key, 1u, PURPOSE_LOCAL_LIGHT);
@@ -40,7 +40,7 @@ LightSample sampleSecondVertexLight(FrameConstants f, vec3 x, uvec4 key, out flo
   uint k = min(uint(v.z * float(count)), count - 1u);
   LightSample l;
   if (k < sun) l = sampleFrameSun(f, v.xy);
-  else if (k < sun + settings.distantLightCount) l = sampleDistantLight(k - sun, v.xy);
+  else if (k < sun + lightTables.distantLightCount) l = sampleDistantLight(k - sun, v.xy);
   else l = sampleLocalLight(x, u);
   l.radianceOverPdf *= float(count);
   l.pdf /= float(count);
@@ -51,7 +51,7 @@ LightSample sampleSecondVertexLight(FrameConstants f, vec3 x, uvec4 key, out flo
 // frame's sun, shadow rays traced here.
 vec3 laterVertexLighting(FrameConstants f, Surface s, vec3 wo, uvec4 key, uint bounce) {
   vec3 sum = directLighting(s, wo, key, bounce);
-  LightSample sun = sampleFrameSun(f, pathRandom(key, bounce, PURPOSE_DISTANT_LIGHT + REFERENCE_MAX_DISTANT_LIGHTS).xy);
+  LightSample sun = sampleFrameSun(f, pathRandom(key, bounce, PURPOSE_DISTANT_LIGHT + MAX_DISTANT_LIGHTS).xy);
   if (sun.valid) sum += lightContribution(s, wo, sun);
   return sum;
 }
