@@ -10,13 +10,13 @@
 // vertex, gi-cache-lookup, the cache's own rays here), and never when hit. The sun and the KHR
 // lights are never hit: NEE alone. The reference estimator of the tests
 // (reference_irradiance.comp) uses the same direct-light sample and split.
-// The caller loads the light tables into `settings` (reference/settings.glsl) first.
+// The caller loads the light tables into `lightTables` (lighting/light_tables.glsl) first.
 #ifndef BOUNCE_GI_EVOLVE_CACHE_RADIANCE_GLSL
 #define BOUNCE_GI_EVOLVE_CACHE_RADIANCE_GLSL
 #include "gi/evolve/cache_lookup.glsl"
 #include "passes/hybrid_frame.glsl"
-#include "reference/lights.glsl"
-#include "reference/surface.glsl"
+#include "lighting/lights.glsl"
+#include "lighting/surface.glsl"
 
 const float CACHE_RAY_FAR = 1e30;
 // Whether a cache ray that hit the emitter surface s counts its emission: large emitters only,

@@ -3,19 +3,19 @@
 //   only way to reach them, with weight 1)
 //   + one next-event estimation sample at x2, whose shadow ray gi-trace-diffuse-nee-rays traces
 //   + PATH: a path traced on from x2 exactly like the reference tracer's (BRDF sampling, NEE at
-//     every vertex with MIS against BRDF hits on emitters, Russian roulette; reference/
-//     integrator.glsl), so that the chain is unbiased;
+//     every vertex with MIS against BRDF hits on emitters, Russian roulette; the vertices are
+//     lighting/path_vertex.glsl, as the reference's), so that the chain is unbiased;
 //   + CACHE: the clipmap irradiance cache's irradiance / pi x albedo at x2 (issue 5; not wired).
-// The lights come from the reference tracer's tables (reference/lights.glsl, loaded into
-// `settings`), except the sun and the sky, which come from the frame constants because they
+// The lights come from the scene's light tables (lighting/lights.glsl, loaded into
+// `lightTables`), except the sun and the sky, which come from the frame constants because they
 // move.
 #ifndef BOUNCE_GI_EVOLVE_RESTIR_GI_SECOND_VERTEX_GLSL
 #define BOUNCE_GI_EVOLVE_RESTIR_GI_SECOND_VERTEX_GLSL
 #include "gi/evolve/restir_gi_common.glsl"
-#include "reference/integrator.glsl"
+#include "lighting/path_vertex.glsl"
 
 // The sun of this frame: a direction uniformly in its cone, weighted like the reference's
-// distant lights (shared/reference_io.h: E 2 / (1 + cos half-angle)).
+// distant lights (shared/lighting_io.h: E 2 / (1 + cos half-angle)).
 LightSample sampleFrameSun(FrameConstants f, vec2 u) {
   LightSample l = invalidLightSample();
   if (!any(greaterThan(f.sunIrradiance, vec3(0.0)))) return l;
@@ -57,7 +57,7 @@ vec3 laterVertexLighting(FrameConstants f, Surface s, vec3 wo, uvec4 key, uint b
 }
 
 // The path from x2 (scattering event 1; x1 is event 0) on, without x2's emission and NEE.
-// Mirrors tracePath in reference/integrator.glsl from its second vertex.
+// Mirrors tracePath of the reference tracer (reference/integrator.glsl) from its second vertex.
 vec3 continuedPath(FrameConstants f, Surface s, vec3 wo, uvec4 key, float localPickAtX2,
                    uint maxBounces, bool lambert, uint maxTextureSide) {
   vec3 radiance = vec3(0.0);

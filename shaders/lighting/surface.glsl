@@ -1,8 +1,9 @@
-// What the path tracer needs to know about a hit point: position, a geometric normal and a
-// shading normal on the side the ray came from, the glTF material there (textures applied) as
-// a BrdfMaterial, and the radiance it emits back along the ray.
-#ifndef BOUNCE_REFERENCE_SURFACE_GLSL
-#define BOUNCE_REFERENCE_SURFACE_GLSL
+// What light transport needs to know about a hit point, for the reference path tracer and the
+// real-time passes alike: position, a geometric normal and a shading normal on the side the ray
+// came from, the glTF material there (textures applied) as a BrdfMaterial, and the radiance it
+// emits back along the ray.
+#ifndef BOUNCE_LIGHTING_SURFACE_GLSL
+#define BOUNCE_LIGHTING_SURFACE_GLSL
 #include "common/brdf.glsl"
 #include "rt/trace.glsl"
 

@@ -1,13 +1,13 @@
 // Next-event estimation: picking a light and a point on it for a shading point, and the density
 // with which a BRDF-sampled ray that hits an emissive triangle would have been picked (for MIS).
 // The tables are built on the CPU (src/lighting/light_table.cpp); their layout is described in
-// shared/reference_io.h.
-#ifndef BOUNCE_REFERENCE_LIGHTS_GLSL
-#define BOUNCE_REFERENCE_LIGHTS_GLSL
+// shared/lighting_io.h, and the entry point loads them into `lightTables` first.
+#ifndef BOUNCE_LIGHTING_LIGHTS_GLSL
+#define BOUNCE_LIGHTING_LIGHTS_GLSL
 #include "common/ray_offset.glsl"
 #include "common/sampling.glsl"
 #include "lighting/light_tables.glsl"
-#include "reference/surface.glsl"
+#include "lighting/surface.glsl"
 
 // A point on a light as seen from a shading point x.
 struct LightSample {
