@@ -2,7 +2,8 @@
 // furnace (Le / (1 - a) everywhere), a sun-lit Lambert plane (E cos(theta) albedo / pi), point
 // and spot lights (I cos / d^2 times the glTF falloff), the Preetham zenith luminance, and the
 // Cornell box rendered by Cycles (an independent renderer). Also: one-sided emission that
-// follows mirroring, determinism, no NaN, and the `bounce reference` command line.
+// follows mirroring, determinism, no NaN, the `bounce reference` command line, and the light
+// table it samples (src/lighting/light_table.h, shared with the real-time frame).
 //
 // Noise: every tolerance below is several standard deviations of the Monte-Carlo error at the
 // sample counts used (measured, see the comments), so a pass is not luck and a bias of the
@@ -152,7 +153,7 @@ std::vector<double> aliasProbabilities(const std::vector<gpu::GpuLightAlias>& ta
   return p;
 }
 
-TEST(ReferenceLights, AliasTablePicksInProportionToWeight) {
+TEST(LightTable, AliasTablePicksInProportionToWeight) {
   const std::vector<std::vector<double>> cases = {
       {1.0}, {1.0, 1.0, 1.0}, {5.0, 0.0, 1.0, 2.0}, {1e-6, 1.0, 1e6, 3.0, 0.0, 7.5}};
   for (const std::vector<double>& weights : cases) {
@@ -173,7 +174,7 @@ TEST(ReferenceLights, AliasTablePicksInProportionToWeight) {
   EXPECT_THROW(buildAliasTable(std::vector<double>{1.0, -1.0}), Error);
 }
 
-TEST(ReferenceLights, CornellLightIsOneDownwardQuad) {
+TEST(LightTable, CornellLightIsOneDownwardQuad) {
   Scene scene = loadScene(test::sharedDir() + "/scenes/cornell_box/cornell_box.gltf");
   rt::SceneBvh bvh = rt::buildSceneBvh(scene);
   LightTable lights = buildLightTable(scene, bvh);
@@ -190,7 +191,7 @@ TEST(ReferenceLights, CornellLightIsOneDownwardQuad) {
   EXPECT_NEAR(lights.totalLocalPower, expectedPower, 1e-4 * expectedPower);
 }
 
-TEST(ReferenceLights, PunctualAndDistantLightsAreConverted) {
+TEST(LightTable, PunctualAndDistantLightsAreConverted) {
   Scene scene = planeScene(glm::vec3(0.5f));
   scene.sun = Sun{glm::normalize(glm::vec3(1, -1, 0)), 3.0f, {1.0f, 0.5f, 0.25f}, 10.0f};
   PunctualLight point;
