@@ -24,7 +24,7 @@
 #include "frame/presets.h"
 #include "harness.h"
 
-#include "gi/gi_light_tables.h"
+#include "lighting/gpu_light_tables.h"
 #include "passes/image_pass.h"
 #include "passes/primary_view.h"
 #include "frame/animation_player.h"
@@ -96,7 +96,7 @@ std::vector<glm::vec3> referenceIrradiance(CacheRun& run, const std::vector<gpu:
   ComputePass pass(context, *run.gpuScene, "gi/evolve/reference_irradiance", 0,
                  sizeof(gpu::ReferenceIrradianceConstants));
   gpu::FrameConstants constants = referenceFrameConstants(run.scene);
-  GiLightTables lights(context, *run.gpuScene, run.scene);
+  GpuLightTables lights(context, *run.gpuScene, run.scene);
   vk::Buffer frame = vk::uploadBuffer(context, std::as_bytes(std::span(&constants, 1)),
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "test.frame");
   vk::Buffer probeBuffer = vk::uploadBuffer(context, std::as_bytes(std::span(probes)),
@@ -378,7 +378,7 @@ void checkAgreement(const std::string& sceneName, const Agreement& a) {
 }
 
 // The Cornell box is lit by a small emissive quad: the cache reaches it by NEE from its rays'
-// hits (src/gi/gi_light_tables.h), and its L1 SH is normalised to the exact cosine at the
+// hits (src/lighting/gpu_light_tables.h), and its L1 SH is normalised to the exact cosine at the
 // cell's normal (cache_build_sh.comp); without the two it was 23 % dark with single points off
 // by up to 2x.
 TEST(ClipmapCache, CornellAgreesWithPathTracedIrradiance) {

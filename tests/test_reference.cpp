@@ -2,7 +2,8 @@
 // furnace (Le / (1 - a) everywhere), a sun-lit Lambert plane (E cos(theta) albedo / pi), point
 // and spot lights (I cos / d^2 times the glTF falloff), the Preetham zenith luminance, and the
 // Cornell box rendered by Cycles (an independent renderer). Also: one-sided emission that
-// follows mirroring, determinism, no NaN, and the `bounce reference` command line.
+// follows mirroring, determinism, no NaN, the `bounce reference` command line, and the light
+// table it samples (src/lighting/light_table.h, shared with the real-time frame).
 //
 // Noise: every tolerance below is several standard deviations of the Monte-Carlo error at the
 // sample counts used (measured, see the comments), so a pass is not luck and a bias of the
@@ -19,7 +20,7 @@
 
 #include "core/error.h"
 #include "harness.h"
-#include "reference/light_table.h"
+#include "lighting/light_table.h"
 #include "reference/path_tracer.h"
 #include "rt/gpu_scene.h"
 #include "scene/load.h"
@@ -142,7 +143,7 @@ Scene planeScene(const glm::vec3& albedo, float halfSize = 100.0f) {
 // ---- the light table (CPU) ---------------------------------------------------------------------
 
 // The exact probability with which the alias table picks each entry.
-std::vector<double> aliasProbabilities(const std::vector<gpu::ReferenceLightAlias>& table) {
+std::vector<double> aliasProbabilities(const std::vector<gpu::GpuLightAlias>& table) {
   std::vector<double> p(table.size(), 0.0);
   const double n = double(table.size());
   for (size_t i = 0; i < table.size(); ++i) {
@@ -152,11 +153,11 @@ std::vector<double> aliasProbabilities(const std::vector<gpu::ReferenceLightAlia
   return p;
 }
 
-TEST(ReferenceLights, AliasTablePicksInProportionToWeight) {
+TEST(LightTable, AliasTablePicksInProportionToWeight) {
   const std::vector<std::vector<double>> cases = {
       {1.0}, {1.0, 1.0, 1.0}, {5.0, 0.0, 1.0, 2.0}, {1e-6, 1.0, 1e6, 3.0, 0.0, 7.5}};
   for (const std::vector<double>& weights : cases) {
-    std::vector<gpu::ReferenceLightAlias> table = buildAliasTable(weights);
+    std::vector<gpu::GpuLightAlias> table = buildAliasTable(weights);
     ASSERT_EQ(table.size(), weights.size());
     double sum = 0.0;
     for (double w : weights) sum += w;
@@ -173,10 +174,10 @@ TEST(ReferenceLights, AliasTablePicksInProportionToWeight) {
   EXPECT_THROW(buildAliasTable(std::vector<double>{1.0, -1.0}), Error);
 }
 
-TEST(ReferenceLights, CornellLightIsOneDownwardQuad) {
+TEST(LightTable, CornellLightIsOneDownwardQuad) {
   Scene scene = loadScene(test::sharedDir() + "/scenes/cornell_box/cornell_box.gltf");
   rt::SceneBvh bvh = rt::buildSceneBvh(scene);
-  ReferenceLightTable lights = buildReferenceLights(scene, bvh);
+  LightTable lights = buildLightTable(scene, bvh);
   ASSERT_EQ(lights.emissiveTriangles.size(), 2u);
   EXPECT_TRUE(lights.punctualLights.empty());
   EXPECT_TRUE(lights.distantLights.empty());  // no sun in the file
@@ -190,7 +191,7 @@ TEST(ReferenceLights, CornellLightIsOneDownwardQuad) {
   EXPECT_NEAR(lights.totalLocalPower, expectedPower, 1e-4 * expectedPower);
 }
 
-TEST(ReferenceLights, PunctualAndDistantLightsAreConverted) {
+TEST(LightTable, PunctualAndDistantLightsAreConverted) {
   Scene scene = planeScene(glm::vec3(0.5f));
   scene.sun = Sun{glm::normalize(glm::vec3(1, -1, 0)), 3.0f, {1.0f, 0.5f, 0.25f}, 10.0f};
   PunctualLight point;
@@ -202,7 +203,7 @@ TEST(ReferenceLights, PunctualAndDistantLightsAreConverted) {
   PunctualLight directional = point;
   directional.type = PunctualLight::Type::Directional;
   scene.lights = {point, spot, directional};
-  ReferenceLightTable lights = buildReferenceLights(scene, rt::buildSceneBvh(scene));
+  LightTable lights = buildLightTable(scene, rt::buildSceneBvh(scene));
   ASSERT_EQ(lights.punctualLights.size(), 2u);
   ASSERT_EQ(lights.distantLights.size(), 2u);  // the sun and the directional light
   EXPECT_NEAR(lights.totalLocalPower,
@@ -392,7 +393,7 @@ TEST(Reference, EmissionIsOneSidedAndFollowsMirroring) {
     EXPECT_EQ(glm::vec3(behind.image.at(2, 2)), glm::vec3(0.0f)) << "instance at x = " << x;
   }
   // Light sampling uses the same side.
-  ReferenceLightTable lights = buildReferenceLights(scene, rt::buildSceneBvh(scene));
+  LightTable lights = buildLightTable(scene, rt::buildSceneBvh(scene));
   ASSERT_EQ(lights.emissiveTriangles.size(), 4u);
   for (const auto& t : lights.emissiveTriangles) EXPECT_NEAR(t.frontNormal.z, 1.0f, 1e-6f);
 }

@@ -7,7 +7,7 @@
 #version 460
 #include "common/brdf.glsl"
 #include "passes/hybrid_frame.glsl"
-#include "shared/reference_io.h"
+#include "shared/lighting_io.h"
 
 layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { HybridPassConstants pc; };
@@ -24,20 +24,20 @@ layout(set = 1, binding = COMPOSITE_BINDING_REFLECTIONS, rgba16f) uniform readon
 layout(set = 1, binding = COMPOSITE_BINDING_OUTPUT, rgba16f) uniform writeonly image2D hdrOut;
 
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer PunctualLights {
-  ReferencePunctualLight v[];
+  GpuPunctualLight v[];
 };
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer DirectionalLights {
-  ReferenceDistantLight v[];
+  GpuDistantLight v[];
 };
 
 // glTF KHR_lights_punctual: intensity / distance^2 with the spot's smooth angular falloff.
-vec3 punctualLight(ReferencePunctualLight p, BrdfMaterial m, vec3 position, vec3 n, vec3 wo) {
+vec3 punctualLight(GpuPunctualLight p, BrdfMaterial m, vec3 position, vec3 n, vec3 wo) {
   vec3 toLight = p.position - position;
   float distanceSq = dot(toLight, toLight);
   if (!(distanceSq > 0.0)) return vec3(0.0);
   vec3 wi = toLight * inversesqrt(distanceSq);
   float attenuation = 1.0;
-  if (p.type == REFERENCE_LIGHT_SPOT) {
+  if (p.type == PUNCTUAL_LIGHT_SPOT) {
     float a = clamp(dot(p.spotDirection, -wi) * p.angleScale + p.angleOffset, 0.0, 1.0);
     attenuation = a * a;
   }
@@ -49,7 +49,7 @@ vec3 localLights(FrameConstants f, BrdfMaterial m, vec3 position, vec3 n, vec3 w
   for (uint i = 0u; i < f.punctualLightCount; ++i)
     sum += punctualLight(PunctualLights(f.punctualLights).v[i], m, position, n, wo);
   for (uint i = 0u; i < f.directionalLightCount; ++i) {
-    ReferenceDistantLight d = DirectionalLights(f.directionalLights).v[i];
+    GpuDistantLight d = DirectionalLights(f.directionalLights).v[i];
     // The table stores the cone-sampling weight E 2 / (1 + cos); undo it for the irradiance.
     vec3 irradiance = d.coneWeight * (0.5 * (1.0 + d.cosHalfAngle));
     sum += brdfEvaluate(m, n, wo, d.towardLight) * max(dot(n, d.towardLight), 0.0) * irradiance;

@@ -5,7 +5,7 @@
 // textures, emission) is loaded by the same code as the reference path tracer's hits.
 #version 460
 #include "passes/hybrid_frame.glsl"
-#include "reference/surface.glsl"
+#include "lighting/surface.glsl"
 
 layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { HybridPassConstants pc; };

@@ -9,6 +9,7 @@ layout(push_constant, scalar) uniform Push { ReferenceConstants pc; };
 
 void main() {
   settings = ReferenceSettingsBlock(pc.settings).v;
+  lightTables = settings.lights;
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(pixel, settings.resolution))) return;
   AccumulationArray accumulation = AccumulationArray(settings.accumulation);

@@ -1,5 +1,6 @@
 // The reference path tracer's settings block (shared/reference_io.h) and the arrays it points
-// to, as buffer_reference views. The entry point loads the block once into `settings`.
+// to, as buffer_reference views. The entry point loads the block once into `settings`, and its
+// light tables into `lightTables` (lighting/light_tables.glsl).
 #ifndef BOUNCE_REFERENCE_SETTINGS_GLSL
 #define BOUNCE_REFERENCE_SETTINGS_GLSL
 #include "shared/reference_io.h"
@@ -12,21 +13,6 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) buffer Accumulation
 };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer CounterArray {
   uint v[];
-};
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer EmissiveTriangleArray {
-  ReferenceEmissiveTriangle v[];
-};
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer PunctualLightArray {
-  ReferencePunctualLight v[];
-};
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer LightAliasArray {
-  ReferenceLightAlias v[];
-};
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer DistantLightArray {
-  ReferenceDistantLight v[];
-};
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer FloatArray {
-  float v[];
 };
 
 ReferenceSettings settings;

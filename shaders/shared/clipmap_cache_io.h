@@ -130,7 +130,7 @@ BOUNCE_CHECK_SIZE(ClipmapCacheAddresses, 56);
 // (shaders/gi/evolve/cache_lookup.glsl, clipmapCacheView()).
 struct ClipmapCacheConstants {
   ClipmapCacheAddresses buffers;
-  DeviceAddress lights;  // ReferenceSettings with the light tables (src/gi/gi_light_tables.h)
+  DeviceAddress lights;                   // LightTables (src/lighting/gpu_light_tables.h)
   ivec4 cascadeOrigin[CLIPMAP_CASCADES];  // xyz: first cell of the window; w unused
   vec3 cameraPosition;
   float finestCellSize;  // metres
@@ -190,7 +190,7 @@ struct ReferenceIrradianceConstants {
   DeviceAddress frame;   // FrameConstants
   DeviceAddress probes;  // IrradianceProbe[probeCount]
   DeviceAddress sums;    // vec4[probeCount * CLIPMAP_GROUP_SIZE]: per thread (sum rgb, samples)
-  DeviceAddress lights;  // ReferenceSettings with the light tables (src/gi/gi_light_tables.h)
+  DeviceAddress lights;  // LightTables (src/lighting/gpu_light_tables.h)
   uint probeCount;
   uint samplesPerThread;
   uint maxBounces;  // scattering events after the probe: 1 = light from directly lit surfaces

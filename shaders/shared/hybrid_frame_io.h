@@ -60,8 +60,8 @@ struct FrameConstants {
   uvec2 shadowResolution;           // shadows.raw
   uint shadowDivisor;               // render resolution / shadow resolution
   uint flags;                       // FRAME_FLAG_*
-  DeviceAddress punctualLights;     // ReferencePunctualLight[punctualLightCount]
-  DeviceAddress directionalLights;  // ReferenceDistantLight[], KHR directional lights, not the sun
+  DeviceAddress punctualLights;     // GpuPunctualLight[punctualLightCount]
+  DeviceAddress directionalLights;  // GpuDistantLight[], KHR directional lights, not the sun
   uint punctualLightCount;
   uint directionalLightCount;
   float shadowMaxHistory;  // frames the shadow accumulation averages at most

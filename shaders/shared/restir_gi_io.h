@@ -47,9 +47,9 @@ BOUNCE_CONST uint RESTIR_GI_FLAG_PRODUCER_NORMALISATION = 512u;  // 1/Z in spati
 
 // Constants of the whole chain, uploaded once (RestirGi's constructor).
 struct RestirGiConstants {
-  // A ReferenceSettings block (shared/reference_io.h) with the scene's light tables for NEE
-  // from x2; its distant lights exclude the sun, which comes from the frame constants (it
-  // moves). Only the light fields are meaningful.
+  // A LightTables block (shared/lighting_io.h, src/lighting/gpu_light_tables.h) with the
+  // scene's light tables for NEE from x2; its distant lights exclude the sun, which comes from
+  // the frame constants (it moves).
   DeviceAddress lights;
   uvec2 giResolution;
   uint divisor;

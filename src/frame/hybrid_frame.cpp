@@ -9,7 +9,7 @@
 #include "gi/evolve/restir_gi.h"
 #include "graph/debug_view_image.h"
 #include "passes/primary_view.h"
-#include "reference/light_table.h"
+#include "lighting/light_table.h"
 #include "rt/scene_bvh.h"
 
 namespace bounce {
@@ -91,13 +91,13 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
 
   gi_ = makeDiffuseGi(context, gpuScene, scene, settings);
 
-  ReferenceLightTable lights = buildReferenceLights(scene, gpuScene.bvh());
+  LightTable lights = buildLightTable(scene, gpuScene.bvh());
   punctualLightCount_ = uint32_t(lights.punctualLights.size());
   punctualLights_ = uploadStorage(context, std::as_bytes(std::span(lights.punctualLights)),
                                   "hybrid.punctual-lights");
   // The sun comes first in the distant-light table when it shines; it is lit with shadows
   // separately, the KHR directional lights after it are not.
-  std::span<const gpu::ReferenceDistantLight> directional(lights.distantLights);
+  std::span<const gpu::GpuDistantLight> directional(lights.distantLights);
   if (sun_.irradiance > 0.0f && !directional.empty()) directional = directional.subspan(1);
   directionalLightCount_ = uint32_t(directional.size());
   directionalLights_ =

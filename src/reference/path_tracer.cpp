@@ -59,7 +59,7 @@ ReferencePathTracer::ReferencePathTracer(vk::Context& context, const GpuScene& g
       gpuScene_(gpuScene),
       sky_(scene.sky),
       sun_(scene.sun),
-      lights_(buildReferenceLights(scene, gpuScene.bvh())),
+      lights_(buildLightTable(scene, gpuScene.bvh())),
       pipeline_(context, "reference/path_trace", {&gpuScene.setLayout()},
                 sizeof(gpu::ReferenceConstants)) {
   emissiveTriangles_ = uploadTable(context, lights_.emissiveTriangles, "emissive-triangles");
@@ -73,19 +73,19 @@ gpu::ReferenceSettings ReferencePathTracer::makeSettings(const Camera& camera,
                                                          const ReferenceOptions& options) const {
   gpu::ReferenceSettings s{};
   s.camera = makeGpuCamera(camera, options.width, options.height, gpuScene_.bounds());
-  s.emissiveTriangles = emissiveTriangles_.address();
-  s.punctualLights = punctualLights_.address();
-  s.lightAlias = lightAlias_.address();
-  s.distantLights = distantLights_.address();
-  s.materialLightAreaPdf = materialLightAreaPdf_.address();
+  s.lights.emissiveTriangles = emissiveTriangles_.address();
+  s.lights.punctualLights = punctualLights_.address();
+  s.lights.lightAlias = lightAlias_.address();
+  s.lights.distantLights = distantLights_.address();
+  s.lights.materialLightAreaPdf = materialLightAreaPdf_.address();
   s.resolution = {options.width, options.height};
   s.maxBounces = options.maxBounces;
   s.seed = options.seed;
   s.flags = (options.lambert ? gpu::REFERENCE_FLAG_LAMBERT : 0u) |
             (options.pixelCentre ? gpu::REFERENCE_FLAG_PIXEL_CENTRE : 0u);
-  s.emissiveTriangleCount = uint32_t(lights_.emissiveTriangles.size());
-  s.localLightCount = lights_.localLightCount();
-  s.distantLightCount = uint32_t(lights_.distantLights.size());
+  s.lights.emissiveTriangleCount = uint32_t(lights_.emissiveTriangles.size());
+  s.lights.localLightCount = lights_.localLightCount();
+  s.lights.distantLightCount = uint32_t(lights_.distantLights.size());
   s.skyRadiance = sky_.radiance;
   s.skyModel =
       sky_.model == SkyModel::Daylight ? gpu::REFERENCE_SKY_DAYLIGHT : gpu::REFERENCE_SKY_CONSTANT;

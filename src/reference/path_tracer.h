@@ -8,9 +8,10 @@
 #include <cstdint>
 #include <functional>
 
-#include "reference/light_table.h"
+#include "lighting/light_table.h"
 #include "rt/gpu_scene.h"
 #include "scene/scene.h"
+#include "shared/reference_io.h"
 #include "tools/image_io.h"
 #include "vk/pipeline.h"
 
@@ -63,7 +64,7 @@ class ReferencePathTracer {
   // Renders `camera`'s view. Throws bounce::Error for options out of range.
   ReferenceResult render(const Camera& camera, const ReferenceOptions& options);
 
-  const ReferenceLightTable& lights() const { return lights_; }
+  const LightTable& lights() const { return lights_; }
 
  private:
   gpu::ReferenceSettings makeSettings(const Camera& camera, const ReferenceOptions& options) const;
@@ -72,7 +73,7 @@ class ReferencePathTracer {
   const GpuScene& gpuScene_;
   Sky sky_;
   Sun sun_;
-  ReferenceLightTable lights_;
+  LightTable lights_;
   vk::Buffer emissiveTriangles_, punctualLights_, lightAlias_, distantLights_,
       materialLightAreaPdf_;
   vk::ComputePipeline pipeline_;

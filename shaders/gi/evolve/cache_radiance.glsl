@@ -1,28 +1,28 @@
 // Radiance arriving along a cache ray (cache-trace-diffuse-rays, seed 000): at the hit, light
 // reflected once from the frame's sun and from the scene's lights by next-event estimation (one
 // sample of the sun, one local light, emissive triangle or KHR punctual, picked by power, and
-// every KHR directional light; src/gi/gi_light_tables.h), plus the albedo times the cache's
+// every KHR directional light; src/lighting/gpu_light_tables.h), plus the albedo times the cache's
 // irradiance at the hit (a recursive lookup, which makes the bounces infinite), plus the
 // surface's emission; the sky on a miss.
-// Emitters are split between NEE and the cache's rays (src/gi/gi_light_tables.h): large ones
+// Emitters are split between NEE and the cache's rays (src/lighting/gpu_light_tables.h): large ones
 // are not in the light tables (area pdf 0) and count when a ray hits them, small ones count by
 // NEE only, at every consumer that adds the cache's irradiance at a point (ReSTIR GI's 2nd
 // vertex, gi-cache-lookup, the cache's own rays here), and never when hit. The sun and the KHR
 // lights are never hit: NEE alone. The reference estimator of the tests
 // (reference_irradiance.comp) uses the same direct-light sample and split.
-// The caller loads the light tables into `settings` (reference/settings.glsl) first.
+// The caller loads the light tables into `lightTables` (lighting/light_tables.glsl) first.
 #ifndef BOUNCE_GI_EVOLVE_CACHE_RADIANCE_GLSL
 #define BOUNCE_GI_EVOLVE_CACHE_RADIANCE_GLSL
 #include "gi/evolve/cache_lookup.glsl"
 #include "passes/hybrid_frame.glsl"
-#include "reference/lights.glsl"
-#include "reference/surface.glsl"
+#include "lighting/lights.glsl"
+#include "lighting/surface.glsl"
 
 const float CACHE_RAY_FAR = 1e30;
 // Whether a cache ray that hit the emitter surface s counts its emission: large emitters only,
-// the ones the light tables leave out (src/gi/gi_light_tables.h).
+// the ones the light tables leave out (src/lighting/gpu_light_tables.h).
 bool cacheRayCountsEmission(Surface s) {
-  return FloatArray(settings.materialLightAreaPdf).v[s.material] == 0.0;
+  return FloatArray(lightTables.materialLightAreaPdf).v[s.material] == 0.0;
 }
 
 // Light sample l's reflection at surface s towards wo when its shadow ray is unoccluded.
@@ -53,7 +53,7 @@ vec3 cacheDirectLight(FrameConstants f, Surface s, vec3 wo, vec4 u, bool alphaTe
   vec4 w = uniformFromHash(pcg4d(floatBitsToUint(u) ^ uvec4(0x2545F491u)));
   sum += cacheLightContribution(s, wo, sampleLocalLight(s.position, vec4(u.zw, w.xy)), origin,
                                 alphaTest);
-  for (uint k = 0u; k < settings.distantLightCount; ++k) {
+  for (uint k = 0u; k < lightTables.distantLightCount; ++k) {
     vec2 r = k == 0u ? w.zw : uniformFromHash(pcg4d(floatBitsToUint(w) ^ uvec4(k))).xy;
     sum += cacheLightContribution(s, wo, sampleDistantLight(k, r), origin, alphaTest);
   }

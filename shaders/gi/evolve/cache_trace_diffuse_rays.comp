@@ -81,7 +81,7 @@ void main() {
     if (index >= liveCount) return;
     cell = list.v[index];
   }
-  settings = ReferenceSettingsBlock(k.lights).v;
+  lightTables = LightTablesBlock(k.lights).v;
   FrameConstants f = FrameBlock(pc.frame).v;
   ClipmapCell c = cache.cells.v[cell];
   uint touch = pc.bounce == 0u ? rayTouch(c.flags) : 0u;

@@ -21,7 +21,7 @@ void main() {
   vec3 irradiance = vec3(0.0);
   if (gbufferPoint(f, pixel, position, normal)) {
     ClipmapCacheView cache = clipmapCacheView(pc.cache);
-    settings = ReferenceSettingsBlock(cache.constants.v.lights).v;
+    lightTables = LightTablesBlock(cache.constants.v.lights).v;
     for (uint i = 0u; i < LOOKUPS_PER_PIXEL; ++i) {
       uvec3 h = pcg3d(uvec3(uvec2(pixel), f.frameIndex * LOOKUPS_PER_PIXEL + i) ^ uvec3(0u, 0u, RANDOM_CACHE_LOOKUP));
       irradiance += cacheLookupIrradiance(cache, position, normal, h.x);

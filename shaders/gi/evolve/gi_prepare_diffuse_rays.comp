@@ -9,7 +9,7 @@
 // history, trace a fresh candidate as on other frames.
 #version 460
 #include "gi/evolve/restir_gi_common.glsl"
-#include "reference/integrator.glsl"
+#include "lighting/path_vertex.glsl"
 
 layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };

@@ -44,7 +44,7 @@ void main() {
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
   ivec2 g = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(g), gi.giResolution))) return;
-  settings = ReferenceSettingsBlock(gi.lights).v;
+  lightTables = LightTablesBlock(gi.lights).v;
   vec4 ray = imageLoad(rays, g);
   ivec2 pixel = giRepresentativePixel(f, gi, g);
   PrimaryVertex x1 = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);

@@ -62,7 +62,7 @@ void main() {
   uint thread = gl_LocalInvocationID.x;
   if (probe >= pc.probeCount) return;
   FrameConstants f = FrameBlock(pc.frame).v;
-  settings = ReferenceSettingsBlock(pc.lights).v;
+  lightTables = LightTablesBlock(pc.lights).v;
   IrradianceProbe p = Probes(pc.probes).v[probe];
   vec3 sum = vec3(0.0);
   // Counted, not assumed: lavapipe cuts every loop of an invocation short after 65,535 loop

@@ -3,19 +3,19 @@
 //   only way to reach them, with weight 1)
 //   + one next-event estimation sample at x2, whose shadow ray gi-trace-diffuse-nee-rays traces
 //   + PATH: a path traced on from x2 exactly like the reference tracer's (BRDF sampling, NEE at
-//     every vertex with MIS against BRDF hits on emitters, Russian roulette; reference/
-//     integrator.glsl), so that the chain is unbiased;
+//     every vertex with MIS against BRDF hits on emitters, Russian roulette; the vertices are
+//     lighting/path_vertex.glsl, as the reference's), so that the chain is unbiased;
 //   + CACHE: the clipmap irradiance cache's irradiance / pi x albedo at x2 (issue 5; not wired).
-// The lights come from the reference tracer's tables (reference/lights.glsl, loaded into
-// `settings`), except the sun and the sky, which come from the frame constants because they
+// The lights come from the scene's light tables (lighting/lights.glsl, loaded into
+// `lightTables`), except the sun and the sky, which come from the frame constants because they
 // move.
 #ifndef BOUNCE_GI_EVOLVE_RESTIR_GI_SECOND_VERTEX_GLSL
 #define BOUNCE_GI_EVOLVE_RESTIR_GI_SECOND_VERTEX_GLSL
 #include "gi/evolve/restir_gi_common.glsl"
-#include "reference/integrator.glsl"
+#include "lighting/path_vertex.glsl"
 
 // The sun of this frame: a direction uniformly in its cone, weighted like the reference's
-// distant lights (shared/reference_io.h: E 2 / (1 + cos half-angle)).
+// distant lights (shared/lighting_io.h: E 2 / (1 + cos half-angle)).
 LightSample sampleFrameSun(FrameConstants f, vec2 u) {
   LightSample l = invalidLightSample();
   if (!any(greaterThan(f.sunIrradiance, vec3(0.0)))) return l;
@@ -31,8 +31,8 @@ LightSample sampleFrameSun(FrameConstants f, vec2 u) {
 // of the local category, which MIS at the next BRDF hit of an emitter needs.
 LightSample sampleSecondVertexLight(FrameConstants f, vec3 x, uvec4 key, out float localPick) {
   uint sun = any(greaterThan(f.sunIrradiance, vec3(0.0))) ? 1u : 0u;
-  uint local = settings.localLightCount > 0u ? 1u : 0u;
-  uint count = sun + settings.distantLightCount + local;
+  uint local = lightTables.localLightCount > 0u ? 1u : 0u;
+  uint count = sun + lightTables.distantLightCount + local;
   localPick = count > 0u ? float(local) / float(count) : 0.0;
   if (count == 0u) return invalidLightSample();
   vec4 u = pathRandom(key, 1u, PURPOSE_LOCAL_LIGHT);
@@ -40,7 +40,7 @@ LightSample sampleSecondVertexLight(FrameConstants f, vec3 x, uvec4 key, out flo
   uint k = min(uint(v.z * float(count)), count - 1u);
   LightSample l;
   if (k < sun) l = sampleFrameSun(f, v.xy);
-  else if (k < sun + settings.distantLightCount) l = sampleDistantLight(k - sun, v.xy);
+  else if (k < sun + lightTables.distantLightCount) l = sampleDistantLight(k - sun, v.xy);
   else l = sampleLocalLight(x, u);
   l.radianceOverPdf *= float(count);
   l.pdf /= float(count);
@@ -51,13 +51,13 @@ LightSample sampleSecondVertexLight(FrameConstants f, vec3 x, uvec4 key, out flo
 // frame's sun, shadow rays traced here.
 vec3 laterVertexLighting(FrameConstants f, Surface s, vec3 wo, uvec4 key, uint bounce) {
   vec3 sum = directLighting(s, wo, key, bounce);
-  LightSample sun = sampleFrameSun(f, pathRandom(key, bounce, PURPOSE_DISTANT_LIGHT + REFERENCE_MAX_DISTANT_LIGHTS).xy);
+  LightSample sun = sampleFrameSun(f, pathRandom(key, bounce, PURPOSE_DISTANT_LIGHT + MAX_DISTANT_LIGHTS).xy);
   if (sun.valid) sum += lightContribution(s, wo, sun);
   return sum;
 }
 
 // The path from x2 (scattering event 1; x1 is event 0) on, without x2's emission and NEE.
-// Mirrors tracePath in reference/integrator.glsl from its second vertex.
+// Mirrors tracePath of the reference tracer (reference/integrator.glsl) from its second vertex.
 vec3 continuedPath(FrameConstants f, Surface s, vec3 wo, uvec4 key, float localPickAtX2,
                    uint maxBounces, bool lambert, uint maxTextureSide) {
   vec3 radiance = vec3(0.0);

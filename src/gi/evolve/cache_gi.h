@@ -23,7 +23,7 @@ class CacheGi final : public DiffuseGi {
   ClipmapCache& cache() { return cache_; }
 
  private:
-  GiLightTables lights_;  // before cache_, which refers to them
+  GpuLightTables lights_;  // before cache_, which refers to them
   ClipmapCache cache_;
   ComputePass lookup_;
 };

@@ -52,7 +52,7 @@ void checkSettings(const ClipmapCacheSettings& s) {
 }  // namespace
 
 ClipmapCache::ClipmapCache(vk::Context& context, const GpuScene& gpuScene,
-                           const GiLightTables& lights, const ClipmapCacheSettings& settings)
+                           const GpuLightTables& lights, const ClipmapCacheSettings& settings)
     : context_(context),
       lights_(lights),
       settings_((checkSettings(settings), settings)),

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "gi/diffuse_gi.h"
-#include "gi/gi_light_tables.h"
+#include "lighting/gpu_light_tables.h"
 #include "passes/image_pass.h"
 #include "gi/evolve/clipmap_cache_settings.h"
 #include "shared/clipmap_cache_io.h"
@@ -48,7 +48,7 @@ struct CacheBuffers {
 class ClipmapCache {
  public:
   // `lights`: the tables its rays' next-event estimation samples; must outlive the cache.
-  ClipmapCache(vk::Context& context, const GpuScene& gpuScene, const GiLightTables& lights,
+  ClipmapCache(vk::Context& context, const GpuScene& gpuScene, const GpuLightTables& lights,
                const ClipmapCacheSettings& settings);
 
   // Declares the four cache passes and the two debug-view passes (culled unless requested).
@@ -83,7 +83,7 @@ class ClipmapCache {
   gpu::ClipmapCacheConstants makeConstants(const GiInputs& inputs) const;
 
   vk::Context& context_;
-  const GiLightTables& lights_;
+  const GpuLightTables& lights_;
   ClipmapCacheSettings settings_;
   vk::Buffer constants_, grid_, cells_, entries_, pool_, counters_, frame_, liveList_;
   vk::Buffer readback_;  // ClipmapCounters then ClipmapFrameCounters, host-visible

@@ -38,7 +38,7 @@
 #include "gi/evolve/clipmap_cache.h"
 #include "gi/evolve/restir_gi_pass.h"
 #include "gi/evolve/restir_gi_settings.h"
-#include "gi/gi_light_tables.h"
+#include "lighting/gpu_light_tables.h"
 #include "shared/restir_gi_io.h"
 #include "vk/resources.h"
 
@@ -79,7 +79,7 @@ class RestirGi final : public DiffuseGi {
   // the geometric ones (the spatial occlusion validity) and the cache (which refreshes instead).
   bool lightCutPending_ = false;
   // The light tables for NEE at the 2nd vertex (and in the cache, which shares them).
-  GiLightTables lights_;
+  GpuLightTables lights_;
   std::unique_ptr<ClipmapCache> cache_;  // only with RestirGiSecondVertex::Cache
   VkExtent2D giResolution_{};
   vk::Buffer constants_;  // gpu::RestirGiConstants

@@ -31,7 +31,7 @@ struct RestirGiSettings {
   // slower reaction to changed lighting (a sample lives ~maxM frames); ReSTIR GI uses 20-30.
   // 10 here: the radiance stored with a sample is the cache's at the time, and the cache's
   // multi-bounce light is still building up for many frames, so a long-lived sample holds it
-  // back (sunroom after 64 frames, RestirGiDiag: mean ratio 0.78 -> 0.81, relMSE 0.160 ->
+  // back (sunroom after 64 frames, restir-gi-diag: mean ratio 0.78 -> 0.81, relMSE 0.160 ->
   // 0.131 from 20 to 10; cornell unchanged at 1.00-1.02 and 0.021).
   float temporalMaxM = 10.0f;
   // History reservoirs gi-restir-temporal may merge (seed 000: up to 5): the reprojected one
@@ -48,7 +48,7 @@ struct RestirGiSettings {
   // a sum of ~20 at M = 10) and permutation reuse hands it to neighbours meanwhile: without a
   // limit it lingers for tens of frames as a blotch (slow boiling). Lower: shorter blotches,
   // more noise, darker (8 frames: -3 % on sunroom). 0 = no limit, the default: on static
-  // sunroom (RestirGiDiag, README "known gaps") 16 frames gave no gain in per-frame error above
+  // sunroom (restir-gi-diag, README "known gaps") 16 frames gave no gain in per-frame error above
   // the run-to-run spread.
   uint32_t maxSampleAge = 0;
   // Validation rays (gi-prepare-diffuse-rays): every validationPeriod-th frame (seed 000: 3)

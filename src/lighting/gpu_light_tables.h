@@ -1,9 +1,9 @@
-// The light tables the GI techniques' next-event estimation samples: the reference tracer's
-// (reference/light_table.h: emissive triangles and KHR punctual lights picked by power through
-// an alias table, KHR directional lights) uploaded once, behind one gpu::ReferenceSettings
-// block whose address the shaders load into `settings` (shaders/reference/settings.glsl) and
-// sample with shaders/reference/lights.glsl. The sun is left out of the distant lights: it
-// moves, so the shaders take it from the frame constants.
+// The light tables the GI techniques' next-event estimation samples: the scene's light table
+// (lighting/light_table.h: emissive triangles and KHR punctual lights picked by power through
+// an alias table, KHR directional lights) uploaded once, behind one gpu::LightTables block
+// (shared/lighting_io.h) whose address the shaders load into `lightTables`
+// (shaders/lighting/light_tables.glsl) and sample with shaders/lighting/lights.glsl. The sun is
+// left out of the distant lights: it moves, so the shaders take it from the frame constants.
 //
 // Emitters are split once, per material, between the two ways light reaches a point: small
 // emitters (a lamp) by next-event estimation only, large ones (emissive walls, a furnace) by
@@ -22,11 +22,11 @@ namespace bounce {
 class GpuScene;
 struct Scene;
 
-class GiLightTables {
+class GpuLightTables {
  public:
-  GiLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene);
+  GpuLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene);
 
-  // A gpu::ReferenceSettings block with the light arrays set (camera and accumulation unset).
+  // The gpu::LightTables block (shared/lighting_io.h).
   VkDeviceAddress address() const { return block_.address(); }
 
  private:

@@ -1,4 +1,4 @@
-#include "reference/light_table.h"
+#include "lighting/light_table.h"
 
 #include <cmath>
 #include <numbers>
@@ -34,7 +34,7 @@ glm::vec3 meanTextureColor(const Image& image) {
 }
 
 struct LocalLights {
-  std::vector<gpu::ReferenceEmissiveTriangle> triangles;
+  std::vector<gpu::GpuEmissiveTriangle> triangles;
   std::vector<double> trianglePower;
 };
 
@@ -56,7 +56,7 @@ LocalLights gatherEmissiveTriangles(const Scene& scene, const rt::SceneBvh& bvh,
           uint32_t vertex = bvh.indices[g.firstIndex + 3 * primitive + k] + g.vertexOffset;
           p[k] = transformPoint(instance.objectToWorld, bvh.positions[vertex]);
         }
-        gpu::ReferenceEmissiveTriangle t{};
+        gpu::GpuEmissiveTriangle t{};
         t.p0 = p[0];
         t.edge1 = p[1] - p[0];
         t.edge2 = p[2] - p[0];
@@ -75,20 +75,20 @@ LocalLights gatherEmissiveTriangles(const Scene& scene, const rt::SceneBvh& bvh,
   return out;
 }
 
-gpu::ReferencePunctualLight makePunctualLight(const PunctualLight& light) {
-  gpu::ReferencePunctualLight p{};
+gpu::GpuPunctualLight makePunctualLight(const PunctualLight& light) {
+  gpu::GpuPunctualLight p{};
   p.position = light.position;
   p.intensity = light.intensity * light.color;
   p.spotDirection = glm::normalize(light.direction);
   if (light.type == PunctualLight::Type::Spot) {
     // The glTF KHR_lights_punctual reference falloff.
-    p.type = gpu::REFERENCE_LIGHT_SPOT;
+    p.type = gpu::PUNCTUAL_LIGHT_SPOT;
     float cosOuter = std::cos(light.outerConeAngle);
     float cosInner = std::cos(light.innerConeAngle);
     p.angleScale = 1.0f / std::max(0.001f, cosInner - cosOuter);
     p.angleOffset = -cosOuter * p.angleScale;
   } else {
-    p.type = gpu::REFERENCE_LIGHT_POINT;
+    p.type = gpu::PUNCTUAL_LIGHT_POINT;
     p.angleScale = 0.0f;
     p.angleOffset = 1.0f;
   }
@@ -100,10 +100,9 @@ gpu::ReferencePunctualLight makePunctualLight(const PunctualLight& light) {
 // surface facing it receives exactly E (and a surface tilted by theta, with the whole disc
 // above its horizon, exactly E cos theta); sampling the cone's solid angle
 // 2 pi (1 - cos theta_max) uniformly gives coneWeight = E * 2 / (1 + cos theta_max).
-gpu::ReferenceDistantLight makeDistantLight(const glm::vec3& travelDirection,
-                                            const glm::vec3& irradiance,
-                                            float angularDiameterDegrees) {
-  gpu::ReferenceDistantLight d{};
+gpu::GpuDistantLight makeDistantLight(const glm::vec3& travelDirection, const glm::vec3& irradiance,
+                                      float angularDiameterDegrees) {
+  gpu::GpuDistantLight d{};
   d.towardLight = -glm::normalize(travelDirection);
   double halfAngle = 0.5 * double(angularDiameterDegrees) * kPi / 180.0;
   d.cosHalfAngle = halfAngle > 0.0 ? float(std::cos(halfAngle)) : 1.0f;
@@ -112,18 +111,17 @@ gpu::ReferenceDistantLight makeDistantLight(const glm::vec3& travelDirection,
   return d;
 }
 
-std::vector<gpu::ReferenceDistantLight> gatherDistantLights(const Scene& scene) {
-  std::vector<gpu::ReferenceDistantLight> lights;
+std::vector<gpu::GpuDistantLight> gatherDistantLights(const Scene& scene) {
+  std::vector<gpu::GpuDistantLight> lights;
   if (scene.sun.irradiance > 0.0f)
     lights.push_back(makeDistantLight(scene.sun.direction, scene.sun.irradiance * scene.sun.color,
                                       scene.sun.angularDiameterDegrees));
   for (const PunctualLight& l : scene.lights)
     if (l.type == PunctualLight::Type::Directional && l.intensity > 0.0f)
       lights.push_back(makeDistantLight(l.direction, l.intensity * l.color, 0.0f));
-  if (lights.size() > gpu::REFERENCE_MAX_DISTANT_LIGHTS)
-    fail(
-        "{}: {} distant lights (sun and directional lights); the reference tracer takes at most {}",
-        scene.name, lights.size(), gpu::REFERENCE_MAX_DISTANT_LIGHTS);
+  if (lights.size() > gpu::MAX_DISTANT_LIGHTS)
+    fail("{}: {} distant lights (sun and directional lights); the light table takes at most {}",
+         scene.name, lights.size(), gpu::MAX_DISTANT_LIGHTS);
   return lights;
 }
 
@@ -147,7 +145,7 @@ double punctualLightPower(const PunctualLight& light) {
   return 4.0 * kPi * intensity;
 }
 
-std::vector<gpu::ReferenceLightAlias> buildAliasTable(std::span<const double> weights) {
+std::vector<gpu::GpuLightAlias> buildAliasTable(std::span<const double> weights) {
   const size_t n = weights.size();
   double sum = 0.0;
   for (double w : weights) {
@@ -156,7 +154,7 @@ std::vector<gpu::ReferenceLightAlias> buildAliasTable(std::span<const double> we
   }
   if (!(sum > 0.0)) fail("alias table: the weights sum to {}", sum);
 
-  std::vector<gpu::ReferenceLightAlias> table(n);
+  std::vector<gpu::GpuLightAlias> table(n);
   std::vector<double> scaled(n);  // probability x n: 1 means "exactly its share"
   std::vector<uint32_t> small, large;
   for (size_t i = 0; i < n; ++i) {
@@ -183,18 +181,19 @@ std::vector<gpu::ReferenceLightAlias> buildAliasTable(std::span<const double> we
   return table;
 }
 
-ReferenceLightTable buildReferenceLights(const Scene& scene, const rt::SceneBvh& bvh,
-                                         const std::vector<bool>& unsampledMaterials) {
-  ReferenceLightTable table;
+LightTable buildLightTable(const Scene& scene, const rt::SceneBvh& bvh,
+                           const std::vector<bool>& unsampledMaterials) {
+  LightTable table;
   std::vector<float> materialLuminance;
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     bool unsampled = m < unsampledMaterials.size() && unsampledMaterials[m];
-    materialLuminance.push_back(unsampled ? 0.0f : luminance(meanEmission(scene, scene.materials[m])));
+    materialLuminance.push_back(unsampled ? 0.0f
+                                          : luminance(meanEmission(scene, scene.materials[m])));
   }
 
   LocalLights emissive = gatherEmissiveTriangles(scene, bvh, materialLuminance);
   table.materialEmissiveArea.assign(scene.materials.size(), 0.0);
-  for (const gpu::ReferenceEmissiveTriangle& t : emissive.triangles)
+  for (const gpu::GpuEmissiveTriangle& t : emissive.triangles)
     table.materialEmissiveArea[bvh.geometries.at(t.geometry).material] += t.area;
   table.emissiveTriangles = std::move(emissive.triangles);
   std::vector<double> power = std::move(emissive.trianglePower);

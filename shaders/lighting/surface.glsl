@@ -1,8 +1,9 @@
-// What the path tracer needs to know about a hit point: position, a geometric normal and a
-// shading normal on the side the ray came from, the glTF material there (textures applied) as
-// a BrdfMaterial, and the radiance it emits back along the ray.
-#ifndef BOUNCE_REFERENCE_SURFACE_GLSL
-#define BOUNCE_REFERENCE_SURFACE_GLSL
+// What light transport needs to know about a hit point, for the reference path tracer and the
+// real-time passes alike: position, a geometric normal and a shading normal on the side the ray
+// came from, the glTF material there (textures applied) as a BrdfMaterial, and the radiance it
+// emits back along the ray.
+#ifndef BOUNCE_LIGHTING_SURFACE_GLSL
+#define BOUNCE_LIGHTING_SURFACE_GLSL
 #include "common/brdf.glsl"
 #include "rt/trace.glsl"
 
@@ -80,7 +81,7 @@ Surface loadSurfaceAtCoarseMip(TraceHit hit, vec3 rayDirection, bool lambertOnly
   vec3 e1 = p1 - p0;
   vec3 e2 = p2 - p0;
   // The glTF front face, from the same world-space triangle and rule the light table uses for
-  // the emitting side (src/reference/light_table.cpp), so that light sampling and BRDF hits
+  // the emitting side (src/lighting/light_table.cpp), so that light sampling and BRDF hits
   // agree exactly on which side emits: counter-clockwise, or clockwise under a mirroring
   // instance transform. This is TraceHit.frontFacing by definition.
   vec3 frontNormal = cross(e1, e2) * (instanceMirrors(instance) ? -1.0 : 1.0);

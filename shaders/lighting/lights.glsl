@@ -1,13 +1,13 @@
 // Next-event estimation: picking a light and a point on it for a shading point, and the density
 // with which a BRDF-sampled ray that hits an emissive triangle would have been picked (for MIS).
-// The tables are built on the CPU (src/reference/light_table.cpp); their layout is described in
-// shared/reference_io.h.
-#ifndef BOUNCE_REFERENCE_LIGHTS_GLSL
-#define BOUNCE_REFERENCE_LIGHTS_GLSL
+// The tables are built on the CPU (src/lighting/light_table.cpp); their layout is described in
+// shared/lighting_io.h, and the entry point loads them into `lightTables` first.
+#ifndef BOUNCE_LIGHTING_LIGHTS_GLSL
+#define BOUNCE_LIGHTING_LIGHTS_GLSL
 #include "common/ray_offset.glsl"
 #include "common/sampling.glsl"
-#include "reference/settings.glsl"
-#include "reference/surface.glsl"
+#include "lighting/light_tables.glsl"
+#include "lighting/surface.glsl"
 
 // A point on a light as seen from a shading point x.
 struct LightSample {
@@ -32,10 +32,10 @@ LightSample invalidLightSample() {
 
 // Walker's alias method: u.x picks an entry uniformly, u.y keeps it or takes its alias.
 uint pickLocalLight(vec2 u, out float pmf) {
-  LightAliasArray table = LightAliasArray(settings.lightAlias);
-  uint n = settings.localLightCount;
+  LightAliasArray table = LightAliasArray(lightTables.lightAlias);
+  uint n = lightTables.localLightCount;
   uint i = min(uint(u.x * float(n)), n - 1u);
-  ReferenceLightAlias entry = table.v[i];
+  GpuLightAlias entry = table.v[i];
   uint chosen = u.y < entry.threshold ? i : entry.alias;
   pmf = table.v[chosen].pmf;
   return chosen;
@@ -49,7 +49,7 @@ vec2 uniformTriangleBarycentrics(vec2 u) {
 }
 
 LightSample sampleEmissiveTriangle(uint index, float pmf, vec3 x, vec2 u) {
-  ReferenceEmissiveTriangle e = EmissiveTriangleArray(settings.emissiveTriangles).v[index];
+  GpuEmissiveTriangle e = EmissiveTriangleArray(lightTables.emissiveTriangles).v[index];
   vec2 b = uniformTriangleBarycentrics(u);
   vec3 y = e.p0 + b.x * e.edge1 + b.y * e.edge2;
   vec3 toLight = y - x;
@@ -78,14 +78,14 @@ LightSample sampleEmissiveTriangle(uint index, float pmf, vec3 x, vec2 u) {
 
 // glTF KHR_lights_punctual: intensity / distance^2, times the spot's smooth angular falloff.
 LightSample samplePunctualLight(uint index, float pmf, vec3 x) {
-  ReferencePunctualLight p = PunctualLightArray(settings.punctualLights).v[index];
+  GpuPunctualLight p = PunctualLightArray(lightTables.punctualLights).v[index];
   vec3 toLight = p.position - x;
   float distanceSq = dot(toLight, toLight);
   LightSample l = invalidLightSample();
   if (!(distanceSq > 0.0)) return l;
   l.direction = toLight * inversesqrt(distanceSq);
   float attenuation = 1.0;
-  if (p.type == REFERENCE_LIGHT_SPOT) {
+  if (p.type == PUNCTUAL_LIGHT_SPOT) {
     float a = clamp(dot(p.spotDirection, -l.direction) * p.angleScale + p.angleOffset, 0.0, 1.0);
     attenuation = a * a;
   }
@@ -99,17 +99,17 @@ LightSample samplePunctualLight(uint index, float pmf, vec3 x) {
 // One local light (emissive triangle or punctual light), picked in proportion to its power.
 // u.xy choose the light, u.zw the point on it.
 LightSample sampleLocalLight(vec3 x, vec4 u) {
-  if (settings.localLightCount == 0u) return invalidLightSample();
+  if (lightTables.localLightCount == 0u) return invalidLightSample();
   float pmf;
   uint index = pickLocalLight(u.xy, pmf);
   if (!(pmf > 0.0)) return invalidLightSample();
-  if (index < settings.emissiveTriangleCount) return sampleEmissiveTriangle(index, pmf, x, u.zw);
-  return samplePunctualLight(index - settings.emissiveTriangleCount, pmf, x);
+  if (index < lightTables.emissiveTriangleCount) return sampleEmissiveTriangle(index, pmf, x, u.zw);
+  return samplePunctualLight(index - lightTables.emissiveTriangleCount, pmf, x);
 }
 
 // Distant light k: a direction uniformly within its cone (or its one direction).
 LightSample sampleDistantLight(uint k, vec2 u) {
-  ReferenceDistantLight d = DistantLightArray(settings.distantLights).v[k];
+  GpuDistantLight d = DistantLightArray(lightTables.distantLights).v[k];
   LightSample l = invalidLightSample();
   l.distant = true;
   l.direction = d.cosHalfAngle < 1.0 ? sampleCone(d.towardLight, d.cosHalfAngle, u) : d.towardLight;
@@ -123,7 +123,7 @@ LightSample sampleDistantLight(uint k, vec2 u) {
 // `origin` that hit the front of an emissive triangle of `material` at `hitPoint`, whose
 // geometric normal is n.
 float emissiveHitLightPdf(uint material, vec3 origin, vec3 hitPoint, vec3 n) {
-  float areaPdf = FloatArray(settings.materialLightAreaPdf).v[material];
+  float areaPdf = FloatArray(lightTables.materialLightAreaPdf).v[material];
   vec3 d = hitPoint - origin;
   float distanceSq = dot(d, d);
   float cosLight = abs(dot(n, d)) * inversesqrt(distanceSq);

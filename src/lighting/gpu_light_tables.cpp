@@ -1,13 +1,13 @@
-#include "gi/gi_light_tables.h"
+#include "lighting/gpu_light_tables.h"
 
 #include <algorithm>
 #include <span>
 #include <string>
 
-#include "reference/light_table.h"
+#include "lighting/light_table.h"
 #include "rt/gpu_scene.h"
 #include "scene/scene.h"
-#include "shared/reference_io.h"
+#include "shared/lighting_io.h"
 
 namespace bounce {
 
@@ -22,7 +22,7 @@ vk::Buffer upload(vk::Context& context, std::span<const T> items, const std::str
 constexpr double kLargeEmitterFraction = 0.1;
 
 // The materials whose emitters are reached by rays only (see the header).
-std::vector<bool> largeEmitters(const ReferenceLightTable& lights, const Aabb& bounds) {
+std::vector<bool> largeEmitters(const LightTable& lights, const Aabb& bounds) {
   glm::dvec3 e = glm::max(glm::dvec3(bounds.max - bounds.min), glm::dvec3(0.0));
   double boxArea = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
   std::vector<bool> large(lights.materialEmissiveArea.size(), false);
@@ -33,25 +33,24 @@ std::vector<bool> largeEmitters(const ReferenceLightTable& lights, const Aabb& b
 
 }  // namespace
 
-GiLightTables::GiLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene) {
-  ReferenceLightTable lights = buildReferenceLights(scene, gpuScene.bvh());
+GpuLightTables::GpuLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene) {
+  LightTable lights = buildLightTable(scene, gpuScene.bvh());
   std::vector<bool> large = largeEmitters(lights, gpuScene.bounds());
   if (std::find(large.begin(), large.end(), true) != large.end())
-    lights = buildReferenceLights(scene, gpuScene.bvh(), large);
-  std::span<const gpu::ReferenceDistantLight> distant(lights.distantLights);
+    lights = buildLightTable(scene, gpuScene.bvh(), large);
+  std::span<const gpu::GpuDistantLight> distant(lights.distantLights);
   if (scene.sun.irradiance > 0.0f && !distant.empty()) distant = distant.subspan(1);
   emissiveTriangles_ =
-      upload(context, std::span<const gpu::ReferenceEmissiveTriangle>(lights.emissiveTriangles),
+      upload(context, std::span<const gpu::GpuEmissiveTriangle>(lights.emissiveTriangles),
              "gi.emissive-triangles");
-  punctualLights_ =
-      upload(context, std::span<const gpu::ReferencePunctualLight>(lights.punctualLights),
-             "gi.punctual-lights");
+  punctualLights_ = upload(context, std::span<const gpu::GpuPunctualLight>(lights.punctualLights),
+                           "gi.punctual-lights");
   lightAlias_ =
-      upload(context, std::span<const gpu::ReferenceLightAlias>(lights.alias), "gi.light-alias");
+      upload(context, std::span<const gpu::GpuLightAlias>(lights.alias), "gi.light-alias");
   distantLights_ = upload(context, distant, "gi.distant-lights");
   materialLightAreaPdf_ = upload(context, std::span<const float>(lights.materialLightAreaPdf),
                                  "gi.material-light-area-pdf");
-  gpu::ReferenceSettings block{};
+  gpu::LightTables block{};
   block.emissiveTriangles = emissiveTriangles_.address();
   block.punctualLights = punctualLights_.address();
   block.lightAlias = lightAlias_.address();
@@ -60,7 +59,7 @@ GiLightTables::GiLightTables(vk::Context& context, const GpuScene& gpuScene, con
   block.emissiveTriangleCount = uint32_t(lights.emissiveTriangles.size());
   block.localLightCount = lights.localLightCount();
   block.distantLightCount = uint32_t(distant.size());
-  block_ = upload(context, std::span<const gpu::ReferenceSettings>(&block, 1), "gi.lights");
+  block_ = upload(context, std::span<const gpu::LightTables>(&block, 1), "gi.lights");
 }
 
 }  // namespace bounce

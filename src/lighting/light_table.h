@@ -1,5 +1,6 @@
-// The lights the reference path tracer samples, gathered on the CPU once per scene (see
-// shared/reference_io.h for the GPU layout):
+// The scene's lights as next-event estimation samples them, gathered on the CPU once per scene
+// for the reference path tracer and the real-time frame alike (see shared/lighting_io.h for the
+// GPU layout):
 //   - distant lights: the sun and KHR directional lights;
 //   - local lights: every emissive triangle of every instance, in world space, and the KHR
 //     point and spot lights, with an alias table that picks one in proportion to its power.
@@ -12,18 +13,18 @@
 
 #include "rt/scene_bvh.h"
 #include "scene/scene.h"
-#include "shared/reference_io.h"
+#include "shared/lighting_io.h"
 
 namespace bounce {
 
-struct ReferenceLightTable {
-  std::vector<gpu::ReferenceEmissiveTriangle> emissiveTriangles;
-  std::vector<gpu::ReferencePunctualLight> punctualLights;
-  std::vector<gpu::ReferenceLightAlias> alias;  // emissive triangles first, then punctual lights
-  std::vector<gpu::ReferenceDistantLight> distantLights;
-  std::vector<float> materialLightAreaPdf;  // per Scene::materials entry, see reference_io.h
+struct LightTable {
+  std::vector<gpu::GpuEmissiveTriangle> emissiveTriangles;
+  std::vector<gpu::GpuPunctualLight> punctualLights;
+  std::vector<gpu::GpuLightAlias> alias;  // emissive triangles first, then punctual lights
+  std::vector<gpu::GpuDistantLight> distantLights;
+  std::vector<float> materialLightAreaPdf;   // per Scene::materials entry, see lighting_io.h
   std::vector<double> materialEmissiveArea;  // per Scene::materials entry: m^2 of its emitters
-  double totalLocalPower = 0.0;             // W (luminance-weighted), the alias table's sum
+  double totalLocalPower = 0.0;              // W (luminance-weighted), the alias table's sum
 
   uint32_t localLightCount() const { return uint32_t(alias.size()); }
 };
@@ -46,14 +47,14 @@ double punctualLightPower(const PunctualLight& light);
 // Walker's alias table (Walker 1977) built with Vose's stable method (Vose 1991, "A Linear
 // Algorithm for Generating Random Numbers with a Given Distribution"): entry i is chosen with
 // probability weights[i] / sum. Weights must be finite and >= 0 with a positive sum.
-std::vector<gpu::ReferenceLightAlias> buildAliasTable(std::span<const double> weights);
+std::vector<gpu::GpuLightAlias> buildAliasTable(std::span<const double> weights);
 
 // Everything above for a scene whose BVH arrays (instance transforms, vertex streams) are
 // `bvh`, exactly as the GPU sees them. Throws bounce::Error when the scene has more distant
-// lights than REFERENCE_MAX_DISTANT_LIGHTS. Materials flagged in `unsampledMaterials` (indexed
+// lights than MAX_DISTANT_LIGHTS. Materials flagged in `unsampledMaterials` (indexed
 // like Scene::materials; empty = none) are left out of the local lights: their triangles are
 // never picked and their materialLightAreaPdf is 0, so MIS counts BRDF hits on them in full.
-ReferenceLightTable buildReferenceLights(const Scene& scene, const rt::SceneBvh& bvh,
-                                         const std::vector<bool>& unsampledMaterials = {});
+LightTable buildLightTable(const Scene& scene, const rt::SceneBvh& bvh,
+                           const std::vector<bool>& unsampledMaterials = {});
 
 }  // namespace bounce

@@ -1,0 +1,156 @@
+#include "restir_gi_common.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <utility>
+
+#include "harness.h"
+#include "reference/path_tracer.h"
+#include "frame/hybrid_frame.h"
+#include "tools/metrics.h"
+
+namespace bounce::test {
+
+void accumulate(ImageRGBA32F& sum, const ImageRGBA32F& image) {
+  if (sum.pixels.empty()) {
+    sum = image;
+    return;
+  }
+  for (size_t i = 0; i < sum.pixels.size(); ++i) sum.pixels[i] += image.pixels[i];
+}
+
+ImageRGBA32F scaled(ImageRGBA32F image, float s) {
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    if (i % 4 != 3) image.pixels[i] *= s;
+  return image;
+}
+
+double luminance(const ImageRGBA32F& image, size_t i) {
+  return 0.2126 * image.pixels[4 * i] + 0.7152 * image.pixels[4 * i + 1] +
+         0.0722 * image.pixels[4 * i + 2];
+}
+
+Comparison compare(const ImageRGBA32F& test, const ImageRGBA32F& reference) {
+  return {relativeMeanSquaredError(test, reference),
+          meanLuminance(test) / meanLuminance(reference)};
+}
+
+ImageRGBA32F referenceImage(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                            const Camera& camera, uint32_t width, uint32_t height, uint32_t spp) {
+  ReferencePathTracer tracer(context, gpuScene, scene);
+  ReferenceOptions options;
+  options.width = width;
+  options.height = height;
+  options.samplesPerPixel = spp;
+  options.maxBounces = 16;
+  options.lambert = true;
+  options.pixelCentre = true;
+  return tracer.render(camera, options).image;
+}
+
+HybridSettings giSettings(uint32_t width, uint32_t height, const RestirGiSettings& gi) {
+  HybridSettings settings = presetSettings(Preset::Desktop);
+  settings.width = width;
+  settings.height = height;
+  settings.shadows.divisor = 1;
+  settings.lambert = true;
+  settings.gi = GiMode::Evolve;
+  settings.restirGi = gi;
+  return settings;
+}
+
+void printWorstPixels(const ImageRGBA32F& test, const ImageRGBA32F& reference, size_t count) {
+  std::vector<std::pair<double, size_t>> errors;
+  double total = 0.0;
+  for (size_t i = 0; i < test.pixelCount(); ++i) {
+    double e = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      double r = reference.pixels[4 * i + c], d = test.pixels[4 * i + c] - r;
+      e += d * d / (r * r + 0.01) / 3.0;
+    }
+    errors.push_back({e, i});
+    total += e;
+  }
+  count = std::min(count, errors.size());
+  std::partial_sort(errors.begin(), errors.begin() + long(count), errors.end(),
+                    [](const auto& a, const auto& b) { return a.first > b.first; });
+  const size_t n = errors.size(), width = test.width;
+  double worst = 0.0;
+  std::printf("  largest shares of relMSE %.4f:", total / double(n));
+  for (size_t k = 0; k < count; ++k) {
+    worst += errors[k].first;
+    std::printf(" (%zu,%zu) %.4f [%.3f vs %.3f]", errors[k].second % width,
+                errors[k].second / width, errors[k].first / double(n),
+                luminance(test, errors[k].second), luminance(reference, errors[k].second));
+  }
+  std::printf("\n  relMSE without those %zu pixels: %.4f\n", count, (total - worst) / double(n));
+}
+
+double SunJumpRun::recovered() const {
+  return (after.at(7) + after.at(8) + after.at(9)) / 3.0;
+}
+
+double SunJumpRun::converged() const {
+  double sum = 0.0;
+  for (size_t i = 48; i < 64; ++i) sum += after.at(i);
+  return sum / 16.0;
+}
+
+SunJumpRun runSunJump(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                      const Camera& camera, const HybridSettings& settings,
+                      const ImageRGBA32F& reference, const std::vector<std::string>& stages) {
+  SunJumpRun run;
+  run.sceneName = scene.name;
+  run.stages = stages;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("composite");
+  for (const std::string& stage : stages) frame.requestDebugView(stage);
+  Sun mirrored = scene.sun;
+  mirrored.direction =
+      glm::vec3(-mirrored.direction.x, mirrored.direction.y, -mirrored.direction.z);
+  frame.setSunAndSky(mirrored, scene.sky);
+  for (int i = 0; i < 48; ++i) frame.render(camera);
+  run.before = relativeMeanSquaredError(frame.debugViewImage("composite"), reference);
+
+  frame.setSunAndSky(scene.sun, scene.sky);
+  for (int i = 1; i <= 64; ++i) {
+    frame.render(camera);
+    run.after.push_back(relativeMeanSquaredError(frame.debugViewImage("composite"), reference));
+    if (stages.empty() || i > 20) continue;
+    std::vector<double>& means = run.stageMeans.emplace_back();
+    for (const std::string& stage : stages)
+      means.push_back(meanLuminance(frame.debugViewImage(stage)));
+  }
+
+  Camera cut = camera;
+  cut.position = camera.position + 0.5f * (camera.target - camera.position);
+  frame.resetHistory();
+  frame.render(cut);
+  const ImageRGBA32F first = frame.debugViewImage("composite");
+  run.firstCutLuminance = meanLuminance(first);
+  run.firstCutNonFinite = countNonFinitePixels(first);
+  for (int i = 0; i < 16; ++i) frame.render(cut);
+  run.settledCutLuminance = meanLuminance(frame.debugViewImage("composite"));
+  return run;
+}
+
+void printSunJump(const SunJumpRun& run, bool everyFrame) {
+  std::printf("%s sun jump, composite relMSE: before the jump %.4f, after:", run.sceneName.c_str(),
+              run.before);
+  for (size_t k = 0; k < run.after.size(); ++k) {
+    const size_t i = k + 1;
+    if (i <= 12 || i % 8 == 0 || everyFrame) std::printf(" %zu:%.4f", i, run.after[k]);
+    if (k < run.stageMeans.size()) {
+      std::printf(" (stages");
+      for (double mean : run.stageMeans[k]) std::printf(" %.3f", mean);
+      std::printf(")");
+    }
+  }
+  std::printf("\n  composite: frames 8-10 %.4f, converged (49-64) %.4f: %.2fx\n", run.recovered(),
+              run.converged(), run.recovered() / run.converged());
+  std::printf("camera cut: mean luminance of the first frame %.4g, after 16 frames %.4g\n",
+              run.firstCutLuminance, run.settledCutLuminance);
+}
+
+}  // namespace bounce::test

@@ -1,0 +1,74 @@
+// What the ReSTIR GI tests (test_restir_gi.cpp) and the restir-gi-diag tool (tools/) share: the
+// configuration under which the hybrid frame is comparable with the reference pixel for pixel
+// (every material Lambert, camera rays through pixel centres), the reference image, image
+// comparisons, and the sun-jump run.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rt/gpu_scene.h"
+#include "frame/presets.h"
+#include "scene/scene.h"
+#include "tools/image_io.h"
+#include "vk/context.h"
+
+namespace bounce::test {
+
+// Adds `image` to `sum` pixel by pixel; an empty `sum` becomes a copy of `image`.
+void accumulate(ImageRGBA32F& sum, const ImageRGBA32F& image);
+// `image` with its RGB multiplied by s (alpha kept).
+ImageRGBA32F scaled(ImageRGBA32F image, float s);
+// Rec. 709 luminance of pixel i.
+double luminance(const ImageRGBA32F& image, size_t i);
+
+struct Comparison {
+  double relMse = 0.0;
+  double meanRatio = 0.0;  // mean luminance of the test over the reference's
+};
+Comparison compare(const ImageRGBA32F& test, const ImageRGBA32F& reference);
+
+// The reference path tracer's view through `camera` with every material Lambert and camera rays
+// through pixel centres, 16 bounces: what the composite of giSettings() estimates.
+ImageRGBA32F referenceImage(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                            const Camera& camera, uint32_t width, uint32_t height, uint32_t spp);
+
+// The desktop preset's cache (4 candidates and 4 validation rays per cell per frame, alpha-tested
+// rays) with the given ReSTIR GI settings, at a test's size with full-resolution shadows.
+HybridSettings giSettings(uint32_t width, uint32_t height, const RestirGiSettings& gi);
+
+// Prints the `count` pixels that contribute most to relMSE(test, reference) (relMSE's epsilon,
+// 0.01), and relMSE without them: a few pixels whose reference is nearly black can dominate it.
+void printWorstPixels(const ImageRGBA32F& test, const ImageRGBA32F& reference, size_t count);
+
+// The sun jump on a static view: 48 frames under the scene's sun mirrored about the vertical
+// axis (its lit patches elsewhere, every history full), then the sun jumps back (a lighting
+// cut) for 64 frames; then a camera cut (resetHistory, a view halfway to the target) for 17
+// frames. Errors are the composite's relMSE against `reference`, taken under the scene's sun.
+struct SunJumpRun {
+  std::string sceneName;
+  double before = 0.0;              // the last frame before the jump
+  std::vector<double> after;        // frames 1 .. 64 after the jump
+  std::vector<std::string> stages;  // the views traced for the first frames after the jump
+  std::vector<std::vector<double>> stageMeans;  // [frame - 1][stage]: mean luminance
+  double firstCutLuminance = 0.0;               // mean of the first frame after the camera cut
+  double settledCutLuminance = 0.0;             // ... and of the frame 16 frames later
+  size_t firstCutNonFinite = 0;                 // NaN/Inf pixels in the first frame after the cut
+
+  // The error "within 10 frames": mean of frames 8-10 (one frame's error varies by +-30 %).
+  double recovered() const;
+  // The error long after the jump: mean of frames 49-64.
+  double converged() const;
+};
+// Mean luminances of `stages` (debug views, e.g. "cache", "gi.resolved") are recorded for the
+// first 20 frames after the jump.
+SunJumpRun runSunJump(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                      const Camera& camera, const HybridSettings& settings,
+                      const ImageRGBA32F& reference, const std::vector<std::string>& stages = {});
+// The run's errors on two lines: frames 1-12 and every 8th after the jump (every frame with
+// `everyFrame`), each stage's mean where recorded, and the recovered and converged errors; then
+// the camera cut's luminances.
+void printSunJump(const SunJumpRun& run, bool everyFrame);
+
+}  // namespace bounce::test
