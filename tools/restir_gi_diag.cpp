@@ -416,6 +416,7 @@ void runJump(const Options& o) {
 // under the mirrored sun, then the sun jumps back; the composite before the jump and 1, 2, 4, 8,
 // 10, 16 and 64 frames after it, as DIR/before.png and DIR/after-N.png.
 void writeLookPictures(const std::string& dir) {
+  std::filesystem::create_directories(dir);
   const uint32_t width = 240, height = 135;
   Scene scene = loadScene("sunroom");
   Camera camera = effectiveCamera(scene);
@@ -450,7 +451,7 @@ void addOptions(CLI::App& app, Options& o) {
                  "default,path,unbiased,temporal-only,no-denoise,validation3")
       ->capture_default_str();
   app.add_option("--frames", o.frames, "Frames per configuration; means are over the 2nd half")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   app.add_flag("--trace", o.trace,
                "Per-frame means: the last 16 frames' candidates, temporal and composite (with "
@@ -475,7 +476,15 @@ void addOptions(CLI::App& app, Options& o) {
                  "configuration (the test's is validation3)");
 }
 
+// Malformed option text gets its error before minutes of rendering.
+void checkOptions(const Options& o) {
+  parseResolution(o.resolution);
+  if (!o.stagesAt.empty()) parsePixel(o.stagesAt, "--stages-at");
+  for (const std::string& item : splitList(o.pixels, ' ')) parsePixel(item, "--pixels");
+}
+
 int runDiagnostics(const Options& o) {
+  checkOptions(o);
   if (!o.lookDir.empty())
     writeLookPictures(o.lookDir);
   else if (!o.jumpConfig.empty())
