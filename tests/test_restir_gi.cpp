@@ -1,4 +1,4 @@
-// Evolve's ReSTIR GI chain (`--gi evolve`, src/gi/evolve/restir_gi.h; issue 6) against the
+// Evolve's ReSTIR GI chain (`--gi evolve`, src/gi/evolve/restir/restir_gi.h; issue 6) against the
 // reference path tracer, camera rays through pixel centres and every material Lambert on both
 // sides, so that composite = emission + sun + albedo x gi.diffuse is comparable pixel for pixel:
 //   - unbiased configuration (full-res GI, temporal reuse only, a continued path at x2, no
@@ -22,9 +22,9 @@
 #include "frame/presets.h"
 #include "harness.h"
 
+#include "frame/hybrid_frame.h"
 #include "reference/path_tracer.h"
 #include "rt/gpu_scene.h"
-#include "frame/hybrid_frame.h"
 #include "scene/animation.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
@@ -244,7 +244,8 @@ TEST(RestirGi, FullChainConvergesOnCornell) {
 // (measured 0.019: the leaves' veins are averaged away).
 TEST(RestirGi, CoarseMipMaterialsKeepTheGi) {
   const uint32_t width = 96, height = 72;
-  Scene scene = loadGltf(test::sharedDir() + "/scenes/glass_vase_flowers/glTF/GlassVaseFlowers.gltf");
+  Scene scene =
+      loadGltf(test::sharedDir() + "/scenes/glass_vase_flowers/glTF/GlassVaseFlowers.gltf");
   scene.sun.direction = glm::normalize(glm::vec3(-0.4f, -0.8f, -0.45f));
   scene.sun.irradiance = 100.0f;
   scene.sky.radiance = glm::vec3(0.5f, 0.6f, 0.9f);
@@ -270,8 +271,10 @@ TEST(RestirGi, CoarseMipMaterialsKeepTheGi) {
   ImageRGBA32F full = meanNee(0), coarse = meanNee(side);
   writePair("coarse-mip-vase", coarse, full);
   Comparison c = compare(coarse, full);
-  std::printf("glass_vase_flowers %ux%u, %s, coarse (%u texels) vs full mips: relMSE %.4f, mean ratio %.4f\n",
-              width, height, kView, side, c.relMse, c.meanRatio);
+  std::printf(
+      "glass_vase_flowers %ux%u, %s, coarse (%u texels) vs full mips: relMSE %.4f, mean ratio "
+      "%.4f\n",
+      width, height, kView, side, c.relMse, c.meanRatio);
   EXPECT_NEAR(c.meanRatio, 1.0, 0.03);
   EXPECT_LT(c.relMse, 0.05);
   EXPECT_EQ(countNonFinitePixels(coarse), 0u);
@@ -356,8 +359,10 @@ TEST(RestirGi, MaxSampleAgeBoundsHowLongSamplesLive) {
   double meanLimited = 0.0, meanFree = 0.0;
   const uint32_t limited = oldestSample(6, meanLimited);
   const uint32_t free = oldestSample(0, meanFree);
-  std::printf("sunroom 32x24, frames 21-40: oldest sample %u frames (mean %.2f) with maxSampleAge 6, "
-              "%u (mean %.2f) without\n", limited, meanLimited, free, meanFree);
+  std::printf(
+      "sunroom 32x24, frames 21-40: oldest sample %u frames (mean %.2f) with maxSampleAge 6, "
+      "%u (mean %.2f) without\n",
+      limited, meanLimited, free, meanFree);
   EXPECT_LE(limited, 7u);
   EXPECT_GT(free, 12u);
   EXPECT_LT(meanLimited, meanFree);
@@ -390,7 +395,8 @@ void sunJumpAndCameraCut(double recoveryFactor) {
   Camera camera = effectiveCamera(scene);
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
-  const ImageRGBA32F reference = referenceImage(context, gpuScene, scene, camera, width, height, 2048);
+  const ImageRGBA32F reference =
+      referenceImage(context, gpuScene, scene, camera, width, height, 2048);
   // The desktop preset with seed 000's validation rays every 3rd frame and the history cut on
   // brightening: the configuration for lighting that jumps (RestirGiSettings::validationPeriod,
   // historyBrightening).
@@ -399,9 +405,11 @@ void sunJumpAndCameraCut(double recoveryFactor) {
   gi.historyBrightening = 1.3f;
   if (const char* c = std::getenv("RESTIR_JUMP_CONFIG")) gi = diagnosticSettings(c);
   HybridSettings settings = giSettings(width, height, gi);
-  if (const char* c = std::getenv("RESTIR_JUMP_CONFIG")) applyDiagnosticCacheSettings(c, settings.cache);
-  const char* kStages[] = {"cache", "gi.hit-radiance", "gi-resolve-diffuse-rays", "gi-restir-temporal", "gi.resolved",
-                           "gi.temporal-denoised"};
+  if (const char* c = std::getenv("RESTIR_JUMP_CONFIG"))
+    applyDiagnosticCacheSettings(c, settings.cache);
+  const char* kStages[] = {
+      "cache",       "gi.hit-radiance",     "gi-resolve-diffuse-rays", "gi-restir-temporal",
+      "gi.resolved", "gi.temporal-denoised"};
   const bool trace = std::getenv("RESTIR_TRACE") != nullptr;
   auto makeFrame = [&]() {
     auto frame = std::make_unique<HybridFrame>(context, gpuScene, scene, settings);
@@ -427,7 +435,8 @@ void sunJumpAndCameraCut(double recoveryFactor) {
     if (i <= 12 || i % 8 == 0 || trace) std::printf(" %d:%.4f", i, e);
     if (trace && i <= 20) {
       std::printf(" (stages");
-      for (const char* stage : kStages) std::printf(" %.3f", meanLuminance(frame->debugViewImage(stage)));
+      for (const char* stage : kStages)
+        std::printf(" %.3f", meanLuminance(frame->debugViewImage(stage)));
       std::printf(")");
     }
   }
@@ -457,7 +466,8 @@ TEST(RestirGi, SunJumpAndCameraCutRecover) {
 // Issue 6, test 5: 1,000 animated frames (the scene's scripted motion, the default camera sway,
 // a moving sun) at 16x16 with the Vulkan validation layers on, ReSTIR GI's validation rays
 // every 3rd frame and history cut on brightening (both off by default, so their code paths are
-// covered here) and the cache's validation rays: no NaN/Inf in gi.diffuse or composite, silent validation layers.
+// covered here) and the cache's validation rays: no NaN/Inf in gi.diffuse or composite, silent
+// validation layers.
 TEST(RestirGi, LongAnimatedRunStaysFinite) {
   const uint32_t width = 16, height = 16;
   Scene scene = loadScene("sunroom");
@@ -531,9 +541,9 @@ void printWorstPixels(const ImageRGBA32F& test, const ImageRGBA32F& reference, s
   std::printf("  largest shares of relMSE %.4f:", total / double(n));
   for (size_t k = 0; k < count; ++k) {
     worst += errors[k].first;
-    std::printf(" (%zu,%zu) %.4f [%.3f vs %.3f]", errors[k].second % width, errors[k].second / width,
-                errors[k].first / double(n), luminance(test, errors[k].second),
-                luminance(reference, errors[k].second));
+    std::printf(" (%zu,%zu) %.4f [%.3f vs %.3f]", errors[k].second % width,
+                errors[k].second / width, errors[k].first / double(n),
+                luminance(test, errors[k].second), luminance(reference, errors[k].second));
   }
   std::printf("\n  relMSE without those %zu pixels: %.4f\n", count, (total - worst) / double(n));
 }
@@ -544,7 +554,8 @@ void applyDiagnosticCacheSettings(const std::string& name, ClipmapCacheSettings&
   if (name.find("cap8") != std::string::npos) cache.historyCap = 8.0f;
   if (name.find("cap4") != std::string::npos) cache.historyCap = 4.0f;
   if (name.find("mcache") != std::string::npos) cache = ClipmapCacheSettings{};
-  if (name.find("rays16") != std::string::npos) cache.raysPerCell = 16, cache.validationRaysPerCell = 0;
+  if (name.find("rays16") != std::string::npos)
+    cache.raysPerCell = 16, cache.validationRaysPerCell = 0;
   if (name.find("refresh0") != std::string::npos) cache.fullRefreshFrames = 0;
   if (name.find("refresh8") != std::string::npos) cache.fullRefreshFrames = 8;
   if (name.find("refresh16") != std::string::npos) cache.fullRefreshFrames = 16;
@@ -650,10 +661,20 @@ TEST(RestirGiDiag, Configurations) {
     if (curve && cacheView) frame.requestDebugView("cache");
     // RESTIR_STAGES_AT="x,y": each stage's luminance at that render pixel (the GI pixel under
     // it for the half-resolution ones), mean over the 2nd half of the frames: where a leak starts.
-    const char* kStagesAt[] = {"cache", "gi.hit-radiance", "gi.candidate-estimate", "gi.reservoir-estimate",
-                               "gi.spatial-0-estimate", "gi.spatial-1-estimate", "gi.validated-estimate",
-                               "gi.patched-estimate", "gi.resolve-occlusion", "gi.resolved", "gi.temporal-denoised",
-                               "gi.diffuse", "gbuffer.base-color", "composite"};
+    const char* kStagesAt[] = {"cache",
+                               "gi.hit-radiance",
+                               "gi.candidate-estimate",
+                               "gi.reservoir-estimate",
+                               "gi.spatial-0-estimate",
+                               "gi.spatial-1-estimate",
+                               "gi.validated-estimate",
+                               "gi.patched-estimate",
+                               "gi.resolve-occlusion",
+                               "gi.resolved",
+                               "gi.temporal-denoised",
+                               "gi.diffuse",
+                               "gbuffer.base-color",
+                               "composite"};
     unsigned atX = 0, atY = 0;
     const bool stagesAt = std::getenv("RESTIR_STAGES_AT") &&
                           std::sscanf(std::getenv("RESTIR_STAGES_AT"), "%u,%u", &atX, &atY) == 2;
@@ -662,7 +683,8 @@ TEST(RestirGiDiag, Configurations) {
       for (const char* stage : kStagesAt) frame.requestDebugView(stage);
     if (stagesAt) frame.requestDebugView("gbuffer.normals");
     ImageRGBA32F sum;
-    double frameRelMse = 0.0;  // mean over the 2nd half of each frame's relMSE: noise, boiling and bias
+    double frameRelMse =
+        0.0;  // mean over the 2nd half of each frame's relMSE: noise, boiling and bias
     const int frames = std::getenv("RESTIR_FRAMES") ? std::atoi(std::getenv("RESTIR_FRAMES")) : 64;
     for (int i = 0; i < frames; ++i) {
       frame.render(camera);
@@ -674,7 +696,8 @@ TEST(RestirGiDiag, Configurations) {
         }
       if (i >= frames / 2) {
         accumulate(sum, frame.debugViewImage("composite"));
-        frameRelMse += compare(frame.debugViewImage("composite"), reference).relMse / double(frames - frames / 2);
+        frameRelMse += compare(frame.debugViewImage("composite"), reference).relMse /
+                       double(frames - frames / 2);
       }
       // RESTIR_CURVE: the convergence curve, relMSE and mean ratio at frames 2^k.
       // RESTIR_CURVE=all: every frame.
@@ -682,7 +705,8 @@ TEST(RestirGiDiag, Configurations) {
       if (curve && ((((i + 1) & i) == 0 && i >= 3) || everyFrame)) {
         Comparison now = compare(frame.debugViewImage("composite"), reference);
         std::printf("  frame %d: relMSE %.4f ratio %.4f cache %.4f candidates %.4f\n", i + 1,
-                    now.relMse, now.meanRatio, cacheView ? meanLuminance(frame.debugViewImage("cache")) : 0.0,
+                    now.relMse, now.meanRatio,
+                    cacheView ? meanLuminance(frame.debugViewImage("cache")) : 0.0,
                     meanLuminance(frame.debugViewImage("gi-resolve-diffuse-rays")));
       }
       if (i >= frames - 16 && std::getenv("RESTIR_TRACE"))
@@ -693,14 +717,16 @@ TEST(RestirGiDiag, Configurations) {
     }
     Comparison last = compare(frame.debugViewImage("composite"), reference);
     Comparison mean = compare(scaled(sum, 1.0f / float(frames - frames / 2)), reference);
-    std::printf("%s: last frame relMSE %.4f ratio %.4f; mean of 2nd half relMSE %.4f ratio %.4f; "
-                "frames of the 2nd half: mean relMSE %.4f\n",
-                name.c_str(), last.relMse, last.meanRatio, mean.relMse, mean.meanRatio, frameRelMse);
+    std::printf(
+        "%s: last frame relMSE %.4f ratio %.4f; mean of 2nd half relMSE %.4f ratio %.4f; "
+        "frames of the 2nd half: mean relMSE %.4f\n",
+        name.c_str(), last.relMse, last.meanRatio, mean.relMse, mean.meanRatio, frameRelMse);
     writePair("diag-" + name, frame.debugViewImage("composite"), reference);
     printWorstPixels(scaled(sum, 1.0f / float(frames - frames / 2)), reference, 8);
     if (stagesAt && std::getenv("RESTIR_STAGES_NEIGHBOURS")) {
       // The last frame's 5x3 neighbourhood of a few views (for a leak: which surface is which).
-      for (const char* view : {"gbuffer.normals", "gbuffer.base-color", "gi.resolved", "gi.diffuse", "composite"}) {
+      for (const char* view :
+           {"gbuffer.normals", "gbuffer.base-color", "gi.resolved", "gi.diffuse", "composite"}) {
         ImageRGBA32F v = frame.debugViewImage(view);
         std::printf("  %s around (%u,%u):\n", view, atX, atY);
         for (int dy = -1; dy <= 1; ++dy) {
@@ -716,7 +742,8 @@ TEST(RestirGiDiag, Configurations) {
       for (int dy = -1; dy <= 1; ++dy) {
         std::printf("   ");
         for (int dx = -2; dx <= 2; ++dx)
-          std::printf(" %.3f", luminance(reference, size_t(int(atY) + dy) * width + size_t(int(atX) + dx)));
+          std::printf(" %.3f",
+                      luminance(reference, size_t(int(atY) + dy) * width + size_t(int(atX) + dx)));
         std::printf("\n");
       }
     }
@@ -745,7 +772,12 @@ TEST(RestirGiDiag, Configurations) {
         for (uint32_t x = 0; x < width; ++x) {
           double r = luminance(reference, size_t(y) * width + x);
           double ratio = luminance(m, size_t(y) * width + x) / std::max(r, 1e-9);
-          row += r < 0.01 ? ' ' : ratio < 0.8 ? '-' : ratio < 0.95 ? 'd' : ratio < 1.05 ? '.' : ratio < 1.2 ? 'b' : '+';
+          row += r < 0.01       ? ' '
+                 : ratio < 0.8  ? '-'
+                 : ratio < 0.95 ? 'd'
+                 : ratio < 1.05 ? '.'
+                 : ratio < 1.2  ? 'b'
+                                : '+';
         }
         std::printf("%s|\n", row.c_str());
       }

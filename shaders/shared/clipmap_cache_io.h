@@ -1,5 +1,5 @@
 // Evolve's world-space clipmap irradiance cache (seed 000, "Clipmap irradiance cache"; after
-// kajiya's ircache): structs shared by C++ (src/gi/evolve/clipmap_cache.h) and the shaders
+// kajiya's ircache): structs shared by C++ (src/gi/evolve/cache/clipmap_cache.h) and the shaders
 // (shaders/gi/evolve/). Everything lives in buffers reached by device address.
 //
 // Geometry: CLIPMAP_CASCADES nested cascades of CLIPMAP_GRID^3 cells around the camera; the
@@ -29,7 +29,7 @@ BOUNCE_BEGIN_SHARED
 BOUNCE_CONST uint CLIPMAP_CASCADES = 12u;
 BOUNCE_CONST uint CLIPMAP_GRID = 32u;
 BOUNCE_CONST uint CLIPMAP_SLOTS_PER_CASCADE = CLIPMAP_GRID * CLIPMAP_GRID * CLIPMAP_GRID;
-BOUNCE_CONST uint CLIPMAP_ENTRIES = 16u;      // 4x4 octahedral bins per cell
+BOUNCE_CONST uint CLIPMAP_ENTRIES = 16u;       // 4x4 octahedral bins per cell
 BOUNCE_CONST uint CLIPMAP_MAX_CELLS = 65535u;  // seed 000: hard cap of live cells
 BOUNCE_CONST uint CLIPMAP_SLOT_LOCKED = 0xFFFFFFFFu;
 
@@ -127,7 +127,7 @@ struct ClipmapCacheAddresses {
 BOUNCE_CHECK_SIZE(ClipmapCacheAddresses, 56);
 
 // Written each frame by cache-update-lifetimes; every consumer reads the cache through it
-// (shaders/gi/evolve/cache_lookup.glsl, clipmapCacheView()).
+// (shaders/gi/evolve/cache/cache_lookup.glsl, clipmapCacheView()).
 struct ClipmapCacheConstants {
   ClipmapCacheAddresses buffers;
   DeviceAddress lights;  // ReferenceSettings with the light tables (src/gi/gi_light_tables.h)
@@ -137,10 +137,10 @@ struct ClipmapCacheConstants {
   uint frameIndex;
   uint raysPerCell;
   uint validationRaysPerCell;
-  uint flags;  // CLIPMAP_FLAG_*
+  uint flags;        // CLIPMAP_FLAG_*
   float historyCap;  // largest M a reservoir keeps
   uint maxStaleFrames;
-  uint poolCapacity;  // live cells at most: CLIPMAP_MAX_CELLS, or fewer for tests
+  uint poolCapacity;         // live cells at most: CLIPMAP_MAX_CELLS, or fewer for tests
   uint materialTextureSide;  // the cells' rays read textures at mips at most this wide (0 = full)
   // Non-zero in the frames after a reset or a lighting cut (ClipmapCache::beginFullRefresh):
   // every live cell traces all its entries, its history capped at fullRefreshHistoryCap.
@@ -175,6 +175,8 @@ BOUNCE_CONST uint CACHE_LOOKUP_IMAGES = 4u;
 // The live-cell bar chart (view `cache.live-cells`): one bar per cascade.
 BOUNCE_CONST uint CLIPMAP_LIVE_VIEW_WIDTH = 256u;
 BOUNCE_CONST uint CLIPMAP_LIVE_VIEW_BAR = 8u;
+BOUNCE_CONST uint CACHE_LIVE_VIEW_BINDING_OUTPUT = 0u;  // rgba16f
+BOUNCE_CONST uint CACHE_LIVE_VIEW_BINDING_COUNT = 1u;
 
 // Test support (shaders/gi/evolve/reference_irradiance.comp): irradiance / pi at points by
 // path tracing with the same tracer, Lambert materials.

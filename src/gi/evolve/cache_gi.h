@@ -5,7 +5,7 @@
 // from the cache's recursive lookups.
 #pragma once
 #include "gi/diffuse_gi.h"
-#include "gi/evolve/clipmap_cache.h"
+#include "gi/evolve/cache/clipmap_cache.h"
 
 namespace bounce {
 
