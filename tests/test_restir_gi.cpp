@@ -1,4 +1,4 @@
-// Evolve's ReSTIR GI chain (`--gi evolve`, src/gi/evolve/restir/restir_gi.h; issue 6) against the
+// Evolve's ReSTIR GI chain (`--gi evolve`, src/gi/evolve/restir/restir_gi.h) against the
 // reference path tracer, camera rays through pixel centres and every material Lambert on both
 // sides, so that composite = emission + sun + albedo x gi.diffuse is comparable pixel for pixel:
 //   - unbiased configuration (full-res GI, temporal reuse only, a continued path at x2, no
@@ -9,7 +9,7 @@
 //     visibility validation, patch, SH resolve, denoisers) after 64 frames, cornell and sunroom;
 //   - responsiveness: a sun jump and a camera cut;
 //   - robustness: no NaN/Inf over a 1,000-frame animated run, validation layers silent.
-// Measured values: each test's comment and the README ("ReSTIR GI").
+// Measured values: docs/gi/restir-gi.md.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -99,7 +99,7 @@ HybridSettings giSettings(uint32_t width, uint32_t height, const RestirGiSetting
 // Issue 6, test 1. With a static view every pixel's primary vertex is the same each frame, so
 // temporal reuse combines samples of one integrand (Jacobian 1) and the estimator is unbiased;
 // the mean over frames must approach the reference up to Monte Carlo noise of both (the
-// reference is 1024 spp: its own relMSE is ~1e-3). 2 % relMSE is the issue's bound; a missing
+// reference is 1024 spp: its own relMSE is ~1e-3). 2 % relMSE is the required bound; a missing
 // cosine, a wrong source pdf (cosine instead of uniform), MIS double counting at x2 or an energy
 // loss in the continued path each move the mean by more than 5 %. cornell's direct light is a
 // small ceiling emitter that only the GI rays find (x1 has no emitter NEE), so the per-frame
@@ -204,9 +204,9 @@ Comparison fullChainError(HybridFrame& frame, const Camera& camera, const ImageR
   return compare(frame.debugViewImage("composite"), reference);
 }
 
-// Issue 6, test 3 on cornell: the default chain after 64 frames within relMSE 0.05 of the
+// On cornell: the default chain after 64 frames within relMSE 0.05 of the
 // reference. The cache (a coarse, lagging approximation of the 3rd vertex on) and the biased
-// spatial reuse make it differ from the reference beyond noise; measured values in the README.
+// spatial reuse make it differ from the reference beyond noise (docs/gi/restir-gi.md).
 TEST(RestirGi, FullChainConvergesOnCornell) {
   const uint32_t width = 32, height = 32;
   Scene scene = loadScene("cornell");
@@ -374,7 +374,7 @@ TEST(RestirGi, FullChainOnSunroom) {
 
 // Issue 6, test 4 (responsiveness), on sunroom with the default chain: a run converges under
 // the mirrored sun for 48 frames (the sunlit floor patch elsewhere; every history full), the
-// sun jumps back (a lighting cut), and the error must return within recoveryFactor (the issue:
+// sun jumps back (a lighting cut), and the error must return within recoveryFactor (required:
 // 1.5x) of its converged value within 10 frames. The error is the composite's relMSE against
 // `bounce reference` under the final sun: what the viewer sees, GI and the shadow denoiser
 // together. Its converged value is that of the same run long after the jump (mean of frames

@@ -5,7 +5,7 @@
 // with colour clipping").
 // What it is clipped to matters: ReSTIR's output is skewed (most pixels a little below the
 // mean, a few far above), so a box of mean +- sigma of this frame's neighbourhood sits below
-// the converged value, and clipping pulled the history down by 6 % on sunroom. So, after
+// the converged value, and clipping to it pulls the history down. So, after
 // ReLAX's history clamping (NVIDIA NRD): a second, *fast* history of at most FAST_FRAMES
 // frames is kept beside the slow one, and the slow history is clipped to the box of the fast
 // history's neighbourhood, mean +- denoiseClipSigma standard deviations (variance clipping,

@@ -49,9 +49,8 @@ BOUNCE_CONST uint CLIPMAP_TOUCH_INDIRECT = 2u;  // level 2: a cache ray from a l
 // cells of this level (or untouched ones) only read. Bounded levels let the cache reach the
 // surfaces that light the view three bounces deep (out of view, behind the camera) without
 // letting cells keep each other alive for ever: a chain dies CLIPMAP_TOUCH_LEVELS - 1 frames
-// after its consumer stops looking. Measured in the furnace test (albedo 0.5, 160 frames):
-// 2 levels lose 3.4% of the light (a ray hitting where no cell may be allocated reads zero),
-// 3 levels lose 3.3% (worst pixel -14%), 4 levels +0.1% (worst pixel -3%), 5 levels 0.0%.
+// after its consumer stops looking. Fewer than 4 levels lose light in the furnace test (a ray
+// hitting where no cell may be allocated reads zero); more gain nothing (docs/decisions.md).
 BOUNCE_CONST uint CLIPMAP_TOUCH_LEVELS = 4u;
 
 // ClipmapCacheConstants.flags

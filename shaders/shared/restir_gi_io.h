@@ -33,7 +33,7 @@ BOUNCE_CONST float RESTIR_GI_SKY_DISTANCE = 1.0e5f;
 // What the radiance at x2 includes besides its emission (RestirGiSettings::secondVertex).
 BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_NEE = 0u;    // + one NEE sample: one bounce only
 BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_PATH = 1u;   // + NEE + a path traced on from x2
-BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_CACHE = 2u;  // + NEE + the clipmap cache (issue 5)
+BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_CACHE = 2u;  // + NEE + the clipmap cache
 
 BOUNCE_CONST uint RESTIR_GI_FLAG_TEMPORAL = 1u;             // gi-restir-temporal merges history
 BOUNCE_CONST uint RESTIR_GI_FLAG_DENOISE = 2u;              // gi-temporal-denoise runs

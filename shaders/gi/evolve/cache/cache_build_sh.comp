@@ -7,8 +7,8 @@
 // scaled up to the whole sphere.
 // L1 SH loses the higher-order part of the clamped-cosine kernel (A2 = pi / 4, Ramamoorthi &
 // Hanrahan 2001): for light arriving from a small solid angle its irradiance is 1/4 + cos / 2
-// of the exact cos, 25 % dark where the light faces the surface (the Cornell box's lamp seen
-// from the floor: the cache was 23 % dark there). So each cell also stores the factor that
+// of the exact cos, 25 % dark where the light faces the surface (a small lamp seen from the
+// floor). So each cell also stores the factor that
 // makes its SH irradiance at the normal of the surface that allocated it (the normal its
 // lookups mostly use) equal the irradiance of the same 16 bin integrals, each spread evenly
 // over its bin, with the exact clamped cosine (a quadrature of BIN_QUADRATURE^2 directions per

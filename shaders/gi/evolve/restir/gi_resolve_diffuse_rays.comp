@@ -56,13 +56,13 @@ Reservoir validatedHistory(RestirGiConstants gi, float rayW, PrimaryVertex x1, R
                 length(fresh.samplePosition - h.samplePosition) > gi.validationDistance * oldDistance);
   if (!moved) {
     // The re-traced radiance replaces the stored one. With the cache at x2 (or NEE alone) both
-    // are close estimates of the same point's radiance (measured: their sums agree within 1 %
-    // on a static view), so the estimate follows what changed, the cache's convergence
+    // are close estimates of the same point's radiance (their sums agree closely on a static
+    // view), so the estimate follows what changed, the cache's convergence
     // included: down at once, up by at most a factor VALIDATION_STEP per validation (W scaled
     // by the rest of the luminance ratio), because a sample that was dark and is now lit
     // carries the large W of a dark sample, and taking its new radiance at once makes a
     // firefly. (Limiting the way down too kept an unlit patch's light for three validations
-    // after a sun jump: 47 % of the jump's error left after 10 frames instead of 40 %.) With Path at x2
+    // after a sun jump.) With Path at x2
     // the stored value was selected from a heavy-tailed distribution (about twice the re-traced
     // one on average), and taking the re-trace would darken, so W p_hat is kept instead: the
     // estimate and the reservoir's weight in later merges stay.

@@ -124,10 +124,8 @@ DEFINE_NEIGHBOURHOOD_LUMINANCES(validity)
 const int BRIGHTENING_RADIUS = 2;
 // The running mean's weight of this frame: 1 / temporalMaxM's default (10), so that the mean
 // lags behind a change about as long as the reservoirs' history does and the cut lasts while
-// it lags (0.25 let the mean catch up in a few frames and the cut stop while the history was
-// still stale: sunroom 32x24, mean of the temporal estimates 10 frames after a sun jump 0.47,
-// now 0.51-0.54, with fresh candidates at 0.6-0.7; gi.diffuse 0.47 -> 0.6 of its converged
-// mean; the error, dominated by the denoiser's and the cache's lag, hardly moves).
+// it lags (a faster mean caught up in a few frames and the cut stopped while the history was
+// still stale).
 const float CANDIDATE_MEAN_BLEND = 0.1;
 
 // The sum of this frame's candidate estimates (luminance) over the 5x5 GI pixels around g,
@@ -155,11 +153,11 @@ ivec2 reprojectedGiPixel(RestirGiConstants gi, ivec2 pixel) {
 // the last frames (gi.candidate-mean, reprojected), which this also updates. Fresh candidates
 // only, on both sides: comparing them with the reservoirs' own estimates cut M exactly where
 // the neighbours' histories (which share samples with this one through permutation reuse)
-// happened to be dark, keeping bright histories and dropping dark ones (+14 % on cornell).
+// happened to be dark, keeping bright histories and dropping dark ones (too bright).
 // Even so, any cut that happens on a static view selects: the mean holds the neighbours' past
 // candidates, which this pixel's history shares through permutation reuse, so a cut where they
 // were dark drops a dark history. Heavy-tailed candidates (cornell's small light, found only by
-// GI rays) cross any threshold now and then: cutting at once made cornell +12-20 % bright. So
+// GI rays) cross any threshold now and then: cutting at once made such scenes too bright. So
 // the cut needs the threshold crossed in two consecutive frames (y of the mean image), which
 // noise rarely does and a real change (the mean takes a few frames to follow) always does.
 // Then (threshold / ratio)^2: a neighbourhood 10x brighter keeps 4 % of its history. A
@@ -214,7 +212,7 @@ void main() {
       float u = random2(uvec2(g), f.frameIndex, RANDOM_GI_TEMPORAL).x;
       // The cut scales every history reservoir's weight; how many are merged still follows
       // their unscaled confidence (else a cut would pull in more permuted neighbours, whose
-      // reuse is biased: +8 % on cornell).
+      // reuse is biased and brightens).
       Reservoir h = capped(gi, history, candidate.M);
       float confidence = candidate.M + h.M;
       h.M *= scale;

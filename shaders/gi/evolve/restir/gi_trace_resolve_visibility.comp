@@ -5,11 +5,11 @@
 // within a GI pixel (besideOccluder: a gap behind a cabinet, an overhang, the inside of a
 // corner), a sample visible from the neighbour's vertex may be hidden from this one: on the
 // wall inside a 5 cm gap, half-resolution GI has no sample of its own and showed the light of
-// the wall outside (sunroom: 0.4 where the reference is 0). There this pass traces a ray to each
+// the wall outside, where the reference is dark. There this pass traces a ray to each
 // sample the resolve will read (resolve_samples.glsl picks the same ones) and marks the hidden
 // ones, which the resolve then counts with zero; gi-spatial-denoise does not blur the pixel.
 // Elsewhere it writes 0 after eight GBuffer reads. A pass of its own because traversal code in
-// the resolve cost that pass half its speed on the H200 (registers), even where it never ran.
+// the resolve slowed that pass everywhere (registers), even where it never ran.
 #version 460
 #include "gi/evolve/restir/restir_gi_visibility.glsl"
 
@@ -30,8 +30,8 @@ layout(set = 1, binding = GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, r32ui) uniform w
 // more than the same-surface tolerance: then something may hide from x what its GI pixel's
 // neighbours see (x is behind it: a gap, an overhang, the inside of a corner). In corners the
 // test has a price: it zeroes the neighbours' samples x cannot see but never adds those only
-// x can see, so corners get darker (cornell's mean -3 %; relMSE still lower on cornell and
-// sunroom). Keeping only occluders parallel to x's plane spared the corners but missed the
+// x can see, so corners get a little darker (the error against the reference still falls).
+// Keeping only occluders parallel to x's plane spared the corners but missed the
 // gap too: looking into a gap one sees the side of the object in front, across the plane.
 bool besideOccluder(FrameConstants f, RestirGiConstants gi, ivec2 pixel, PrimaryVertex x) {
   if ((gi.flags & RESTIR_GI_FLAG_OCCLUDER_VISIBILITY) == 0u) return false;

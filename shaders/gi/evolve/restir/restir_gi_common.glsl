@@ -218,7 +218,7 @@ Reservoir endStream(ReservoirStream s, PrimaryVertex x1) {
 // ReSTIR's 1/Z normalisation (Bitterli et al. 2020, Alg. 6; Ouyang et al. 2021, Alg. 4, here
 // without visibility): dividing by the confidence of every reservoir, also those whose shift
 // could never reach the chosen sample, darkens wherever shifts are rejected (grazing and
-// near-contact geometry: 2 % on sunroom).
+// near-contact geometry).
 bool couldProduce(vec3 origin, vec3 originNormal, PrimaryVertex x1, Reservoir chosen,
                   float maxJacobian) {
   if (dot(chosen.samplePosition - origin, originNormal) <= 0.0) return false;
@@ -233,7 +233,7 @@ bool couldProduce(vec3 origin, vec3 originNormal, PrimaryVertex x1, Reservoir ch
 // change of the sums when it exceeds validationRadiance, else 1. Per pixel the two are single
 // noisy estimates, and the stored one was *selected* for being bright, so lowering each
 // reservoir's M by its own comparison kept the reservoirs whose sample happened to re-trace
-// alike and discarded the others: +20 % bright with fireflies on cornell. Summed over a
+// alike and discarded the others: too bright, with fireflies. Summed over a
 // neighbourhood, noise cancels and a real change (a light switched, the sun moved) stands out;
 // every reservoir of the neighbourhood then loses the same share of its M.
 const int RADIANCE_VALIDATION_RADIUS = 2;

@@ -5,7 +5,8 @@
 //   + PATH: a path traced on from x2 exactly like the reference tracer's (BRDF sampling, NEE at
 //     every vertex with MIS against BRDF hits on emitters, Russian roulette; reference/
 //     integrator.glsl), so that the chain is unbiased;
-//   + CACHE: the clipmap irradiance cache's irradiance / pi x albedo at x2 (issue 5; not wired).
+//   + CACHE: the clipmap irradiance cache's irradiance / pi x albedo at x2 (added by
+//     gi_trace_diffuse_rays.comp, not here).
 // The lights come from the reference tracer's tables (reference/lights.glsl, loaded into
 // `settings`), except the sun and the sky, which come from the frame constants because they
 // move.

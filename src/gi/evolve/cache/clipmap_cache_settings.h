@@ -39,8 +39,8 @@ struct ClipmapCacheSettings {
   // then crosses that many bounces per frame (otherwise one per refresh round of 16 /
   // raysPerCell frames, each diluted by the entry's 1/M). Cost: 16 rays per cell and bounce in
   // those frames (desktop 2x, mobile 16x the usual cache rays, per bounce). With three bounces
-  // per frame, 8 frames (24 bounces) bring sunroom's cache to 0.97 of converged; 16 frames
-  // recovered from a sun jump a little faster (README), at twice the cost. 0 = off.
+  // per frame, 8 frames bring a closed room's cache close to converged; more frames recover
+  // from a sun jump only a little faster, at that much more cost (docs/decisions.md). 0 = off.
   uint32_t fullRefreshFrames = 8;
   float fullRefreshHistoryCap = 1.0f;
   // Bounces the cache adds per full-refresh frame: cache-trace-diffuse-rays and cache-build-sh

@@ -10,9 +10,9 @@ namespace bounce {
 enum class RestirGiSecondVertex : uint32_t {
   Nee = 0,    // + one NEE sample at x2: one bounce of indirect light, cheapest, biased dark
   Path = 1,   // + NEE + a path traced on from x2 like the reference's: unbiased, a path per pixel
-  Cache = 2,  // + NEE + the clipmap irradiance cache at x2 (issue 5, seed 000's choice): all
-              //   bounces for the price of one lookup; biased by the cache's coarseness (cells
-              //   of 4 cm near the camera, growing x2 per cascade) and its lag (16 frames/entry).
+  Cache = 2,  // + NEE + the clipmap irradiance cache at x2 (seed 000's choice): all bounces
+              //   for the price of one lookup; biased by the cache's coarseness (cells of 4 cm
+              //   near the camera, growing x2 per cascade) and its lag (16 frames/entry).
 };
 
 struct RestirGiSettings {
@@ -31,8 +31,7 @@ struct RestirGiSettings {
   // slower reaction to changed lighting (a sample lives ~maxM frames); ReSTIR GI uses 20-30.
   // 10 here: the radiance stored with a sample is the cache's at the time, and the cache's
   // multi-bounce light is still building up for many frames, so a long-lived sample holds it
-  // back (sunroom after 64 frames, RestirGiDiag: mean ratio 0.78 -> 0.81, relMSE 0.160 ->
-  // 0.131 from 20 to 10; cornell unchanged at 1.00-1.02 and 0.021).
+  // back (docs/decisions.md).
   float temporalMaxM = 10.0f;
   // History reservoirs gi-restir-temporal may merge (seed 000: up to 5): the reprojected one
   // (sub-pixel-aware, Area ReSTIR) and up to 4 more by permutation sampling around it, until
@@ -47,9 +46,8 @@ struct RestirGiSettings {
   // than its neighbourhood's mean is rarely outweighed by new candidates (a weight of ~1 against
   // a sum of ~20 at M = 10) and permutation reuse hands it to neighbours meanwhile: without a
   // limit it lingers for tens of frames as a blotch (slow boiling). Lower: shorter blotches,
-  // more noise, darker (8 frames: -3 % on sunroom). 0 = no limit, the default: on static
-  // sunroom (RestirGiDiag, README "known gaps") 16 frames gave no gain in per-frame error above
-  // the run-to-run spread.
+  // more noise, darker. 0 = no limit, the default: a limit gave no measurable gain in
+  // per-frame error on a static view (docs/decisions.md).
   uint32_t maxSampleAge = 0;
   // Validation rays (gi-prepare-diffuse-rays): every validationPeriod-th frame (seed 000: 3)
   // each pixel with history re-traces its reservoir's direction instead of a fresh candidate.
@@ -63,9 +61,8 @@ struct RestirGiSettings {
   // ones were selected for being bright, so there it always fires and only costs temporal
   // reuse). Off by default (seed 000 uses 3): on a static view validation frames bring no
   // fresh candidates (a third fewer samples) and the neighbourhood decisions show as 5x5-pixel
-  // blotches in the final picture; with it the GI follows a sun jump about twice as fast
-  // (sunroom: error down to 0.53-0.79x of the jump's in 10 frames, 0.85x without) and the
-  // mean is unchanged with temporal reuse alone (cornell 0.99 with or without). Use 3
+  // blotches in the final picture; with it the GI follows a sun jump about twice as fast and
+  // the mean is unchanged with temporal reuse alone (docs/decisions.md). Use 3
   // (--restir-validation-period 3) for scenes whose lighting or geometry jumps.
   uint32_t validationPeriod = 0;
   float validationDistance = 0.1f;
@@ -79,14 +76,11 @@ struct RestirGiSettings {
   // in two consecutive frames, history M is scaled by (historyBrightening / ratio)^2.
   // Lower: faster reaction, and more cuts on static views where a few neighbours' candidates
   // happen to find a small bright region, which select (gi_restir_temporal.comp) and brighten.
-  // Measured (sunroom sun jump, validation every 3rd frame; runs vary by +-0.05): error left
-  // after 10 frames 40-53 % at 1.3, 55-57 % at 2, 56-60 % off; cornell static, mean ratio over
-  // frames 32-63: 1.022-1.036 at 1.3, 1.010-1.012 at 2, 1.007-1.010 off. So off by default (0),
-  // like the validation rays it complements; 1.3 with validationPeriod 3 for jumping light.
-  // Darkening is left to validation rays: the sum of 24 heavy-tailed candidates falls far
-  // below its mean often, and cutting M then would only add noise. The lag it cannot remove is
-  // the cache's: with every history reset at the jump (cache included) 88 % of the error is
-  // still there after 10 frames, the cache's multi-bounce light rebuilding.
+  // It speeds up a sun jump only a little and brightens static views a little
+  // (docs/decisions.md), so off by default (0), like the validation rays it complements; 1.3
+  // with validationPeriod 3 for jumping light. Darkening is left to validation rays: the sum of
+  // 24 heavy-tailed candidates falls far below its mean often, and cutting M then would only
+  // add noise. The lag it cannot remove is the cache's multi-bounce light rebuilding.
   float historyBrightening = 0.0f;
   // Reprojection and reuse accept another primary vertex when it lies within this relative
   // distance (of view depth) of this pixel's tangent plane and its normal's cosine to this one
@@ -110,13 +104,10 @@ struct RestirGiSettings {
   // the reservoirs that could have produced each sample (1/Z; Bitterli et al. 2020, Alg. 6,
   // without visibility), or, when false, by every reservoir's (ReSTIR's biased 1/M), which
   // darkens wherever some neighbours' shifts are rejected (maxJacobian, surfaces at grazing
-  // angles): sunroom 32x24 after 64 frames, mean ratio 0.91 -> 0.93, relMSE 0.064 -> 0.061 (one
-  // run each, both passes and the resolve). The cost: extra reads of
-  // the neighbours' primary vertices, and rare samples that only a few neighbours could
-  // produce weigh more. Not in gi-restir-resolve: there it doubled the pass on the H200
-  // (sunroom desktop 0.12 -> 0.28 ms: the neighbours' vertices read twice and held in
-  // registers) and did not help (sunroom 64x48, two runs each: mean ratio 0.93 with it, 0.95
-  // without; relMSE 0.040 / 0.041 with, 0.036 / 0.043 without).
+  // angles). The cost: extra reads of the neighbours' primary vertices, and rare samples that
+  // only a few neighbours could produce weigh more. Not in gi-restir-resolve: there it cost
+  // much time (the neighbours' vertices read twice and held in registers) and did not help
+  // (docs/decisions.md).
   bool producerNormalisation = true;
   uint32_t spatialSamples[2] = {8, 5};
   float spatialRadius[2] = {24.0f, 6.0f};
@@ -158,7 +149,7 @@ struct RestirGiSettings {
   // and show as a dotted line along every wall-ceiling edge. Indirect light is smooth at that
   // scale, so only outliers are touched: lower removes more energy, higher lets more dots
   // through; 0 = off. (Rejecting Jacobians above 2 instead of 10 removed the dots too but
-  // darkened sunroom by 12 %.)
+  // darkened the picture: docs/decisions.md.)
   float fireflyRatio = 2.0f;
   // gi-trace-diffuse-rays and the continued path read x2's textures at the mip at most this
   // many texels wide (seed 000: "always sample materials at a coarse mip level, to reduce
@@ -176,9 +167,8 @@ struct RestirGiSettings {
   // in front of their tangent plane: gaps, inside corners) test the visibility of the samples
   // gi-restir-resolve reuses (up to resolveSamples shadow rays each) and are not blurred by
   // gi-spatial-denoise, so that light seen from a neighbour's primary vertex does not leak
-  // behind the occluder (sunroom 32x24: relMSE 0.11 -> 0.06; corners get a little darker:
-  // cornell's mean -3 %). Costs (H200, desktop): 0.14 ms sunroom, 0.29 ms city, 0.38 ms on the
-  // foliage of glass_vase_flowers (alpha-tested rays); off on the mobile preset.
+  // behind the occluder; corners get a little darker. It costs shadow rays (most on
+  // alpha-tested foliage), so it is off on the mobile preset (docs/decisions.md).
   bool occluderVisibility = true;
   // gi-spatial-denoise after the temporal denoiser (seed 000: desktop only): an edge-aware
   // (same-surface) Gaussian blur of half-width spatialDenoiseRadius pixels. Larger: smoother,
@@ -186,14 +176,14 @@ struct RestirGiSettings {
   bool spatialDenoise = false;
   uint32_t spatialDenoiseRadius = 2;
 
-  // The unbiased configuration of issue 6's first test: full resolution, temporal reuse only,
+  // The unbiased configuration (RestirGi tests): full resolution, temporal reuse only,
   // a continued path at x2, the biased passes (neighbour reuse in the resolve, denoising) off.
   // The presets' columns of DESIGN.md §4 (settings.cpp, presetSettings()).
   static RestirGiSettings mobilePreset() {
     RestirGiSettings s;
     s.divisor = 4;  // quarter-resolution diffuse GI (seed 000)
     s.secondVertex = RestirGiSecondVertex::Cache;
-    s.occluderVisibility = false;  // 0.2 ms on city (H200), 40 % of the mobile budget
+    s.occluderVisibility = false;  // a large share of the mobile GI budget
     return s;
   }
   static RestirGiSettings desktopPreset() {
