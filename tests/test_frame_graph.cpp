@@ -472,6 +472,38 @@ TEST(FrameGraphErrors, BadAccessDeclarations) {
       {"'d'", "history.previous", "read-only"});
 }
 
+// One image, one binding, except for a placeholder: an image bound only to fill a binding the
+// shader ignores in this configuration, which may repeat an image but not a binding.
+TEST(FrameGraphErrors, BindingsAndPlaceholders) {
+  FrameGraph graph;
+  ImageHandle image = graph.createImage("image", kColor);
+  ImageHandle other = graph.createImage("other", kColor);
+  expectError(
+      [&] {
+        graph.addPass("a", QueueKind::Compute)
+            .read(image, Access::StorageRead, 0)
+            .read(image, Access::StorageRead, 1);
+      },
+      {"'a'", "'image' twice", "bindings 0 and 1"});
+  expectError(
+      [&] {
+        graph.addPass("b", QueueKind::Compute)
+            .read(image, Access::StorageRead, 0)
+            .read(other, Access::StorageRead, 0);
+      },
+      {"'b'", "'image' and 'other' both at binding 0"});
+  EXPECT_NO_THROW(graph.addPass("c", QueueKind::Compute)
+                      .read(image, Access::StorageRead, 0)
+                      .readPlaceholder(image, 1));
+  expectError(
+      [&] {
+        graph.addPass("d", QueueKind::Compute)
+            .read(image, Access::StorageRead, 0)
+            .readPlaceholder(other, 0);
+      },
+      {"'d'", "placeholder 'other'", "binding 0"});
+}
+
 TEST(FrameGraphErrors, HistoryNobodyWrites) {
   expectError(
       [] {
