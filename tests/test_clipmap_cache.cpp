@@ -1,4 +1,4 @@
-// Evolve's clipmap irradiance cache (src/gi/evolve/clipmap_cache.h) through `--gi cache` on
+// Evolve's clipmap irradiance cache (src/gi/evolve/cache/clipmap_cache.h) through `--gi cache` on
 // lavapipe, at small resolutions. gi.diffuse is irradiance / pi from everything but the sun's
 // and punctual lights' direct light at the point itself, so it is compared with a path-traced
 // estimate of exactly that (shaders/gi/evolve/reference_irradiance.comp: the same tracer and
@@ -24,12 +24,12 @@
 #include "frame/presets.h"
 #include "harness.h"
 
+#include "frame/animation_player.h"
+#include "frame/hybrid_frame.h"
 #include "lighting/gpu_light_tables.h"
 #include "passes/image_pass.h"
 #include "passes/primary_view.h"
-#include "frame/animation_player.h"
 #include "rt/gpu_scene.h"
-#include "frame/hybrid_frame.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
 #include "shared/camera.h"
@@ -71,7 +71,9 @@ double statistic(const std::vector<GiStatistic>& statistics, const std::string& 
   return -1.0;
 }
 
-float luminance(const glm::vec3& c) { return glm::dot(c, glm::vec3(0.2126f, 0.7152f, 0.0722f)); }
+float luminance(const glm::vec3& c) {
+  return glm::dot(c, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+}
 
 // The frame constants the reference estimator needs (sun, sky, Lambert); the test scenes have
 // no KHR lights.
@@ -90,11 +92,12 @@ gpu::FrameConstants referenceFrameConstants(const Scene& scene) {
 }
 
 // Path-traced irradiance / pi at probes (see the top of the file): 64 threads x `samples`.
-std::vector<glm::vec3> referenceIrradiance(CacheRun& run, const std::vector<gpu::IrradianceProbe>& probes,
+std::vector<glm::vec3> referenceIrradiance(CacheRun& run,
+                                           const std::vector<gpu::IrradianceProbe>& probes,
                                            uint32_t samplesPerThread, uint32_t maxBounces) {
   vk::Context& context = run.context;
   ComputePass pass(context, *run.gpuScene, "gi/evolve/reference_irradiance", 0,
-                 sizeof(gpu::ReferenceIrradianceConstants));
+                   sizeof(gpu::ReferenceIrradianceConstants));
   gpu::FrameConstants constants = referenceFrameConstants(run.scene);
   GpuLightTables lights(context, *run.gpuScene, run.scene);
   vk::Buffer frame = vk::uploadBuffer(context, std::as_bytes(std::span(&constants, 1)),
@@ -112,10 +115,9 @@ std::vector<glm::vec3> referenceIrradiance(CacheRun& run, const std::vector<gpu:
   std::vector<glm::vec4> total(count, glm::vec4(0.0f));
   std::vector<glm::vec4> out(count);
   for (uint32_t batch = 0; batch * samplesPerDispatch < samplesPerThread; ++batch) {
-    gpu::ReferenceIrradianceConstants push{frame.address(),       probeBuffer.address(),
-                                           sums.address(),        lights.address(),
-                                           uint32_t(probes.size()), samplesPerDispatch,
-                                           maxBounces,            12345u + batch};
+    gpu::ReferenceIrradianceConstants push{
+        frame.address(),         probeBuffer.address(), sums.address(), lights.address(),
+        uint32_t(probes.size()), samplesPerDispatch,    maxBounces,     12345u + batch};
     context.submitAndWait([&](VkCommandBuffer cmd) {
       // Zeroed first, so a thread that never wrote its sum shows as w = 0 (checked below).
       vkCmdFillBuffer(cmd, sums.handle(), 0, VK_WHOLE_SIZE, 0u);
@@ -189,8 +191,10 @@ TEST(ClipmapCache, FurnaceConvergesToAnalyticIrradiance) {
       ++pixels;
     }
   double mean = sum / pixels;
-  std::printf("furnace 24x16, 96 frames (last 16 averaged): mean irradiance/pi %.4f (analytic 2), pixels %.3f..%.3f\n",
-              mean, lowest, highest);
+  std::printf(
+      "furnace 24x16, 96 frames (last 16 averaged): mean irradiance/pi %.4f (analytic 2), pixels "
+      "%.3f..%.3f\n",
+      mean, lowest, highest);
   EXPECT_NEAR(mean, 2.0, 0.04);
   EXPECT_GT(lowest, 2.0 * 0.9);
   EXPECT_LT(highest, 2.0 * 1.1);
@@ -237,10 +241,11 @@ TEST(ClipmapCache, FullRefreshRebuildsMultiBounceLightWithinSixteenFrames) {
   Levels three = run(16, 3, converged);
   Levels one = run(16, 1, converged);
   Levels none = run(0, 1, converged);
-  std::printf("sunroom cache, mean of frames 5-8 | 13-16 / frames 49-64: 3 bounces per refresh "
-              "frame %.3f | %.3f, 1 bounce %.3f | %.3f, no refresh %.3f | %.3f\n",
-              three.frames5to8, three.frames13to16, one.frames5to8, one.frames13to16,
-              none.frames5to8, none.frames13to16);
+  std::printf(
+      "sunroom cache, mean of frames 5-8 | 13-16 / frames 49-64: 3 bounces per refresh "
+      "frame %.3f | %.3f, 1 bounce %.3f | %.3f, no refresh %.3f | %.3f\n",
+      three.frames5to8, three.frames13to16, one.frames5to8, one.frames13to16, none.frames5to8,
+      none.frames13to16);
   EXPECT_GE(three.frames5to8, 0.85);
   EXPECT_LE(1.0 - three.frames5to8, 0.5 * (1.0 - one.frames5to8));
   EXPECT_GE(one.frames13to16, 0.85);
@@ -356,20 +361,23 @@ void checkAgreement(const std::string& sceneName, const Agreement& a) {
   int sunlit = 0, within25 = 0;
   double worst = 0.0, meanError = 0.0;
   for (size_t i = 0; i < a.cache.size(); ++i) {
-    double error = std::abs(a.cache[i] - a.multi[i]) / std::max(double(a.multi[i]), 0.15 * meanMulti);
+    double error =
+        std::abs(a.cache[i] - a.multi[i]) / std::max(double(a.multi[i]), 0.15 * meanMulti);
     worst = std::max(worst, error);
     meanError += error / a.cache.size();
     sunlit += a.sunlit[i] ? 1 : 0;
-    std::printf("  %s point %2zu (%s): cache %.4f  path-traced %.4f (single bounce %.4f)  error %.1f%%\n",
-                sceneName.c_str(), i, a.sunlit[i] ? "sunlit  " : "shadowed", a.cache[i],
-                a.multi[i], a.single[i], 100.0 * error);
+    std::printf(
+        "  %s point %2zu (%s): cache %.4f  path-traced %.4f (single bounce %.4f)  error %.1f%%\n",
+        sceneName.c_str(), i, a.sunlit[i] ? "sunlit  " : "shadowed", a.cache[i], a.multi[i],
+        a.single[i], 100.0 * error);
     EXPECT_LT(error, 1.0) << sceneName << " point " << i;
     within25 += error < 0.25 ? 1 : 0;
   }
-  std::printf("%s: %zu points (%d sunlit): mean cache %.4f, path-traced %.4f, single bounce %.4f; "
-              "mean error %.1f%%, worst point %.1f%%, %d within 25%%\n",
-              sceneName.c_str(), a.cache.size(), sunlit, meanCache, meanMulti, meanSingle,
-              100.0 * meanError, 100.0 * worst, within25);
+  std::printf(
+      "%s: %zu points (%d sunlit): mean cache %.4f, path-traced %.4f, single bounce %.4f; "
+      "mean error %.1f%%, worst point %.1f%%, %d within 25%%\n",
+      sceneName.c_str(), a.cache.size(), sunlit, meanCache, meanMulti, meanSingle,
+      100.0 * meanError, 100.0 * worst, within25);
   EXPECT_LE(meanError, 0.15) << sceneName;
   EXPECT_GE(within25, int(std::ceil(0.8 * a.cache.size()))) << sceneName;
   EXPECT_NEAR(meanCache / meanMulti, 1.0, 0.12) << sceneName;
@@ -442,9 +450,10 @@ TEST(ClipmapCache, CityFlyThroughStaysUnderTheCap) {
       failures += statistic(s, "cache.allocation-failures");
       frees += statistic(s, "cache.frees");
     }
-    std::printf("city fly-through 40x24, %d frames, cap %u: at most %.0f live cells, %.0f frees, "
-                "%.0f failed allocations\n",
-                frames, cap, most, frees, failures);
+    std::printf(
+        "city fly-through 40x24, %d frames, cap %u: at most %.0f live cells, %.0f frees, "
+        "%.0f failed allocations\n",
+        frames, cap, most, frees, failures);
     EXPECT_LE(most, double(cap));
     EXPECT_GT(frees, 0.0) << "flying through should free cells";
     if (cap < gpu::CLIPMAP_MAX_CELLS) {
@@ -482,10 +491,11 @@ TEST(ClipmapCache, ScrollingKeepsCellsInsideTheirWindows) {
       }
     }
   }
-  std::printf("scrolling: %.0f live cells still, %.0f freed by scrolling over %d frames (at most "
-              "%.1f%% in a frame); mean gi.diffuse %.4f still, %.4f moved\n",
-              liveStill, scrollFrees, frames, 100.0 * worstShare, meanStill / still.pixelCount(),
-              meanMoving / still.pixelCount());
+  std::printf(
+      "scrolling: %.0f live cells still, %.0f freed by scrolling over %d frames (at most "
+      "%.1f%% in a frame); mean gi.diffuse %.4f still, %.4f moved\n",
+      liveStill, scrollFrees, frames, 100.0 * worstShare, meanStill / still.pixelCount(),
+      meanMoving / still.pixelCount());
   EXPECT_GT(scrollFrees, 0.0) << "the windows should have scrolled";
   // A window moves by one cell layer at a time: 1/32 of its cells, far fewer of the live ones.
   EXPECT_LT(worstShare, 0.10);
@@ -537,9 +547,10 @@ TEST(ClipmapCache, NoNanAfterThousandAnimatedFrames) {
         ++bad;
     }
   }
-  std::printf("animated sunroom 16x12, %d frames: %zu live cells, %zu sampled entries, %zu "
-              "non-finite\n",
-              frames, live, sampled, bad);
+  std::printf(
+      "animated sunroom 16x12, %d frames: %zu live cells, %zu sampled entries, %zu "
+      "non-finite\n",
+      frames, live, sampled, bad);
   EXPECT_GT(live, 0u);
   EXPECT_GT(sampled, live * 8);
   EXPECT_EQ(bad, 0u);

@@ -472,25 +472,36 @@ TEST(FrameGraphErrors, BadAccessDeclarations) {
       {"'d'", "history.previous", "read-only"});
 }
 
-TEST(FrameGraphErrors, BindingsAreOneImageEach) {
+// One image, one binding, except for a placeholder: an image bound only to fill a binding the
+// shader ignores in this configuration, which may repeat an image but not a binding.
+TEST(FrameGraphErrors, BindingsAndPlaceholders) {
   FrameGraph graph;
-  ImageHandle a = graph.createImage("a", kColor);
-  ImageHandle b = graph.createImage("b", kColor);
+  ImageHandle image = graph.createImage("image", kColor);
+  ImageHandle other = graph.createImage("other", kColor);
   expectError(
       [&] {
-        graph.addPass("same-binding", QueueKind::Compute)
-            .write(a, Access::StorageWrite, 0)
-            .write(b, Access::StorageWrite, 0);
+        graph.addPass("a", QueueKind::Compute)
+            .read(image, Access::StorageRead, 0)
+            .read(image, Access::StorageRead, 1);
       },
-      {"'same-binding'", "'a' and 'b'", "binding 0"});
-  graph.addPass("writer", QueueKind::Compute).write(a, Access::StorageWrite, 0);
+      {"'a'", "'image' twice", "bindings 0 and 1"});
   expectError(
       [&] {
-        graph.addPass("two-bindings", QueueKind::Compute)
-            .read(a, Access::StorageRead, 1)
-            .read(a, Access::StorageRead, 2);
+        graph.addPass("b", QueueKind::Compute)
+            .read(image, Access::StorageRead, 0)
+            .read(other, Access::StorageRead, 0);
       },
-      {"'two-bindings'", "'a' twice", "1 and 2"});
+      {"'b'", "'image' and 'other' both at binding 0"});
+  EXPECT_NO_THROW(graph.addPass("c", QueueKind::Compute)
+                      .read(image, Access::StorageRead, 0)
+                      .readPlaceholder(image, 1));
+  expectError(
+      [&] {
+        graph.addPass("d", QueueKind::Compute)
+            .read(image, Access::StorageRead, 0)
+            .readPlaceholder(other, 0);
+      },
+      {"'d'", "placeholder 'other'", "binding 0"});
 }
 
 TEST(FrameGraphErrors, HistoryNobodyWrites) {

@@ -9,9 +9,9 @@
 //     visibility validation, patch, SH resolve, denoisers) after 64 frames, cornell and sunroom;
 //   - responsiveness: a sun jump and a camera cut;
 //   - robustness: no NaN/Inf over a 1,000-frame animated run, validation layers silent.
-// Measured values: each test's comment and the README ("ReSTIR GI"). Diagnostics that only print
+// Measured values: each test's comment and docs/gi/restir-gi.md. Diagnostics that only print
 // (other configurations, per-stage values, convergence curves, pictures) are the restir-gi-diag
-// tool's (tools/README.md).
+// tool's (docs/tools.md).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

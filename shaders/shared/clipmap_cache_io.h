@@ -1,5 +1,5 @@
 // Evolve's world-space clipmap irradiance cache (seed 000, "Clipmap irradiance cache"; after
-// kajiya's ircache): structs shared by C++ (src/gi/evolve/clipmap_cache.h) and the shaders
+// kajiya's ircache): structs shared by C++ (src/gi/evolve/cache/clipmap_cache.h) and the shaders
 // (shaders/gi/evolve/). Everything lives in buffers reached by device address.
 //
 // Geometry: CLIPMAP_CASCADES nested cascades of CLIPMAP_GRID^3 cells around the camera; the
@@ -29,7 +29,7 @@ BOUNCE_BEGIN_SHARED
 BOUNCE_CONST uint CLIPMAP_CASCADES = 12u;
 BOUNCE_CONST uint CLIPMAP_GRID = 32u;
 BOUNCE_CONST uint CLIPMAP_SLOTS_PER_CASCADE = CLIPMAP_GRID * CLIPMAP_GRID * CLIPMAP_GRID;
-BOUNCE_CONST uint CLIPMAP_ENTRIES = 16u;      // 4x4 octahedral bins per cell
+BOUNCE_CONST uint CLIPMAP_ENTRIES = 16u;       // 4x4 octahedral bins per cell
 BOUNCE_CONST uint CLIPMAP_MAX_CELLS = 65535u;  // seed 000: hard cap of live cells
 BOUNCE_CONST uint CLIPMAP_SLOT_LOCKED = 0xFFFFFFFFu;
 
@@ -49,9 +49,8 @@ BOUNCE_CONST uint CLIPMAP_TOUCH_INDIRECT = 2u;  // level 2: a cache ray from a l
 // cells of this level (or untouched ones) only read. Bounded levels let the cache reach the
 // surfaces that light the view three bounces deep (out of view, behind the camera) without
 // letting cells keep each other alive for ever: a chain dies CLIPMAP_TOUCH_LEVELS - 1 frames
-// after its consumer stops looking. Measured in the furnace test (albedo 0.5, 160 frames):
-// 2 levels lose 3.4% of the light (a ray hitting where no cell may be allocated reads zero),
-// 3 levels lose 3.3% (worst pixel -14%), 4 levels +0.1% (worst pixel -3%), 5 levels 0.0%.
+// after its consumer stops looking. Fewer than 4 levels lose light in the furnace test (a ray
+// hitting where no cell may be allocated reads zero); more gain nothing (docs/decisions.md).
 BOUNCE_CONST uint CLIPMAP_TOUCH_LEVELS = 4u;
 
 // ClipmapCacheConstants.flags
@@ -127,7 +126,7 @@ struct ClipmapCacheAddresses {
 BOUNCE_CHECK_SIZE(ClipmapCacheAddresses, 56);
 
 // Written each frame by cache-update-lifetimes; every consumer reads the cache through it
-// (shaders/gi/evolve/cache_lookup.glsl, clipmapCacheView()).
+// (shaders/gi/evolve/cache/cache_lookup.glsl, clipmapCacheView()).
 struct ClipmapCacheConstants {
   ClipmapCacheAddresses buffers;
   DeviceAddress lights;                   // LightTables (src/lighting/gpu_light_tables.h)
@@ -137,10 +136,10 @@ struct ClipmapCacheConstants {
   uint frameIndex;
   uint raysPerCell;
   uint validationRaysPerCell;
-  uint flags;  // CLIPMAP_FLAG_*
+  uint flags;        // CLIPMAP_FLAG_*
   float historyCap;  // largest M a reservoir keeps
   uint maxStaleFrames;
-  uint poolCapacity;  // live cells at most: CLIPMAP_MAX_CELLS, or fewer for tests
+  uint poolCapacity;         // live cells at most: CLIPMAP_MAX_CELLS, or fewer for tests
   uint materialTextureSide;  // the cells' rays read textures at mips at most this wide (0 = full)
   // Non-zero in the frames after a reset or a lighting cut (ClipmapCache::beginFullRefresh):
   // every live cell traces all its entries, its history capped at fullRefreshHistoryCap.
@@ -175,6 +174,8 @@ BOUNCE_CONST uint CACHE_LOOKUP_IMAGES = 4u;
 // The live-cell bar chart (view `cache.live-cells`): one bar per cascade.
 BOUNCE_CONST uint CLIPMAP_LIVE_VIEW_WIDTH = 256u;
 BOUNCE_CONST uint CLIPMAP_LIVE_VIEW_BAR = 8u;
+BOUNCE_CONST uint CACHE_LIVE_VIEW_BINDING_OUTPUT = 0u;  // rgba16f
+BOUNCE_CONST uint CACHE_LIVE_VIEW_BINDING_COUNT = 1u;
 
 // Test support (shaders/gi/evolve/reference_irradiance.comp): irradiance / pi at points by
 // path tracing with the same tracer, Lambert materials.

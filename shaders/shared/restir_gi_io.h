@@ -1,6 +1,6 @@
 // ReSTIR GI (seed 000's diffuse GI chain; Ouyang et al. 2021, "ReSTIR GI: Path Resampling for
 // Real-Time Path Tracing"): the constants block, push constants, reservoir encoding and the
-// bindings of each pass (src/gi/evolve/restir_gi.cpp declares them on the frame graph).
+// bindings of each pass (src/gi/evolve/restir/restir_gi.cpp declares them on the frame graph).
 //
 // GI resolution = render resolution / divisor (1 full, 2 half on desktop, 4 quarter on mobile).
 // GI pixel g traces from the full-res pixel g * divisor + divisor / 2 (clamped), the
@@ -10,7 +10,8 @@
 //   *.sample    RGBA32F  x2 (xyz; for a sky sample x1 + direction * RESTIR_GI_SKY_DISTANCE),
 //                        W, the unbiased contribution weight (solid angle at x1, 1/sr)
 //   *.radiance  RGBA32F  outgoing radiance at x2 towards x1 (rgb), M (confidence, samples seen)
-//   *.origin    RGBA32F  x1, the primary vertex the sample belongs to (xyz), RESTIR_GI_KIND_* | age << 2
+//   *.origin    RGBA32F  x1, the primary vertex the sample belongs to (xyz), RESTIR_GI_KIND_* | age
+//   << 2
 //   *.normals   RGBA16F  octahedral shading normal at x1 (xy), geometric normal at x2 (zw)
 // The target function is p_hat(x2) = luminance(radiance) * max(0, cos(n1, x2 - x1)), zero
 // where x2 lies below x1's geometric surface; the estimate of gi.diffuse (irradiance / pi per
@@ -32,7 +33,7 @@ BOUNCE_CONST float RESTIR_GI_SKY_DISTANCE = 1.0e5f;
 // What the radiance at x2 includes besides its emission (RestirGiSettings::secondVertex).
 BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_NEE = 0u;    // + one NEE sample: one bounce only
 BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_PATH = 1u;   // + NEE + a path traced on from x2
-BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_CACHE = 2u;  // + NEE + the clipmap cache (issue 5)
+BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_CACHE = 2u;  // + NEE + the clipmap cache
 
 BOUNCE_CONST uint RESTIR_GI_FLAG_TEMPORAL = 1u;             // gi-restir-temporal merges history
 BOUNCE_CONST uint RESTIR_GI_FLAG_DENOISE = 2u;              // gi-temporal-denoise runs
@@ -41,8 +42,8 @@ BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL = 8u;              // gi-restir-spatial
 BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_VALIDATION = 16u;  // gi-trace-spatial-validation-rays
 BOUNCE_CONST uint RESTIR_GI_FLAG_PATCH = 32u;               // gi-restir-patch-reservoir
 BOUNCE_CONST uint RESTIR_GI_FLAG_VALIDATION = 64u;  // validation traces every validationPeriod
-BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_DENOISE = 128u;  // gi-spatial-denoise
-BOUNCE_CONST uint RESTIR_GI_FLAG_OCCLUDER_VISIBILITY = 256u;  // gi-trace-resolve-visibility
+BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_DENOISE = 128u;         // gi-spatial-denoise
+BOUNCE_CONST uint RESTIR_GI_FLAG_OCCLUDER_VISIBILITY = 256u;     // gi-trace-resolve-visibility
 BOUNCE_CONST uint RESTIR_GI_FLAG_PRODUCER_NORMALISATION = 512u;  // 1/Z in spatial reuse
 
 // Constants of the whole chain, uploaded once (RestirGi's constructor).
@@ -74,9 +75,10 @@ struct RestirGiConstants {
   float validationRadiance;  // validation: relative radiance change of a neighbourhood -> M cut
   uint temporalHistorySamples;  // history reservoirs gi-restir-temporal may merge (1 to 5)
   uint spatialDenoiseRadius;    // gi-spatial-denoise: half-width of the blur, pixels
-  float historyBrightening;     // temporal: neighbourhood candidates / their running mean above this (2 frames) -> M cut (0 = off)
-  float fireflyRatio;           // temporal denoise: input clamped to this x its ring's brightest (0 = off)
-  uint materialTextureSide;     // x2's textures are read at mips at most this wide (0 = full)
+  float historyBrightening;  // temporal: neighbourhood candidates / their running mean above this
+                             // (2 frames) -> M cut (0 = off)
+  float fireflyRatio;  // temporal denoise: input clamped to this x its ring's brightest (0 = off)
+  uint materialTextureSide;  // x2's textures are read at mips at most this wide (0 = full)
   // RESTIR_GI_BLUE_NOISE_SIDE^2 uints, row-major: two blue-noise rank maps (src/core/blue_noise.h)
   // packed as rankA | rankB << 16, for gi-prepare-diffuse-rays' ray directions
   DeviceAddress blueNoise;
@@ -192,7 +194,7 @@ BOUNCE_CONST uint GI_RESOLVE_BINDING_RESERVOIR = 0u;  // 0-3
 BOUNCE_CONST uint GI_RESOLVE_BINDING_NORMALS = 4u;
 BOUNCE_CONST uint GI_RESOLVE_BINDING_DEPTH = 5u;
 BOUNCE_CONST uint GI_RESOLVE_BINDING_FLAGS = 6u;
-BOUNCE_CONST uint GI_RESOLVE_BINDING_OUTPUT = 7u;  // RGBA16F irradiance / pi per unit albedo
+BOUNCE_CONST uint GI_RESOLVE_BINDING_OUTPUT = 7u;     // RGBA16F irradiance / pi per unit albedo
 BOUNCE_CONST uint GI_RESOLVE_BINDING_OCCLUSION = 8u;  // gi.resolve-occlusion
 BOUNCE_CONST uint GI_RESOLVE_BINDING_COUNT = 9u;
 
@@ -249,10 +251,11 @@ BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_INPUT = 0u;  // gi-temporal-denoise
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_NORMALS = 1u;
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_DEPTH = 2u;
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_FLAGS = 3u;
-BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_OUTPUT = 4u;  // gi.diffuse
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_OUTPUT = 4u;     // gi.diffuse
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_OCCLUSION = 5u;  // gi.resolve-occlusion
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_COUNT = 6u;
-BOUNCE_CONST uint GI_SPATIAL_DENOISE_MAX_RADIUS = 4u;  // RestirGiSettings::spatialDenoiseRadius at most
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_MAX_RADIUS =
+    4u;  // RestirGiSettings::spatialDenoiseRadius at most
 
 BOUNCE_END_SHARED
 #endif

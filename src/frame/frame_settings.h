@@ -8,8 +8,8 @@
 
 #include <vulkan/vulkan.h>
 
-#include "gi/evolve/clipmap_cache_settings.h"
-#include "gi/evolve/restir_gi_settings.h"
+#include "gi/evolve/cache/clipmap_cache_settings.h"
+#include "gi/evolve/restir/restir_gi_settings.h"
 #include "passes/shadows_trace.h"
 #include "passes/vbuffer.h"
 
@@ -17,7 +17,7 @@ namespace bounce {
 
 // Which diffuse GI the composite receives. `None`: the GI slot reads zero, so the frame shows
 // direct light (plus the optional placeholder ambient below). `Evolve`: seed 000's ReSTIR GI
-// chain (src/gi/evolve/restir_gi.h, settings in `restirGi`). `Cache`: Evolve's clipmap
+// chain (src/gi/evolve/restir/restir_gi.h, settings in `restirGi`). `Cache`: Evolve's clipmap
 // irradiance cache alone (src/gi/evolve/cache_gi.h): irradiance at the primary hit.
 enum class GiMode { None, Evolve, Cache };
 std::optional<GiMode> giModeFromName(const std::string& name);  // "none", "evolve", "cache"
@@ -47,7 +47,7 @@ struct HybridSettings {
   // frame at 60 fps; a jump is a scripted change of the time of day. 0 = every change is a cut;
   // a negative value: never.
   float lightingCutDegrees = 5.0f;
-  RestirGiSettings restirGi;  // --gi evolve
+  RestirGiSettings restirGi;   // --gi evolve
   ClipmapCacheSettings cache;  // --gi cache (and the cache ReSTIR GI reads)
 
   VkExtent2D resolution() const { return {width, height}; }

@@ -6,7 +6,7 @@
 
 #include "core/error.h"
 #include "gi/evolve/cache_gi.h"
-#include "gi/evolve/restir_gi.h"
+#include "gi/evolve/restir/restir_gi.h"
 #include "graph/debug_view_image.h"
 #include "passes/primary_view.h"
 #include "lighting/light_table.h"
@@ -34,8 +34,8 @@ std::unique_ptr<DiffuseGi> makeDiffuseGi(vk::Context& context, GpuScene& gpuScen
     case GiMode::None:
       return nullptr;
     case GiMode::Evolve:
-      return std::make_unique<RestirGi>(context, gpuScene, scene, settings.restirGi,
-                                        settings.cache, settings.resolution());
+      return std::make_unique<RestirGi>(context, gpuScene, scene, settings.restirGi, settings.cache,
+                                        settings.resolution());
     case GiMode::Cache:
       return std::make_unique<CacheGi>(context, gpuScene, scene, settings.cache);
   }
@@ -201,8 +201,9 @@ void HybridFrame::recordFrame() {
   SkyImage sky = skyPass_.declare(graph_, frame, gbuffer);
   IndirectLight indirect;
   // Without a GI system, and for reflections (nothing writes them yet), composite reads zero.
-  indirect.diffuse = gi_ ? gi_->declare(graph_, {frame, gbuffer, shadows}).diffuse
-                         : graph_.createPersistentImage("gi.diffuse", {VK_FORMAT_R16G16B16A16_SFLOAT});
+  indirect.diffuse =
+      gi_ ? gi_->declare(graph_, {frame, gbuffer, shadows}).diffuse
+          : graph_.createPersistentImage("gi.diffuse", {VK_FORMAT_R16G16B16A16_SFLOAT});
   indirect.reflections =
       graph_.createPersistentImage("reflections", {VK_FORMAT_R16G16B16A16_SFLOAT});
   HdrImage hdr = composite_.declare(graph_, frame, gbuffer, shadows, sky, indirect);

@@ -216,6 +216,18 @@ PassBuilder& PassBuilder::write(ImageHandle image, Access access, uint32_t bindi
   return use(image.index, access, true, binding);
 }
 
+PassBuilder& PassBuilder::readPlaceholder(ImageHandle image, uint32_t binding) {
+  graph_.resourceDecl(image.index, "image");
+  use(image.index, Access::StorageRead, false);
+  FrameGraph::PassDecl& pass = graph_.passes_[pass_];
+  for (const FrameGraph::ResourceUse& other : pass.uses)
+    if (other.binding == binding)
+      fail("pass '{}' binds '{}' and placeholder '{}' both at binding {}", pass.name,
+           graph_.resources_[other.resource].name, graph_.resources_[image.index].name, binding);
+  pass.placeholders.push_back({image.index, binding});
+  return *this;
+}
+
 PassBuilder& PassBuilder::sideEffects() {
   graph_.passes_[pass_].sideEffects = true;
   return *this;

@@ -26,6 +26,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -96,6 +97,10 @@ class PassBuilder {
   // in C++, where it is declared, and once in GLSL.
   PassBuilder& read(ImageHandle image, Access access, uint32_t binding);
   PassBuilder& write(ImageHandle image, Access access, uint32_t binding);
+  // Fills `binding` with `image` where the shader ignores that binding in this configuration
+  // (its producer pass is off): a StorageRead of `image`, merged with the pass's other read of
+  // it if any. The one way an image sits at two bindings; declare a real access with read().
+  PassBuilder& readPlaceholder(ImageHandle image, uint32_t binding);
   // Keeps the pass even when nothing reads what it writes (it talks to the host, say).
   PassBuilder& sideEffects();
   PassBuilder& record(RecordFn callback);
@@ -197,6 +202,7 @@ class FrameGraph {
     std::string name;
     QueueKind kind = QueueKind::Compute;
     std::vector<ResourceUse> uses;
+    std::vector<std::pair<uint32_t, uint32_t>> placeholders;  // (resource, binding)
     bool sideEffects = false;
     RecordFn record;
     uint32_t runsAfter = kNoResource;  // debug-view copies: the pass shown; else unused

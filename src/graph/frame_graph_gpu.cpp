@@ -230,6 +230,8 @@ void FrameGraph::recordPass(VkCommandBuffer cmd, const PassPlan& pass, vk::GpuTi
   for (const ResourceUse& use : decl.uses)
     if (use.binding != kNoBinding)
       boundImages_.push_back({use.binding, resources.image({use.resource})});
+  for (const auto& [resource, binding] : decl.placeholders)
+    boundImages_.push_back({binding, resources.image({resource})});
   if (decl.record) decl.record(cmd, resources);
   context_->endDebugLabel(cmd);
   if (timer) timer->end(cmd);
@@ -327,7 +329,9 @@ bool PassResources::historyValid(const HistoryBuffer& history) const {
   return graph_.historyValid(history);
 }
 
-std::span<const BoundImage> PassResources::boundImages() const { return graph_.boundImages_; }
+std::span<const BoundImage> PassResources::boundImages() const {
+  return graph_.boundImages_;
+}
 
 const std::string& PassResources::passName() const {
   return graph_.passes_[pass_].name;

@@ -35,12 +35,6 @@ ComputePass::ComputePass(vk::Context& context, const GpuScene& scene, const std:
   writes_.resize(imageCount);
 }
 
-void ComputePass::bindSets(VkCommandBuffer cmd, const std::vector<ImageBinding>& images) {
-  scratch_.clear();  // keeps its capacity
-  for (const auto& [binding, image] : images) scratch_.push_back({binding, image});
-  bindSets(cmd, std::span<const graph::BoundImage>(scratch_));
-}
-
 void ComputePass::bindSets(VkCommandBuffer cmd, std::span<const graph::BoundImage> images) {
   if (images.size() != imageCount_)
     fail("pass '{}': {} images bound, the shader has {} (its *_BINDING_COUNT)", pipeline_.name(),
@@ -50,7 +44,8 @@ void ComputePass::bindSets(VkCommandBuffer cmd, std::span<const graph::BoundImag
     return;
   }
   uint64_t seen = 0;  // bit per binding (a pass has far fewer than 64 images)
-  for (size_t i = 0; i < images.size(); ++i) writeImage(i, images[i].binding, images[i].image, seen);
+  for (size_t i = 0; i < images.size(); ++i)
+    writeImage(i, images[i].binding, images[i].image, seen);
   vkUpdateDescriptorSets(context_.device(), uint32_t(writes_.size()), writes_.data(), 0, nullptr);
   pipeline_.bind(cmd, {scene_.descriptorSet(), set_});
 }
@@ -58,8 +53,8 @@ void ComputePass::bindSets(VkCommandBuffer cmd, std::span<const graph::BoundImag
 void ComputePass::writeImage(size_t slot, uint32_t binding, const graph::ResolvedImage& image,
                              uint64_t& seen) {
   if (binding >= imageCount_ || (seen >> binding) & 1u)
-    fail("pass '{}': binding {} out of range (the shader has {}) or bound twice",
-         pipeline_.name(), binding, imageCount_);
+    fail("pass '{}': binding {} out of range (the shader has {}) or bound twice", pipeline_.name(),
+         binding, imageCount_);
   seen |= uint64_t(1) << binding;
   infos_[slot] = {VK_NULL_HANDLE, image.view, image.layout};
   VkWriteDescriptorSet& w = writes_[slot];
@@ -70,17 +65,6 @@ void ComputePass::writeImage(size_t slot, uint32_t binding, const graph::Resolve
   w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
   w.pImageInfo = &infos_[slot];
 }
-
-void ImageComputePass::record(VkCommandBuffer cmd, const std::vector<ImageBinding>& images,
-                              const gpu::HybridPassConstants& constants, VkExtent2D extent) {
-  bind(cmd, constants, images);
-  vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, gpu::HYBRID_GROUP_SIZE,
-                                        gpu::HYBRID_GROUP_SIZE);
-}
-
-}  // namespace bounce
-
-namespace bounce {
 
 void ImageComputePass::record(VkCommandBuffer cmd, const graph::PassResources& resources,
                               const gpu::HybridPassConstants& constants, VkExtent2D extent) {

@@ -8,7 +8,6 @@
 #include <optional>
 #include <span>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "graph/pass_resources.h"
@@ -18,37 +17,32 @@
 
 namespace bounce {
 
-using ImageBinding = std::pair<uint32_t, graph::ResolvedImage>;
-
 class ComputePass {
  public:
-  // `shader`: embedded name, e.g. "gi/evolve/cache_build_sh"; bindings 0 .. imageCount - 1 of
+  // `shader`: embedded name, e.g. "gi/evolve/cache/cache_build_sh"; bindings 0 .. imageCount - 1 of
   // set 1 are storage images (no set 1 when imageCount is 0).
   ComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
               uint32_t imageCount, uint32_t pushConstantBytes);
 
-  // Binds the pipeline, the scene and `images` (each binding exactly once) and pushes
-  // `constants`; the caller dispatches.
-  template <typename T>
-  void bind(VkCommandBuffer cmd, const T& constants, const std::vector<ImageBinding>& images = {}) {
-    bindSets(cmd, images);
-    pipeline_.push(cmd, constants);
-  }
-  // The same with the images the pass declared with bindings (graph::PassBuilder::read/write
-  // with a binding): every binding of set 1 exactly once.
+  // Binds the pipeline, the scene and the images the pass declared with bindings
+  // (graph::PassBuilder::read/write with a binding: every binding of set 1 exactly once) and
+  // pushes `constants`; the caller dispatches.
   template <typename T>
   void bind(VkCommandBuffer cmd, const T& constants, const graph::PassResources& resources) {
     bindSets(cmd, resources.boundImages());
     pipeline_.push(cmd, constants);
   }
+  // The same for a pass without images (imageCount 0), e.g. outside a frame graph.
+  template <typename T>
+  void bind(VkCommandBuffer cmd, const T& constants) {
+    bindSets(cmd, {});
+    pipeline_.push(cmd, constants);
+  }
   const vk::ComputePipeline& pipeline() const { return pipeline_; }
 
  private:
-  void bindSets(VkCommandBuffer cmd, const std::vector<ImageBinding>& images);
   void bindSets(VkCommandBuffer cmd, std::span<const graph::BoundImage> images);
-  void writeImage(size_t slot, uint32_t binding, const graph::ResolvedImage& image,
-                  uint64_t& seen);
-  std::vector<graph::BoundImage> scratch_;  // the pair form, converted; reused
+  void writeImage(size_t slot, uint32_t binding, const graph::ResolvedImage& image, uint64_t& seen);
 
   vk::Context& context_;
   const GpuScene& scene_;
@@ -68,10 +62,8 @@ class ImageComputePass : public ComputePass {
                    uint32_t imageCount)
       : ComputePass(context, scene, shader, imageCount, sizeof(gpu::HybridPassConstants)) {}
 
-  // bind(), then covers `extent` with HYBRID_GROUP_SIZE^2 groups.
-  void record(VkCommandBuffer cmd, const std::vector<ImageBinding>& images,
-              const gpu::HybridPassConstants& constants, VkExtent2D extent);
-  // bind() with the pass's declared bindings, then covers `extent`.
+  // bind() with the pass's declared bindings, then covers `extent` with HYBRID_GROUP_SIZE^2
+  // groups.
   void record(VkCommandBuffer cmd, const graph::PassResources& resources,
               const gpu::HybridPassConstants& constants, VkExtent2D extent);
 };

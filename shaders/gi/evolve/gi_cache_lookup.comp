@@ -4,7 +4,7 @@
 // large emitters only (cache_radiance.glsl), so one NEE sample of the small ones is added (the
 // sun and the KHR lights are composite's).
 #version 460
-#include "gi/evolve/cache_radiance.glsl"
+#include "gi/evolve/cache/cache_radiance.glsl"
 #include "gi/evolve/gbuffer_point.glsl"
 
 layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;

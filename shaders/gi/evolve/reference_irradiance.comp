@@ -7,7 +7,7 @@
 // (emission and direct light of the surfaces the probe sees), large = multi-bounce.
 // One group of CLIPMAP_GROUP_SIZE threads per probe; each thread writes the sum of its samples.
 #version 460
-#include "gi/evolve/cache_radiance.glsl"
+#include "gi/evolve/cache/cache_radiance.glsl"
 
 layout(local_size_x = CLIPMAP_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { ReferenceIrradianceConstants pc; };

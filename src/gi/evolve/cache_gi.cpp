@@ -19,16 +19,12 @@ DiffuseGiOutput CacheGi::declare(graph::FrameGraph& graph, const GiInputs& input
   VkExtent2D extent = inputs.frame.resolution;
   cache_.declareLookup(graph.addPass("gi-cache-lookup", graph::QueueKind::Compute))
       .read(inputs.frame.constants, Access::StorageRead)
-      .read(inputs.gbuffer.normals, Access::StorageRead)
-      .read(inputs.gbuffer.depth.current, Access::StorageRead)
-      .read(inputs.gbuffer.flags, Access::StorageRead)
-      .write(output, Access::StorageWrite)
+      .read(inputs.gbuffer.normals, Access::StorageRead, gpu::CACHE_LOOKUP_BINDING_NORMALS)
+      .read(inputs.gbuffer.depth.current, Access::StorageRead, gpu::CACHE_LOOKUP_BINDING_DEPTH)
+      .read(inputs.gbuffer.flags, Access::StorageRead, gpu::CACHE_LOOKUP_BINDING_FLAGS)
+      .write(output, Access::StorageWrite, gpu::CACHE_LOOKUP_BINDING_OUTPUT)
       .record([=, this](VkCommandBuffer cmd, const graph::PassResources& r) {
-        lookup_.bind(cmd, push,
-                     {{gpu::CACHE_LOOKUP_BINDING_NORMALS, r.image(inputs.gbuffer.normals)},
-                      {gpu::CACHE_LOOKUP_BINDING_DEPTH, r.image(inputs.gbuffer.depth.current)},
-                      {gpu::CACHE_LOOKUP_BINDING_FLAGS, r.image(inputs.gbuffer.flags)},
-                      {gpu::CACHE_LOOKUP_BINDING_OUTPUT, r.image(output)}});
+        lookup_.bind(cmd, push, r);
         vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height,
                                               gpu::HYBRID_GROUP_SIZE, gpu::HYBRID_GROUP_SIZE);
       });

@@ -1,11 +1,11 @@
-// `--gi cache`: Evolve's clipmap irradiance cache alone as the frame's diffuse GI (issue 5), so
+// `--gi cache`: Evolve's clipmap irradiance cache alone as the frame's diffuse GI, so
 // the cache can be seen and measured before ReSTIR GI uses it. After the cache's own passes,
 // `gi-cache-lookup` writes gi.diffuse = irradiance / pi at each pixel's surface point (the mean
 // of four jittered lookups); composite multiplies it by the albedo. Multi-bounce light comes
 // from the cache's recursive lookups.
 #pragma once
 #include "gi/diffuse_gi.h"
-#include "gi/evolve/clipmap_cache.h"
+#include "gi/evolve/cache/clipmap_cache.h"
 
 namespace bounce {
 

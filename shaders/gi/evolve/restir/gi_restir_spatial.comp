@@ -1,0 +1,88 @@
+// gi-restir-spatial-0 and gi-restir-spatial-1 (one shader: the two passes differ only by their
+// constants, pc.variant picks spatialSamples/spatialRadius[variant]). Spatial reuse of ReSTIR GI
+// (Ouyang et al. 2021, Alg. 4; seed 000, "diffuse-restir-spatial"): each GI pixel merges its own
+// reservoir (canonical) with neighbours on a golden-angle spiral with exponential radius, pass 0
+// 8 samples over a large radius, pass 1 5 samples over a small one, for a large data window.
+// Neighbours count when their primary vertex lies on this pixel's surface (sameSurface); their
+// sample is shifted to this pixel's x1 by reconnection, its weight carrying the Jacobian (Eq. 11,
+// reconnectionJacobian). No visibility is tested here (gi-trace-spatial-validation-rays tests the
+// final sample), so the result is biased and NOT fed back into next frame's temporal reuse.
+#version 460
+#include "gi/evolve/restir/restir_gi_common.glsl"
+#include "common/random.glsl"
+
+layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
+layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
+
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_SAMPLE, rgba32f) uniform readonly image2D inSample;
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_RADIANCE, rgba32f) uniform readonly image2D inRadiance;
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_ORIGIN, rgba32f) uniform readonly image2D inOrigin;
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_NORMALS, rgba16f) uniform readonly image2D inNormals;
+layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_SAMPLE, rgba32f) uniform writeonly image2D outSample;
+layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_RADIANCE, rgba32f) uniform writeonly image2D outRadiance;
+layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_ORIGIN, rgba32f) uniform writeonly image2D outOrigin;
+layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_NORMALS, rgba16f) uniform writeonly image2D outNormals;
+layout(set = 1, binding = GI_SPATIAL_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
+layout(set = 1, binding = GI_SPATIAL_BINDING_DEPTH, r32f) uniform readonly image2D depths;
+layout(set = 1, binding = GI_SPATIAL_BINDING_ESTIMATE, rgba16f) uniform writeonly image2D estimateOut;
+
+const uint RANDOM_GI_SPATIAL = 0x47490010u;
+
+Reservoir loadReservoir(ivec2 q) {
+  return unpackReservoir(imageLoad(inSample, q), imageLoad(inRadiance, q), imageLoad(inOrigin, q),
+                         imageLoad(inNormals, q));
+}
+
+// 1/Z normalisation: the confidence (M) of the reservoirs that could have produced the chosen
+// sample, the own one (the chosen sample has a positive target at x1) and those of the merged
+// neighbours whose surface and shift reach it (couldProduce).
+float confidenceOfProducers(RestirGiConstants gi, PrimaryVertex x1, float ownM, Reservoir chosen,
+                            ivec2 merged[RESTIR_GI_MAX_SPATIAL_SAMPLES], uint mergedCount) {
+  float z = ownM;
+  for (uint i = 0u; i < mergedCount; ++i) {
+    Reservoir r = loadReservoir(merged[i]);
+    if (couldProduce(r.origin, r.originNormal, x1, chosen, gi.maxJacobian)) z += r.M;
+  }
+  return z;
+}
+
+void main() {
+  FrameConstants f = FrameBlock(pc.frame).v;
+  RestirGiConstants gi = RestirGiBlock(pc.gi).v;
+  ivec2 g = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(g), gi.giResolution))) return;
+  ivec2 pixel = giRepresentativePixel(f, gi, g);
+  PrimaryVertex x1 = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
+  Reservoir own = loadReservoir(g);
+  Reservoir result = own;
+  if (own.M > 0.0) {
+    ReservoirStream s = beginStream(x1, own);
+    uint variant = min(pc.variant, 1u);
+    uint n = min(gi.spatialSamples[variant], RESTIR_GI_MAX_SPATIAL_SAMPLES);
+    vec2 u0 = random2(uvec2(g), f.frameIndex, RANDOM_GI_SPATIAL + variant);
+    float rotation = 2.0 * PI * u0.x;
+    ivec2 merged[RESTIR_GI_MAX_SPATIAL_SAMPLES];  // the neighbours that entered the stream
+    uint mergedCount = 0u;
+    for (uint i = 0u; i < n; ++i) {
+      vec2 offset = goldenSpiralOffset(i, n, rotation, gi.spatialMinRadius, gi.spatialRadius[variant]);
+      ivec2 q = g + ivec2(round(offset));
+      if (q == g || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(gi.giResolution))))
+        continue;
+      Reservoir r = loadReservoir(q);
+      if (r.M <= 0.0 || !sameSurface(gi, x1, r.origin, r.originNormal)) continue;
+      float u = random2(uvec2(g), f.frameIndex * 16u + i, RANDOM_GI_SPATIAL + 2u).x;
+      streamReservoir(s, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, u);
+      merged[mergedCount++] = q;
+    }
+    bool normalise = (gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) != 0u;
+    result = normalise ? endStreamNormalised(s, x1, confidenceOfProducers(gi, x1, own.M, s.chosen, merged, mergedCount))
+                       : endStream(s, x1);
+  }
+  vec4 a, b, c, d;
+  packReservoir(result, a, b, c, d);
+  imageStore(outSample, g, finiteOrZero(a));
+  imageStore(outRadiance, g, finiteOrZero(b));
+  imageStore(outOrigin, g, finiteOrZero(c));
+  imageStore(outNormals, g, d);
+  imageStore(estimateOut, g, finiteOrZero(vec4(reservoirEstimate(x1, result), 1.0)));
+}

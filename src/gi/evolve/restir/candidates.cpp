@@ -1,0 +1,140 @@
+#include "gi/evolve/restir/candidates.h"
+
+namespace bounce {
+
+using graph::Access;
+using graph::QueueKind;
+
+namespace {
+
+constexpr VkFormat kRgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
+
+bool historyValid(const graph::PassResources& r, const RestirFrame& f,
+                  const ReservoirHistory& history) {
+  bool valid = !f.lightCutPending;
+  for (const graph::HistoryImage& image : history) valid = valid && r.historyValid(image);
+  return valid;
+}
+
+}  // namespace
+
+CandidateStage::CandidateStage(vk::Context& context, const GpuScene& scene)
+    : prepare_(context, scene, "gi/evolve/restir/gi_prepare_diffuse_rays",
+               gpu::GI_PREPARE_BINDING_COUNT),
+      trace_(context, scene, "gi/evolve/restir/gi_trace_diffuse_rays", gpu::GI_TRACE_BINDING_COUNT),
+      traceNee_(context, scene, "gi/evolve/restir/gi_trace_diffuse_nee_rays",
+                gpu::GI_NEE_BINDING_COUNT),
+      resolve_(context, scene, "gi/evolve/restir/gi_resolve_diffuse_rays",
+               gpu::GI_CANDIDATES_BINDING_COUNT) {}
+
+Candidates CandidateStage::declare(graph::FrameGraph& graph, const RestirFrame& f,
+                                   const ReservoirHistory& history, ClipmapCache* cache) {
+  graph::ImageHandle rays = declarePrepare(graph, f, history);
+  Hits hits = declareTrace(graph, f, rays, cache);
+  // The trace is the chain's last cache lookup.
+  if (cache) cache->declareStatisticsReadback(graph);
+  graph::ImageHandle neeVisibility = declareNee(graph, f, hits);
+  return declareResolve(graph, f, history, rays, hits, neeVisibility);
+}
+
+graph::ImageHandle CandidateStage::declarePrepare(graph::FrameGraph& graph, const RestirFrame& f,
+                                                  const ReservoirHistory& history) {
+  graph::ImageHandle rays = graph.createImage("gi.rays", {kRgba32f, f.giSize});
+  const GBuffer& g = f.in.gbuffer;
+  graph.addPass("gi-prepare-diffuse-rays", QueueKind::Compute)
+      .write(rays, Access::StorageWrite, gpu::GI_PREPARE_BINDING_RAYS)
+      .read(f.in.frame.constants, Access::StorageRead)
+      .read(g.normals, Access::StorageRead, gpu::GI_PREPARE_BINDING_NORMALS)
+      .read(g.depth.current, Access::StorageRead, gpu::GI_PREPARE_BINDING_DEPTH)
+      .read(g.flags, Access::StorageRead, gpu::GI_PREPARE_BINDING_FLAGS)
+      .read(g.velocity, Access::StorageRead, gpu::GI_PREPARE_BINDING_VELOCITY)
+      .read(history[0].previous, Access::StorageRead, gpu::GI_PREPARE_BINDING_PREVIOUS_SAMPLE)
+      .read(history[2].previous, Access::StorageRead, gpu::GI_PREPARE_BINDING_PREVIOUS_ORIGIN)
+      .read(history[3].previous, Access::StorageRead, gpu::GI_PREPARE_BINDING_PREVIOUS_NORMALS)
+      .record([this, f, history](VkCommandBuffer cmd, const graph::PassResources& r) {
+        prepare_.record(cmd, r, f.passConstants(historyValid(r, f, history)), f.giResolution);
+      });
+  return rays;
+}
+
+CandidateStage::Hits CandidateStage::declareTrace(graph::FrameGraph& graph, const RestirFrame& f,
+                                                  graph::ImageHandle rays,
+                                                  const ClipmapCache* cache) {
+  Hits h;
+  h.hit = graph.createImage("gi.hit", {kRgba32f, f.giSize});
+  h.normal = graph.createImage("gi.hit-normal", {kRgba16f, f.giSize});
+  h.radiance = graph.createImage("gi.hit-radiance", {kRgba32f, f.giSize});
+  h.neeRay = graph.createImage("gi.nee-ray", {kRgba32f, f.giSize});
+  h.neeRadiance = graph.createImage("gi.nee-radiance", {kRgba32f, f.giSize});
+  graph::PassBuilder pass = graph.addPass("gi-trace-diffuse-rays", QueueKind::Compute);
+  if (cache) cache->declareLookup(pass);
+  pass.read(f.in.frame.constants, Access::StorageRead)
+      .read(f.in.frame.instances, Access::StorageRead)
+      .read(f.in.frame.tlas, Access::StorageRead)
+      .read(f.in.gbuffer.normals, Access::StorageRead, gpu::GI_TRACE_BINDING_NORMALS)
+      .read(f.in.gbuffer.depth.current, Access::StorageRead, gpu::GI_TRACE_BINDING_DEPTH)
+      .read(rays, Access::StorageRead, gpu::GI_TRACE_BINDING_RAYS)
+      .write(h.hit, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT)
+      .write(h.normal, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT_NORMAL)
+      .write(h.radiance, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT_RADIANCE)
+      .write(h.neeRay, Access::StorageWrite, gpu::GI_TRACE_BINDING_NEE_RAY)
+      .write(h.neeRadiance, Access::StorageWrite, gpu::GI_TRACE_BINDING_NEE_RADIANCE)
+      .record([this, f](VkCommandBuffer cmd, const graph::PassResources& r) {
+        trace_.record(cmd, r, f.passConstants(false), f.giResolution);
+      });
+  return h;
+}
+
+graph::ImageHandle CandidateStage::declareNee(graph::FrameGraph& graph, const RestirFrame& f,
+                                              const Hits& hits) {
+  graph::ImageHandle visibility =
+      graph.createImage("gi.nee-visibility", {VK_FORMAT_R16_SFLOAT, f.giSize});
+  graph.addPass("gi-trace-diffuse-nee-rays", QueueKind::Compute)
+      .read(f.in.frame.constants, Access::StorageRead)
+      .read(f.in.frame.instances, Access::StorageRead)
+      .read(f.in.frame.tlas, Access::StorageRead)
+      .read(hits.hit, Access::StorageRead, gpu::GI_NEE_BINDING_HIT)
+      .read(hits.normal, Access::StorageRead, gpu::GI_NEE_BINDING_HIT_NORMAL)
+      .read(hits.neeRay, Access::StorageRead, gpu::GI_NEE_BINDING_NEE_RAY)
+      .write(visibility, Access::StorageWrite, gpu::GI_NEE_BINDING_VISIBILITY)
+      .record([this, f](VkCommandBuffer cmd, const graph::PassResources& r) {
+        traceNee_.record(cmd, r, f.passConstants(false), f.giResolution);
+      });
+  return visibility;
+}
+
+// The candidate's estimate is the first image written: the pass's debug view.
+Candidates CandidateStage::declareResolve(graph::FrameGraph& graph, const RestirFrame& f,
+                                          const ReservoirHistory& history, graph::ImageHandle rays,
+                                          const Hits& hits, graph::ImageHandle neeVisibility) {
+  Candidates c;
+  c.reservoir = createReservoirImages(graph, "gi.candidate.", f.giSize);
+  c.estimate = graph.createImage("gi.candidate-estimate", {kRgba16f, f.giSize});
+  c.validity = graph.createImage("gi.reservoir-validity", {kRgba16f, f.giSize});
+  c.neeVisibility = neeVisibility;
+  graph::PassBuilder pass = graph.addPass("gi-resolve-diffuse-rays", QueueKind::Compute);
+  pass.read(f.in.frame.constants, Access::StorageRead)
+      .read(f.in.gbuffer.normals, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_NORMALS)
+      .read(f.in.gbuffer.depth.current, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_DEPTH)
+      .read(rays, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_RAYS)
+      .read(hits.hit, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_HIT)
+      .read(hits.normal, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_HIT_NORMAL)
+      .read(hits.radiance, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_HIT_RADIANCE)
+      .read(hits.neeRadiance, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_NEE_RADIANCE)
+      .read(neeVisibility, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_VISIBILITY)
+      .write(c.estimate, Access::StorageWrite, gpu::GI_CANDIDATES_BINDING_ESTIMATE)
+      .write(c.reservoir[0], Access::StorageWrite, gpu::GI_CANDIDATES_BINDING_SAMPLE)
+      .write(c.reservoir[1], Access::StorageWrite, gpu::GI_CANDIDATES_BINDING_RADIANCE)
+      .write(c.reservoir[2], Access::StorageWrite, gpu::GI_CANDIDATES_BINDING_ORIGIN)
+      .write(c.reservoir[3], Access::StorageWrite, gpu::GI_CANDIDATES_BINDING_RESERVOIR_NORMALS)
+      .write(c.validity, Access::StorageWrite, gpu::GI_CANDIDATES_BINDING_VALIDITY);
+  for (uint32_t i = 0; i < 4; ++i)
+    pass.read(history[i].previous, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_PREVIOUS + i);
+  pass.record([this, f](VkCommandBuffer cmd, const graph::PassResources& r) {
+    resolve_.record(cmd, r, f.passConstants(false), f.giResolution);
+  });
+  return c;
+}
+
+}  // namespace bounce

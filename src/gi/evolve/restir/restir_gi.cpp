@@ -1,0 +1,191 @@
+#include "gi/evolve/restir/restir_gi.h"
+
+#include <algorithm>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/blue_noise.h"
+#include "core/error.h"
+#include "rt/gpu_scene.h"
+
+namespace bounce {
+
+namespace {
+
+template <typename T>
+vk::Buffer upload(vk::Context& context, std::span<const T> items, const std::string& name) {
+  return vk::uploadBuffer(context, std::as_bytes(items), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, name);
+}
+
+// The blue noise of gi-prepare-diffuse-rays' directions, generated once per process (~50 ms).
+const std::vector<uint32_t>& directionBlueNoise() {
+  static const std::vector<uint32_t> noise =
+      generateBlueNoise2D(gpu::RESTIR_GI_BLUE_NOISE_SIDE, /*seed=*/0x9E3779B97F4A7C15ull);
+  return noise;
+}
+
+void checkSettings(const RestirGiSettings& s) {
+  if (s.divisor == 0 || s.divisor > 16)
+    fail("ReSTIR GI: resolution divisor {} must be 1 to 16", s.divisor);
+  if (!(s.settleHistoryScale > 0.0f && s.settleHistoryScale <= 1.0f))
+    fail("ReSTIR GI: settle history scale {} must be in (0, 1]", s.settleHistoryScale);
+  // gi_restir_spatial.comp keeps the merged neighbours for its 1/Z normalisation.
+  for (uint32_t n : s.spatialSamples)
+    if (n > gpu::RESTIR_GI_MAX_SPATIAL_SAMPLES)
+      fail("ReSTIR GI: {} spatial samples per pass, at most {}", n,
+           gpu::RESTIR_GI_MAX_SPATIAL_SAMPLES);
+}
+
+}  // namespace
+
+RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                   const RestirGiSettings& settings, const ClipmapCacheSettings& cache,
+                   VkExtent2D resolution)
+    : settings_(settings),
+      lights_(context, gpuScene, scene),
+      candidates_(context, gpuScene),
+      temporal_(context, gpuScene),
+      spatial_(context, gpuScene, settings),
+      resolve_(context, gpuScene, settings),
+      temporalDenoise_(context, gpuScene),
+      spatialDenoise_(context, gpuScene) {
+  if (settings_.secondVertex == RestirGiSecondVertex::Cache)
+    cache_ = std::make_unique<ClipmapCache>(context, gpuScene, lights_, cache);
+  checkSettings(settings_);
+  const uint32_t divisor = settings_.divisor;
+  settleFramesLeft_ = settings_.settleFrames;  // the first frames: the cache starts empty
+  giResolution_ = {(resolution.width + divisor - 1) / divisor,
+                   (resolution.height + divisor - 1) / divisor};
+  blueNoise_ = upload(context, std::span<const uint32_t>(directionBlueNoise()), "gi.blue-noise");
+  const gpu::RestirGiConstants c = makeConstants();
+  constants_ = upload(context, std::span<const gpu::RestirGiConstants>(&c, 1), "gi.constants");
+}
+
+gpu::RestirGiConstants RestirGi::makeConstants() const {
+  const RestirGiSettings& s = settings_;
+  gpu::RestirGiConstants c{};
+  c.lights = lights_.address();
+  c.giResolution = {giResolution_.width, giResolution_.height};
+  c.divisor = s.divisor;
+  c.secondVertex = s.secondVertex == RestirGiSecondVertex::Path ? gpu::RESTIR_GI_SECOND_VERTEX_PATH
+                   : s.secondVertex == RestirGiSecondVertex::Cache
+                       ? gpu::RESTIR_GI_SECOND_VERTEX_CACHE
+                       : gpu::RESTIR_GI_SECOND_VERTEX_NEE;
+  c.flags =
+      (s.temporalReuse ? gpu::RESTIR_GI_FLAG_TEMPORAL : 0u) |
+      (s.temporalDenoise ? gpu::RESTIR_GI_FLAG_DENOISE : 0u) |
+      (s.resolveSamples > 1 ? gpu::RESTIR_GI_FLAG_RESOLVE_REUSE : 0u) |
+      (s.spatialReuse ? gpu::RESTIR_GI_FLAG_SPATIAL : 0u) |
+      (s.spatialReuse && s.spatialValidation ? gpu::RESTIR_GI_FLAG_SPATIAL_VALIDATION : 0u) |
+      (s.spatialReuse && s.spatialValidation && s.patchReservoir ? gpu::RESTIR_GI_FLAG_PATCH : 0u);
+  c.maxPathBounces = s.maxBounces;
+  c.temporalMaxM = s.temporalMaxM;
+  c.maxSampleAge = s.maxSampleAge;
+  c.planeTolerance = s.planeTolerance;
+  c.normalTolerance = s.normalTolerance;
+  c.maxJacobian = s.maxJacobian;
+  c.denoiseMaxHistory = s.denoiseMaxHistory;
+  c.denoiseClipSigma = s.denoiseClipSigma;
+  c.resolveRadius = s.resolveRadius;
+  c.resolveSamples = s.resolveSamples;
+  c.cache = cache_ ? cache_->constantsAddress() : 0;
+  for (int i = 0; i < 2; ++i) {
+    c.spatialSamples[i] = s.spatialSamples[i];
+    c.spatialRadius[i] = s.spatialRadius[i];
+  }
+  c.spatialMinRadius = std::max(s.spatialMinRadius, 0.5f);
+  c.validityBlend = s.validityBlend;
+  c.validationPeriod = s.validationPeriod;
+  c.validationDistance = s.validationDistance;
+  c.validationRadiance = s.validationRadiance;
+  c.temporalHistorySamples = std::clamp(s.temporalHistorySamples, 1u, 5u);
+  c.spatialDenoiseRadius = std::min(s.spatialDenoiseRadius, gpu::GI_SPATIAL_DENOISE_MAX_RADIUS);
+  c.historyBrightening = s.historyBrightening > 1.0f ? s.historyBrightening : 0.0f;
+  c.fireflyRatio = s.fireflyRatio > 1.0f ? s.fireflyRatio : 0.0f;
+  c.materialTextureSide = s.materialTextureSide;
+  c.blueNoise = s.blueNoise ? blueNoise_.address() : 0;
+  c.flags |= s.validationPeriod > 0 ? gpu::RESTIR_GI_FLAG_VALIDATION : 0u;
+  c.flags |= s.occluderVisibility ? gpu::RESTIR_GI_FLAG_OCCLUDER_VISIBILITY : 0u;
+  c.flags |= s.producerNormalisation ? gpu::RESTIR_GI_FLAG_PRODUCER_NORMALISATION : 0u;
+  return c;
+}
+
+void RestirGi::afterFrame() {
+  if (cache_) cache_->afterFrame();
+  lightCutPending_ = false;
+}
+
+std::vector<GiStatistic> RestirGi::statistics() const {
+  return cache_ ? cache_->statistics() : std::vector<GiStatistic>{};
+}
+
+void RestirGi::resetHistory() {
+  if (cache_) cache_->resetHistory();
+  settleFramesLeft_ = settings_.settleFrames;
+}
+
+void RestirGi::lightingCut() {
+  if (cache_) cache_->beginFullRefresh();
+  lightCutPending_ = true;
+  settleFramesLeft_ = settings_.settleFrames;
+}
+
+RestirFrame RestirGi::beginFrame(const GiInputs& inputs) {
+  RestirFrame f;
+  f.in = inputs;
+  f.giSize = graph::ImageSize::dividedRes(settings_.divisor);
+  f.giResolution = giResolution_;
+  f.constants = constants_.address();
+  f.historyScale = settleFramesLeft_ > 0 ? settings_.settleHistoryScale : 1.0f;
+  f.lightCutPending = lightCutPending_;
+  if (settleFramesLeft_ > 0) --settleFramesLeft_;
+  return f;
+}
+
+// The chain, top to bottom (restir_gi.h). GI-resolution images follow the render resolution.
+DiffuseGiOutput RestirGi::declare(graph::FrameGraph& graph, const GiInputs& in) {
+  graph::ImageHandle output = createOutput(graph);
+  if (cache_) cache_->declareUpdate(graph, in);
+  const RestirFrame f = beginFrame(in);
+  const ReservoirHistory history = createReservoirHistory(graph, f.giSize);
+  // Written by gi-trace-spatial-validation-rays, read (previous) by the next frame's
+  // gi-restir-temporal.
+  std::optional<graph::HistoryImage> occlusionValidity;
+  if (settings_.spatialReuse && settings_.spatialValidation)
+    occlusionValidity =
+        graph.createHistoryImage("gi.spatial-occlusion-validity", {VK_FORMAT_R16_SFLOAT, f.giSize});
+  Candidates candidates = candidates_.declare(graph, f, history, cache_.get());
+  Reservoirs temporal = temporal_.declare(graph, f, candidates, history, occlusionValidity);
+  Reservoirs reservoirs = spatial_.declare(graph, f, temporal, occlusionValidity);
+  graph::ImageHandle target =
+      settings_.temporalDenoise ? graph.createImage("gi.resolved", {VK_FORMAT_R16G16B16A16_SFLOAT})
+                                : output;
+  ResolvedGi resolved = resolve_.declare(graph, f, reservoirs, target);
+  if (settings_.temporalDenoise)
+    declareDenoise(graph, f, candidates, resolved, occlusionValidity, output);
+  return {output};
+}
+
+// gi-temporal-denoise, then on the desktop preset gi-spatial-denoise; both end in `output`.
+void RestirGi::declareDenoise(graph::FrameGraph& graph, const RestirFrame& f,
+                              const Candidates& candidates, const ResolvedGi& resolved,
+                              const std::optional<graph::HistoryImage>& occlusionValidity,
+                              graph::ImageHandle output) {
+  const bool spatial = settings_.spatialDenoise;
+  graph::ImageHandle temporalOut =
+      spatial ? graph.createImage("gi.temporal-denoised", {VK_FORMAT_R16G16B16A16_SFLOAT}) : output;
+  GiTemporalDenoiseInputs t;
+  t.noisy = resolved.diffuse;
+  t.validity = candidates.validity;
+  if (occlusionValidity) t.occlusionValidity = occlusionValidity->current;
+  t.placeholderR16f = candidates.neeVisibility;
+  t.constants = f.passConstants(false);
+  t.dropHistory = f.lightCutPending;
+  temporalDenoise_.declare(graph, f.in.frame, f.in.gbuffer, t, temporalOut);
+  if (!spatial) return;
+  spatialDenoise_.declare(graph, f.in.frame, f.in.gbuffer,
+                          {temporalOut, resolved.occlusion, f.passConstants(false)}, output);
+}
+
+}  // namespace bounce
