@@ -79,6 +79,7 @@ class HybridFrame {
   void requestDebugView(const std::string& passOrResource) {
     graph_.requestDebugView(passOrResource);
   }
+  void clearDebugViews() { graph_.clearDebugViews(); }
   // The view as captured by the last frame (linear values; see graph/debug_view_image.h).
   ImageRGBA32F debugViewImage(const std::string& name) const;
   // Forgets temporal history (a camera cut).
