@@ -3,7 +3,8 @@
 //     (bounce/host_gbuffer.h) and fed back through `gbuffer-import`, gives the same gi.diffuse
 //     as the normal frame (same camera, same frame count, same random numbers): the physical
 //     check that the import decodes the contract right. A host depth off by 20% does not.
-//   - a host image of the wrong format or extent is a bounce::Error naming the image.
+//   - a host image of the wrong format or extent is a bounce::Error naming the image; the frame
+//     then still renders, switching between full frames and renderGi frames.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -215,8 +216,11 @@ TEST(GBufferImport, WrongFormatOrExtentNamesTheImage) {
   HostGBufferImages noView = host.imports();
   noView.motion.view = VK_NULL_HANDLE;
   expectError(noView, "motion image has no VkImage or no VkImageView");
-  // The frame is still usable.
+  // The frame is still usable, and switches between the full frame and renderGi frames.
   EXPECT_NO_THROW(frame.renderGi(camera, host.imports()));
+  EXPECT_NO_THROW(frame.render(camera));
+  EXPECT_NO_THROW(frame.renderGi(camera, host.imports()));
+  if (context.validationEnabled()) EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
 }  // namespace
