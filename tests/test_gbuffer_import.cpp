@@ -184,6 +184,35 @@ TEST(GBufferImport, BouncesOwnGBufferFedBackGivesTheSameGi) {
   if (context.validationEnabled()) EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
+// The cache GI system runs on an imported GBuffer too: finite, not black.
+TEST(GBufferImport, CacheGiRunsOnAnImportedGBuffer) {
+  vk::Context context(vk::contextOptionsFromEnvironment({}));
+  Scene scene = loadScene("cornell");
+  GpuScene gpuScene(context, scene);
+  Camera camera = effectiveCamera(scene);
+  HybridSettings settings = giSettings();
+  settings.gi = GiMode::Cache;
+  HostTexels texels;
+  {
+    HybridFrame frame(context, gpuScene, scene, settings);
+    for (const char* name :
+         {"gbuffer.base-color", "gbuffer.normals", "gbuffer.depth", "gbuffer.velocity"})
+      frame.requestDebugView(name);
+    frame.render(camera);
+    texels = decodeToHost(
+        frame.debugViewImage("gbuffer.base-color"), frame.debugViewImage("gbuffer.normals"),
+        frame.debugViewImage("gbuffer.depth"), frame.debugViewImage("gbuffer.velocity"), 1.0f);
+  }
+  HostImages host = upload(context, texels);
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("gi.diffuse");
+  for (int i = 0; i < 3; ++i) frame.renderGi(camera, host.imports());
+  ImageRGBA32F gi = frame.debugViewImage("gi.diffuse");
+  EXPECT_EQ(countNonFinitePixels(gi), 0u);
+  EXPECT_GT(test::meanLuminance(gi), 0.0);
+  if (context.validationEnabled()) EXPECT_EQ(context.validationErrorCount(), 0u);
+}
+
 TEST(GBufferImport, WrongFormatOrExtentNamesTheImage) {
   vk::Context context(vk::contextOptionsFromEnvironment({}));
   Scene scene = loadScene("cornell");
