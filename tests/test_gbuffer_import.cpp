@@ -179,6 +179,9 @@ TEST(GBufferImport, BouncesOwnGBufferFedBackGivesTheSameGi) {
       relativeMeanSquaredError(importedGi(context, gpuScene, scene, camera, wrong), gi);
   std::printf("gbuffer-import: cornell %ux%u, %d frames: relMSE %.3g (host depth x1.2: %.3g)\n",
               kWidth, kHeight, kFrames, relMse, relMseWrong);
+  // The normal frame run twice differs by relMSE ~1e-3 on lavapipe (`bounce render --scene
+  // cornell --res 48x32 --frames 8 --view gi.diffuse` twice: 8.8e-4, 1.0e-3): the GI is not
+  // bit-reproducible run to run, so the import is held to a few times that.
   EXPECT_LT(relMse, 5e-3);
   EXPECT_GT(relMseWrong, 10.0 * relMse);
   if (context.validationEnabled()) EXPECT_EQ(context.validationErrorCount(), 0u);
