@@ -476,6 +476,12 @@ void runHost(const bounce::ExternalDevice& device) {
     throw std::runtime_error("no colour bleeding: the floor's GI beside the red wall is not red");
   if (!(nearRatio > 1.3 * farRatio))
     throw std::runtime_error("the floor's GI is no redder beside the red wall than far from it");
+
+  // The same renderer still renders Bounce's own full frame (its own G-buffer, sky, tonemap).
+  renderer.render(camera);
+  bounce::Image display = renderer.readImage();
+  if (display.width != kWidth || display.height != kHeight)
+    throw std::runtime_error("render() after renderGi() gave the wrong image");
 }
 
 }  // namespace
