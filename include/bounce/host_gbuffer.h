@@ -65,11 +65,12 @@ struct HostGBuffer {
 
 // What Renderer::renderGi returns: Bounce's image of the diffuse GI at each pixel, the outgoing
 // diffuse radiance per unit albedo (irradiance / pi, W/(m^2 sr)); multiply by the albedo for the
-// diffuse indirect light. rgb; alpha is Bounce's own. Zero where the depth said sky.
+// diffuse indirect light. rgb; alpha is Bounce's own. Where the depth said sky the
+// value means nothing (the host ignores it).
 //
 // It is Bounce's image: the host reads it (as a storage image, or sampled in GENERAL, or copies
-// it) and never writes or destroys it. It is valid until the next renderGi, render or resize of
-// the renderer, or its destruction. When renderGi returns the GPU work is complete and the image
+// it) and never writes or destroys it. It is valid until the next renderGi or render of the
+// renderer, or its destruction. When renderGi returns the GPU work is complete and the image
 // is in `layout`; like any write of an earlier submission, the host's first read needs a barrier
 // from VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT / VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, and may
 // transition it to another layout (Bounce does not read it back, and rewrites it from scratch).

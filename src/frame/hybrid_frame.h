@@ -9,6 +9,9 @@
 //   frame.requestDebugView("composite");      // any pass or resource by name
 //   for (...) frame.render(camera);           // submits and waits; returns per-pass timings
 //   ImageRGBA32F hdr = frame.debugViewImage("composite");
+//
+// Bring your own G-buffer: renderGi(camera, hostImages) runs `gbuffer-import` on the host's
+// images instead of vbuffer + gbuffer and stops at gi.diffuse (giImage()).
 #pragma once
 #include <span>
 #include <string>
