@@ -21,15 +21,15 @@
 //                                          camera and scene)
 //
 // Every image: 2D, one layer and one mip, extent = the renderer's resolution (settings width x
-// height), created with VK_IMAGE_USAGE_STORAGE_BIT (the format must support storage images; the
-// four above do on every Vulkan 1.3 device Bounce runs on), `view` a VK_IMAGE_VIEW_TYPE_2D view
+// height), created with VK_IMAGE_USAGE_STORAGE_BIT (Bounce's own images are storage images of the
+// same formats, so a device that runs Bounce supports them), `view` a VK_IMAGE_VIEW_TYPE_2D view
 // of it with the same format, and in VK_IMAGE_LAYOUT_GENERAL when renderGi is called; Bounce
 // only reads them and leaves them in GENERAL. The host's writes must have been submitted to the
-// renderer's queue before renderGi (Bounce's first command is a barrier from any earlier write,
+// renderer's queue before renderGi (Bounce's first command is a barrier from all earlier work,
 // ALL_COMMANDS / MEMORY_WRITE); writes from another queue need the host's own semaphore, waited
 // for before renderGi. Bounce checks format, extent and handles (Vulkan cannot tell it the usage
-// or layout; with BOUNCE_VALIDATE=1 the validation layer can) and throws bounce::Error naming
-// the image at fault.
+// or layout; the Khronos validation layer on the host's instance can) and throws bounce::Error
+// naming the image at fault.
 //
 // What the host does not give, Bounce fills with fixed values: no emission, metallic 0,
 // perceptual roughness 1, the same normal as shading and geometric normal, no texture
@@ -74,6 +74,8 @@ struct HostGBuffer {
 // is in `layout`; like any write of an earlier submission, the host's first read needs a barrier
 // from VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT / VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, and may
 // transition it to another layout (Bounce does not read it back, and rewrites it from scratch).
+// The host's reads must be submitted to the renderer's queue (or waited for) before the next
+// renderGi: its first command is a barrier that waits for all earlier work on the queue.
 struct GiImage {
   VkImage image = VK_NULL_HANDLE;
   VkImageView view = VK_NULL_HANDLE;  // VK_IMAGE_VIEW_TYPE_2D

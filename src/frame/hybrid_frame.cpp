@@ -160,12 +160,27 @@ std::vector<vk::PassTiming> HybridFrame::renderGi(const Camera& camera,
   checkHostGBuffer(host, {settings_.width, settings_.height}, "bring your own G-buffer");
   constants_ = makeFrameConstants(camera);
   recordGiFrame(host);
-  return submitFrame();
+  return submitFrame(true);
 }
 
-std::vector<vk::PassTiming> HybridFrame::submitFrame() {
+// Bounce's frames wait for one another; a renderGi frame also follows the host's work on the
+// queue in between (its G-buffer writes, its reads of the last gi.diffuse), which the graph does
+// not see: one global barrier from everything before orders them (the host contract,
+// include/bounce/host_gbuffer.h).
+std::vector<vk::PassTiming> HybridFrame::submitFrame(bool afterHostWork) {
   graph_.allocate(context_, {settings_.width, settings_.height});  // a no-op after frame 0
   context_.submitAndWait([&](VkCommandBuffer cmd) {
+    if (afterHostWork) {
+      VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+      barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+      barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+      barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+      barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+      VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+      dependency.memoryBarrierCount = 1;
+      dependency.pMemoryBarriers = &barrier;
+      vkCmdPipelineBarrier2(cmd, &dependency);
+    }
     timer_.reset(cmd);
     graph_.execute(cmd, &timer_);
   });

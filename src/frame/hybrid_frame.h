@@ -110,7 +110,7 @@ class HybridFrame {
  private:
   void recordFrame();
   void recordGiFrame(const HostGBufferImages& host);
-  std::vector<vk::PassTiming> submitFrame();
+  std::vector<vk::PassTiming> submitFrame(bool afterHostWork = false);
   gpu::FrameConstants makeFrameConstants(const Camera& camera) const;
 
   vk::Context& context_;
