@@ -1,9 +1,10 @@
 // The public API (include/bounce/) as a host sees it: this test includes <bounce/bounce.h> and
 // links bounce::bounce only. Bad input gets bounce::Error with a useful message; a scene built in
 // code renders; the presets differ as bounce/settings.h documents; bring-your-own-device rejects
-// a device without the features Bounce needs and leaves the host's objects alone. CTest runs it
-// with BOUNCE_VALIDATE=1: the Khronos validation layer reports to stderr, which must stay free of
-// validation errors.
+// a device without the features Bounce needs and leaves the host's objects alone; bring your own
+// G-buffer (Renderer::renderGi) needs the host's device and names the host image at fault. CTest
+// runs it with BOUNCE_VALIDATE=1: the Khronos validation layer reports to stderr, which must stay
+// free of validation errors.
 #include <cmath>
 #include <string>
 #include <vector>
@@ -214,6 +215,94 @@ TEST_F(Api, ExternalDeviceWithoutFeaturesIsRejected) {
               HasSubstr("does not exist"));
 
   EXPECT_EQ(vkDeviceWaitIdle(device), VK_SUCCESS);  // still the host's, still alive
+  vkDestroyDevice(device, nullptr);
+  vkDestroyInstance(instance, nullptr);
+}
+
+// Bring your own G-buffer: only on the host's device, only with a GI mode, and a host image of
+// the wrong format or extent is an error naming it. (The images' handles here are stand-ins that
+// Bounce never passes to Vulkan: the contract is checked before anything is recorded. The full
+// path runs in examples/own_gbuffer and tests/test_gbuffer_import.cpp.)
+TEST_F(Api, RenderGiChecksTheDeviceAndTheHostImages) {
+  bounce::Scene scene = litQuadScene();
+  bounce::RendererSettings settings = smallSettings(bounce::Preset::Mobile, bounce::GiMode::Evolve);
+  {
+    bounce::Renderer own = bounce::Renderer::create(scene, settings);
+    EXPECT_THAT(errorOf([&] { own.renderGi(quadCamera(), {}); }), HasSubstr("ExternalDevice"));
+  }
+
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.apiVersion = VK_API_VERSION_1_3;
+  VkInstanceCreateInfo instanceInfo{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  instanceInfo.pApplicationInfo = &app;
+  VkInstance instance = VK_NULL_HANDLE;
+  ASSERT_EQ(vkCreateInstance(&instanceInfo, nullptr, &instance), VK_SUCCESS);
+  uint32_t count = 1;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  vkEnumeratePhysicalDevices(instance, &count, &physicalDevice);
+  ASSERT_NE(physicalDevice, VK_NULL_HANDLE);
+  uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, families.data());
+  const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+  uint32_t family = 0;
+  while (family < familyCount && (families[family].queueFlags & need) != need) ++family;
+  ASSERT_LT(family, familyCount);
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queueInfo.queueFamilyIndex = family;
+  queueInfo.queueCount = 1;
+  queueInfo.pQueuePriorities = &priority;
+  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  f13.synchronization2 = f13.dynamicRendering = f13.maintenance4 = VK_TRUE;
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
+  f12.bufferDeviceAddress = f12.scalarBlockLayout = f12.timelineSemaphore = VK_TRUE;
+  VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
+  f2.features.shaderInt64 = VK_TRUE;
+  VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f2};
+  deviceInfo.queueCreateInfoCount = 1;
+  deviceInfo.pQueueCreateInfos = &queueInfo;
+  VkDevice device = VK_NULL_HANDLE;
+  ASSERT_EQ(vkCreateDevice(physicalDevice, &deviceInfo, nullptr, &device), VK_SUCCESS);
+  VkQueue queue = VK_NULL_HANDLE;
+  vkGetDeviceQueue(device, family, 0, &queue);
+  bounce::ExternalDevice external{.instance = instance,
+                                  .physicalDevice = physicalDevice,
+                                  .device = device,
+                                  .queue = queue,
+                                  .queueFamilyIndex = family,
+                                  .createInfo = &deviceInfo};
+  {
+    bounce::RendererSettings noGi = settings;
+    noGi.gi = bounce::GiMode::None;
+    bounce::Renderer renderer = bounce::Renderer::create(external, scene, noGi);
+    EXPECT_THAT(errorOf([&] { renderer.renderGi(quadCamera(), {}); }), HasSubstr("GI mode"));
+  }
+  {
+    bounce::Renderer renderer = bounce::Renderer::create(external, scene, settings);
+    auto standIn = [](VkFormat format, uint32_t width, uint32_t height) {
+      return bounce::HostImage{reinterpret_cast<VkImage>(uintptr_t(0x1000)),
+                               reinterpret_cast<VkImageView>(uintptr_t(0x2000)), format, width,
+                               height};
+    };
+    bounce::HostGBuffer gbuffer{
+        standIn(VK_FORMAT_R32_SFLOAT, 64, 48), standIn(VK_FORMAT_R16G16B16A16_SFLOAT, 64, 48),
+        standIn(VK_FORMAT_R8G8B8A8_SRGB, 64, 48), standIn(VK_FORMAT_R16G16_SFLOAT, 64, 48)};
+    std::string message = errorOf([&] { renderer.renderGi(quadCamera(), gbuffer); });
+    EXPECT_THAT(message, HasSubstr("albedo image has format VK_FORMAT_R8G8B8A8_SRGB"));
+    EXPECT_THAT(message, HasSubstr("VK_FORMAT_R8G8B8A8_UNORM"));
+    gbuffer.albedo.format = VK_FORMAT_R8G8B8A8_UNORM;
+    gbuffer.motion.width = 32;
+    EXPECT_THAT(errorOf([&] { renderer.renderGi(quadCamera(), gbuffer); }),
+                HasSubstr("motion image is 32x48; it must be the render resolution 64x48"));
+    gbuffer.motion.width = 64;
+    gbuffer.depth.view = VK_NULL_HANDLE;
+    EXPECT_THAT(errorOf([&] { renderer.renderGi(quadCamera(), gbuffer); }),
+                HasSubstr("depth image has no VkImage or no VkImageView"));
+    // Still a working renderer.
+    EXPECT_EQ(renderer.render(quadCamera()).frameIndex, 0u);
+  }
   vkDestroyDevice(device, nullptr);
   vkDestroyInstance(instance, nullptr);
 }

@@ -373,6 +373,34 @@ TEST(FrameGraph, ImportedImageStartsInItsGivenLayout) {
   EXPECT_FALSE(hasBarrier(graph.compile(), "shade", "scene.albedo"));  // already readable
 }
 
+// An imported image its owner writes between frames (a host's G-buffer): every frame, not only
+// the first, starts with a barrier from any earlier write, in the layout the owner gives.
+TEST(FrameGraph, ExternallyWrittenImportWaitsForTheOwnerEveryFrame) {
+  FrameGraph graph;
+  ImportedImage host{.image = reinterpret_cast<VkImage>(uintptr_t(0x10)),
+                     .view = reinterpret_cast<VkImageView>(uintptr_t(0x20)),
+                     .format = VK_FORMAT_R32_SFLOAT,
+                     .extent = {4, 4},
+                     .layout = VK_IMAGE_LAYOUT_GENERAL,
+                     .externalWrites = true};
+  for (int frame = 0; frame < 2; ++frame) {
+    SCOPED_TRACE(frame);
+    graph.beginFrame();
+    ImageHandle depth = graph.importImage("host.depth", host);
+    ImageHandle out = graph.createPersistentImage("out", kColor);
+    graph.addPass("import", QueueKind::Compute)
+        .read(depth, Access::StorageRead)
+        .write(out, Access::StorageWrite);
+    const Barrier& b = barrierOf(graph.compile(), "import", "host.depth");
+    EXPECT_EQ(b.srcStages, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT);
+    EXPECT_EQ(b.srcAccess, VK_ACCESS_2_MEMORY_WRITE_BIT);
+    EXPECT_EQ(b.dstStages, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT);
+    EXPECT_EQ(b.oldLayout, VK_IMAGE_LAYOUT_GENERAL);
+    EXPECT_EQ(b.newLayout, VK_IMAGE_LAYOUT_GENERAL);
+    graph.endFrame();
+  }
+}
+
 TEST(FrameGraph, DebugViewCopiesRightAfterThePassAndKeepsItAlive) {
   FrameGraph graph;
   ImageHandle normal = graph.createImage("gbuffer.normal", kColor);

@@ -9,13 +9,14 @@
 //   bounce/frame_statistics.h  FrameStatistics: per-pass GPU milliseconds by name, frame index
 //   bounce/image.h             Image (float RGBA), writeImage (.png, .exr)
 //   bounce/external_device.h   ExternalDevice: bring your own VkInstance, VkDevice and queue
+//   bounce/host_gbuffer.h      HostGBuffer, GiImage: bring your own G-buffer (Renderer::renderGi)
 //   bounce/error.h             Error: what every function throws for bad input or devices
 //   bounce/math.h              Vec3, Mat4
 //
 // Entry points: Renderer::create(scene, settings) on a device Bounce creates;
-// Renderer::create(externalDevice, scene, settings) on the host's device. Bring your own
-// G-buffer (the host's rasterised G-buffer in, lighting and GI out) is planned; it will be
-// declared in bounce/renderer.h.
+// Renderer::create(externalDevice, scene, settings) on the host's device; and on that,
+// Renderer::renderGi(camera, hostGBuffer): bring your own G-buffer (the host's rasterised
+// G-buffer in, Bounce's diffuse GI image out; docs/library.md).
 //
 // Every type lives in namespace bounce (see bounce/config.h). Nothing here exposes Bounce's
 // internal types; examples/ shows complete programs.
@@ -25,6 +26,7 @@
 #include "bounce/error.h"
 #include "bounce/external_device.h"
 #include "bounce/frame_statistics.h"
+#include "bounce/host_gbuffer.h"
 #include "bounce/image.h"
 #include "bounce/math.h"
 #include "bounce/renderer.h"

@@ -19,9 +19,10 @@
 // Three ways in: Renderer::create(scene, settings) makes its own Vulkan device (a discrete GPU
 // first, else lavapipe; the environment variables BOUNCE_DEVICE=N picks device N and
 // BOUNCE_VALIDATE=1 turns on the Khronos validation layer); Renderer::create(externalDevice,
-// scene, settings) runs on the host's device (bounce/external_device.h); and
-// "bring your own G-buffer" (the host rasterises its own G-buffer and Bounce adds lighting and
-// GI to it) is planned and will be declared here.
+// scene, settings) runs on the host's device (bounce/external_device.h); and on such a
+// renderer, renderGi(camera, hostGBuffer) is "bring your own G-buffer": the host rasterises its
+// own G-buffer (depth, normal, albedo, motion; bounce/host_gbuffer.h has the contract) and
+// Bounce returns its diffuse GI image for it, leaving the final lighting to the host.
 #pragma once
 #include <memory>
 #include <string>
@@ -29,6 +30,7 @@
 #include "bounce/camera.h"
 #include "bounce/config.h"
 #include "bounce/frame_statistics.h"
+#include "bounce/host_gbuffer.h"
 #include "bounce/image.h"
 #include "bounce/scene.h"
 #include "bounce/settings.h"
@@ -55,6 +57,17 @@ class Renderer {
   // Renders one frame seen from `camera`, waits for it, and returns its statistics. Temporal
   // history (GI, denoisers) carries over from the last frame: for a camera cut, resetHistory().
   FrameStatistics render(const Camera& camera);
+
+  // Bring your own G-buffer (bounce/host_gbuffer.h): one frame of Bounce's sun shadows and
+  // diffuse GI on the host's G-buffer images seen from `camera` (the camera the host rendered
+  // with), without Bounce's own primary visibility, sky, composite or tonemap. Waits for the
+  // GPU, and returns the GI image, valid until the next renderGi/render. Temporal history
+  // carries over as in render() (resetHistory() for a camera cut; `motion` reprojects it).
+  // Only for a renderer created on an ExternalDevice, with settings.gi other than None; throws
+  // bounce::Error otherwise, or naming the host image whose format, extent or handles are wrong.
+  // requestImage() names work here too (e.g. "gbuffer.normals", "gi.diffuse"), except the
+  // composite and tonemap images, which this frame has not.
+  GiImage renderGi(const Camera& camera, const HostGBuffer& gbuffer);
 
   // Captures the image `name` (see above) from the next render() on. An unknown name makes that
   // render() throw bounce::Error listing the frame's passes and resources; the request is then

@@ -23,6 +23,15 @@
 //   reflections        RGBA16F      specular radiance from a reflection pass (zero for now)
 //   composite.hdr      RGBA16F      scene-referred radiance (before exposure)
 //   tonemap.display    RGBA16F      display-referred linear colour in [0, 1]
+//
+// Bring your own G-buffer (`gbuffer-import`, include/bounce/host_gbuffer.h): the host's images,
+// imported, storage images in GENERAL layout at render resolution:
+//   host.depth         R32F         view depth in metres along the camera's forward axis
+//                                   (as gbuffer.depth); 0 (or negative, NaN, inf): no surface
+//   host.normal        RGBA16F      world-space unit normal in xyz (w ignored); turned toward
+//                                   the viewer when it faces away
+//   host.albedo        RGBA8        linear diffuse albedo in rgb (UNORM, not sRGB; a ignored)
+//   host.motion        RG16F        as gbuffer.velocity: pixel position now minus last frame
 #ifndef BOUNCE_SHARED_HYBRID_FRAME_IO_H
 #define BOUNCE_SHARED_HYBRID_FRAME_IO_H
 #include "shared/camera.h"
@@ -100,6 +109,23 @@ BOUNCE_CONST uint GBUFFER_BINDING_VELOCITY = 5u;
 BOUNCE_CONST uint GBUFFER_BINDING_EMISSIVE = 6u;
 BOUNCE_CONST uint GBUFFER_BINDING_FLAGS = 7u;
 BOUNCE_CONST uint GBUFFER_BINDING_COUNT = 8u;
+
+// gbuffer-import: the host's images in, the GBuffer out (the outputs as GBUFFER_BINDING_*).
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_HOST_DEPTH = 0u;
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_HOST_NORMAL = 1u;
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_HOST_ALBEDO = 2u;
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_HOST_MOTION = 3u;
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_BASE_COLOR = 4u;
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_NORMALS = 5u;
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_DEPTH = 6u;
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_UV = 7u;
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_VELOCITY = 8u;
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_EMISSIVE = 9u;
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_FLAGS = 10u;
+BOUNCE_CONST uint GBUFFER_IMPORT_BINDING_COUNT = 11u;
+// What gbuffer-import writes where the host has no say (documented in host_gbuffer.h).
+BOUNCE_CONST float GBUFFER_IMPORT_ROUGHNESS = 1.0f;  // perceptual roughness: fully rough
+BOUNCE_CONST float GBUFFER_IMPORT_METALLIC = 0.0f;   // dielectric
 
 BOUNCE_CONST uint SHADOWS_TRACE_BINDING_NORMALS = 0u;
 BOUNCE_CONST uint SHADOWS_TRACE_BINDING_DEPTH = 1u;

@@ -76,6 +76,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
       sceneUpdate_(context, gpuScene),
       vbuffer_(context, gpuScene, scene, settings.vbuffer),
       gbuffer_(context, gpuScene),
+      gbufferImport_(context, gpuScene),
       shadowsTrace_(context, gpuScene, settings.shadows),
       shadowsDenoise_(context, gpuScene),
       skyPass_(context, gpuScene),
@@ -150,8 +151,36 @@ void HybridFrame::setInstanceTransforms(std::span<const glm::mat4> objectToWorld
 std::vector<vk::PassTiming> HybridFrame::render(const Camera& camera) {
   constants_ = makeFrameConstants(camera);
   recordFrame();
+  return submitFrame();
+}
+
+std::vector<vk::PassTiming> HybridFrame::renderGi(const Camera& camera,
+                                                  const HostGBufferImages& host) {
+  if (!gi_) fail("bring your own G-buffer: the renderer has no GI system (gi none)");
+  checkHostGBuffer(host, {settings_.width, settings_.height}, "bring your own G-buffer");
+  constants_ = makeFrameConstants(camera);
+  recordGiFrame(host);
+  return submitFrame(true);
+}
+
+// Bounce's frames wait for one another; a renderGi frame also follows the host's work on the
+// queue in between (its G-buffer writes, its reads of the last gi.diffuse), which the graph does
+// not see: one global barrier from everything before orders them (the host contract,
+// include/bounce/host_gbuffer.h).
+std::vector<vk::PassTiming> HybridFrame::submitFrame(bool afterHostWork) {
   graph_.allocate(context_, {settings_.width, settings_.height});  // a no-op after frame 0
   context_.submitAndWait([&](VkCommandBuffer cmd) {
+    if (afterHostWork) {
+      VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+      barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+      barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+      barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+      barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+      VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+      dependency.memoryBarrierCount = 1;
+      dependency.pMemoryBarriers = &barrier;
+      vkCmdPipelineBarrier2(cmd, &dependency);
+    }
     timer_.reset(cmd);
     graph_.execute(cmd, &timer_);
   });
@@ -208,6 +237,21 @@ void HybridFrame::recordFrame() {
       graph_.createPersistentImage("reflections", {VK_FORMAT_R16G16B16A16_SFLOAT});
   HdrImage hdr = composite_.declare(graph_, frame, gbuffer, shadows, sky, indirect);
   tonemap_.declare(graph_, frame, hdr);
+}
+
+// Bring your own G-buffer: the same chain up to the GI system, with the GBuffer imported from the
+// host's images; `gi-output` hands gi.diffuse to the host (it has side effects, so the GI passes
+// that write it are not culled although nothing in the frame reads it).
+void HybridFrame::recordGiFrame(const HostGBufferImages& host) {
+  graph_.beginFrame();
+  FrameContext frame = sceneUpdate_.declare(graph_, constants_, lightingCutPending_);
+  GBuffer gbuffer = gbufferImport_.declare(graph_, frame, host);
+  RawShadows rawShadows = shadowsTrace_.declare(graph_, frame, gbuffer);
+  Shadows shadows = shadowsDenoise_.declare(graph_, frame, gbuffer, rawShadows);
+  DiffuseGiOutput gi = gi_->declare(graph_, {frame, gbuffer, shadows});
+  graph_.addPass("gi-output", graph::QueueKind::Compute)
+      .read(gi.diffuse, graph::Access::StorageRead)
+      .sideEffects();
 }
 
 }  // namespace bounce

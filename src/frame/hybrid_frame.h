@@ -9,6 +9,9 @@
 //   frame.requestDebugView("composite");      // any pass or resource by name
 //   for (...) frame.render(camera);           // submits and waits; returns per-pass timings
 //   ImageRGBA32F hdr = frame.debugViewImage("composite");
+//
+// Bring your own G-buffer: renderGi(camera, hostImages) runs `gbuffer-import` on the host's
+// images instead of vbuffer + gbuffer and stops at gi.diffuse (giImage()).
 #pragma once
 #include <span>
 #include <string>
@@ -24,6 +27,7 @@
 #include "graph/frame_graph.h"
 #include "passes/composite.h"
 #include "passes/gbuffer.h"
+#include "passes/gbuffer_import.h"
 #include "passes/scene_update.h"
 #include "passes/shadows_denoise.h"
 #include "passes/shadows_trace.h"
@@ -63,11 +67,22 @@ class HybridFrame {
   // time of each pass (debug-view copies included), in recording order.
   std::vector<vk::PassTiming> render(const Camera& camera);
 
+  // Bring your own G-buffer (issue 17): one frame seen from `camera` whose GBuffer comes from
+  // the host's images (`gbuffer-import` instead of vbuffer + gbuffer) and that ends at the GI
+  // system's gi.diffuse (no sky, composite or tonemap). `camera` must be the one the host
+  // rendered with. Submits and waits; returns the pass timings like render(). The frame's
+  // gi.diffuse is then giImage(). Needs a GI mode (settings().gi != None).
+  std::vector<vk::PassTiming> renderGi(const Camera& camera, const HostGBufferImages& host);
+  // After renderGi(): gi.diffuse as that frame left it (image, view, format, extent, layout),
+  // valid until the next frame.
+  graph::ResolvedImage giImage() const { return graph_.resolvedImage("gi.diffuse"); }
+
   // A pass name shows the first image it writes; a resource name shows that image. Takes
   // effect from the next frame on (it creates a readback buffer).
   void requestDebugView(const std::string& passOrResource) {
     graph_.requestDebugView(passOrResource);
   }
+  void clearDebugViews() { graph_.clearDebugViews(); }
   // The view as captured by the last frame (linear values; see graph/debug_view_image.h).
   ImageRGBA32F debugViewImage(const std::string& name) const;
   // Forgets temporal history (a camera cut).
@@ -94,6 +109,8 @@ class HybridFrame {
 
  private:
   void recordFrame();
+  void recordGiFrame(const HostGBufferImages& host);
+  std::vector<vk::PassTiming> submitFrame(bool afterHostWork = false);
   gpu::FrameConstants makeFrameConstants(const Camera& camera) const;
 
   vk::Context& context_;
@@ -112,6 +129,7 @@ class HybridFrame {
   SceneUpdatePass sceneUpdate_;
   VBufferPass vbuffer_;
   GBufferPass gbuffer_;
+  GBufferImportPass gbufferImport_;
   ShadowsTracePass shadowsTrace_;
   ShadowsDenoisePass shadowsDenoise_;
   SkyPass skyPass_;

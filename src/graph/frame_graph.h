@@ -54,6 +54,10 @@ struct ImportedImage {
   uint32_t layers = 1;
   uint32_t mips = 1;
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  // The owner writes it between frames (a host's G-buffer): every frame it starts in `layout`
+  // behind a barrier from any earlier write on the queue (ALL_COMMANDS, MEMORY_WRITE), rather
+  // than where the graph left it.
+  bool externalWrites = false;
 
   static ImportedImage from(const vk::Image& image, VkImageLayout currentLayout);
 };
@@ -175,6 +179,10 @@ class FrameGraph {
   // then its callback. Ends the frame (history swaps). Fails if allocate() is needed.
   void execute(VkCommandBuffer cmd, vk::GpuTimer* timer = nullptr);
   VkExtent2D renderResolution() const { return resolution_; }
+  // After execute(): the image `name` (not a history) of the frame just recorded, with the
+  // layout that frame left it in. Valid until the next frame is executed or resources are
+  // reallocated. Throws bounce::Error for an unknown, culled or buffer resource.
+  ResolvedImage resolvedImage(const std::string& name) const;
 
  private:
   friend class PassBuilder;

@@ -218,6 +218,11 @@ std::vector<bool> FrameGraph::findLivePasses(const std::vector<uint32_t>& order)
 ResourceState FrameGraph::entryState(const ResourceDecl& resource) const {
   std::string key = physicalKey(resource);
   auto state = states_.find(key);
+  if (resource.kind == ResourceKind::Imported && resource.isImage &&
+      resource.importedImage.externalWrites)
+    return ResourceState{.layout = resource.importedImage.layout,
+                         .writeStages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                         .pendingWrites = VK_ACCESS_2_MEMORY_WRITE_BIT};
   if (resource.kind == ResourceKind::Imported) {
     auto handle = importedHandles_.find(key);
     uint64_t current = resource.isImage ? uint64_t(resource.importedImage.image)

@@ -237,6 +237,24 @@ void FrameGraph::recordPass(VkCommandBuffer cmd, const PassPlan& pass, vk::GpuTi
   if (timer) timer->end(cmd);
 }
 
+ResolvedImage FrameGraph::resolvedImage(const std::string& name) const {
+  for (uint32_t r = 0; r < resources_.size(); ++r) {
+    const ResourceDecl& decl = resources_[r];
+    if (decl.name != name) continue;
+    if (!decl.isImage) fail("frame graph: '{}' is a buffer, not an image", name);
+    if (decl.kind == ResourceKind::History)
+      fail("frame graph: '{}' is a history image; resolvedImage() takes others", name);
+    if (r >= resolved_.size() || r >= liveResources_.size() || !liveResources_[r] ||
+        !resolved_[r].image.image)
+      fail("frame graph: '{}' was not used by the last executed frame", name);
+    ResolvedImage image = resolved_[r].image;
+    auto state = states_.find(physicalKey(decl));
+    image.layout = state == states_.end() ? VK_IMAGE_LAYOUT_UNDEFINED : state->second.layout;
+    return image;
+  }
+  fail("frame graph: no image '{}' in the last frame ({})", name, validNames());
+}
+
 void FrameGraph::execute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   if (!context_) fail("frame graph: execute() before allocate()");
   if (!compiled_) compile();
