@@ -47,9 +47,11 @@ TEST(Cli, BadInputGetsAClearError) {
       {"render --scene cornell --view nosuchview --res 8x8", "nosuchview"},
       {"render --scene cornell --device 99 --res 8x8", "--device 99"},
       {"render --scene cornell --gi foo --res 8x8", "--gi 'foo'"},
-      {"render --scene cornell --gi-divisor 3 --res 8x8", "--gi-divisor 3"},
+      {"render --scene cornell --gi-divisor 17 --res 8x8", "resolution divisor 17"},
+      {"render --scene cornell --shadow-divisor 17 --res 8x8", "shadow divisor 17"},
+      {"render --scene cornell --exposure -1 --res 8x8", "exposure -1"},
       {"render --scene cornell --restir-second-vertex foo --res 8x8", "--restir-second-vertex"},
-      {"render --scene cornell --gi-texture-side 5000 --res 8x8", "--gi-texture-side 5000"},
+      {"render --scene cornell --gi-texture-side 5000 --res 8x8", "material texture side 5000"},
       {"render --scene cornell --restir-max-sample-age -3 --res 8x8", "--restir-max-sample-age -3"},
       {"compare " + dir + "/a.png " + dir + "/b.png", "a.png"},
   };

@@ -176,6 +176,38 @@ TEST(HybridFrame, TwentyFramesOfEveryBuiltinSceneAreCleanAndAllocateNothing) {
   }
 }
 
+// One check of the settings' ranges for the library and the command line: the presets and the
+// unbiased configuration pass; each out-of-range field is refused by name, never clamped.
+TEST(FrameSettings, ValidateRefusesOutOfRangeFieldsByName) {
+  for (Preset preset : {Preset::Mobile, Preset::Desktop}) {
+    HybridSettings s = presetSettings(preset);
+    s.gi = GiMode::Evolve;
+    EXPECT_NO_THROW(validate(s));
+    s.restirGi = RestirGiSettings::unbiased();
+    EXPECT_NO_THROW(validate(s));
+  }
+  auto refused = [](const char* expected, auto change) {
+    HybridSettings s = presetSettings(Preset::Desktop);
+    s.gi = GiMode::Evolve;
+    change(s);
+    try {
+      validate(s);
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+      return;
+    }
+    ADD_FAILURE() << "accepted: " << expected;
+  };
+  refused("resolution 0x1080", [](HybridSettings& s) { s.width = 0; });
+  refused("shadow divisor 0", [](HybridSettings& s) { s.shadows.divisor = 0; });
+  refused("exposure 0", [](HybridSettings& s) { s.exposure = 0.0f; });
+  refused("resolution divisor 17", [](HybridSettings& s) { s.restirGi.divisor = 17; });
+  refused("6 temporal history samples",
+          [](HybridSettings& s) { s.restirGi.temporalHistorySamples = 6; });
+  refused("firefly ratio 0.5", [](HybridSettings& s) { s.restirGi.fireflyRatio = 0.5f; });
+  refused("3 rays per cell", [](HybridSettings& s) { s.cache.raysPerCell = 3; });
+}
+
 // A resize between frames: every size that follows the resolution (shadow and GI images) is
 // made anew, the frame renders at the new size without validation errors or NaN, and the GI
 // still lights the room.

@@ -1,5 +1,9 @@
 #include "frame/frame_settings.h"
 
+#include <cmath>
+
+#include "core/error.h"
+
 namespace bounce {
 
 std::optional<GiMode> giModeFromName(const std::string& name) {
@@ -11,6 +15,23 @@ std::optional<GiMode> giModeFromName(const std::string& name) {
 
 const char* giModeNames() {
   return "none, evolve, cache";
+}
+
+void validate(const HybridSettings& s) {
+  if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
+    fail("resolution {}x{}: expected 1 to 16384 pixels a side", s.width, s.height);
+  if (s.shadows.divisor == 0 || s.shadows.divisor > 16)
+    fail("shadow divisor {}: expected 1 to 16", s.shadows.divisor);
+  if (!(s.shadows.maxHistory >= 1.0f))
+    fail("shadow history {} frames: expected at least 1", s.shadows.maxHistory);
+  if (!(s.exposure > 0.0f) || !std::isfinite(s.exposure))
+    fail("exposure {}: must be positive", s.exposure);
+  if (!(s.skyAmbientStrength >= 0.0f) || !std::isfinite(s.skyAmbientStrength))
+    fail("sky ambient {}: must be >= 0", s.skyAmbientStrength);
+  if (s.gi == GiMode::Evolve) validate(s.restirGi);
+  if (s.gi == GiMode::Cache || (s.gi == GiMode::Evolve &&
+                                s.restirGi.secondVertex == RestirGiSecondVertex::Cache))
+    validate(s.cache);
 }
 
 }  // namespace bounce

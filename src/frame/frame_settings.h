@@ -53,4 +53,8 @@ struct HybridSettings {
   VkExtent2D resolution() const { return {width, height}; }
 };
 
+// Throws bounce::Error naming the field when a setting, the frame's own or a component's, is
+// out of its documented range: the one check the library and the command line share.
+void validate(const HybridSettings& settings);
+
 }  // namespace bounce

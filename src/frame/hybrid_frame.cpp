@@ -42,13 +42,6 @@ std::unique_ptr<DiffuseGi> makeDiffuseGi(vk::Context& context, GpuScene& gpuScen
   return nullptr;
 }
 
-void checkSettings(const HybridSettings& settings) {
-  if (settings.width == 0 || settings.height == 0)
-    fail("hybrid frame: resolution {}x{} must be positive", settings.width, settings.height);
-  if (settings.shadows.divisor == 0 || settings.shadows.divisor > 16)
-    fail("hybrid frame: shadow divisor {} must be 1 to 16", settings.shadows.divisor);
-}
-
 }  // namespace
 
 // GpuCamera shoots dir = forward + x right - y up through NDC (x, y), with right and up scaled
@@ -83,7 +76,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
       composite_(context, gpuScene),
       tonemap_(context, gpuScene),
       timer_(context) {
-  checkSettings(settings);
+  validate(settings);
   // Reversed Z keeps float depth precise far away; the near plane only has to sit in front of
   // everything the camera should see.
   Aabb bounds = gpuScene.bounds();
@@ -199,7 +192,7 @@ void HybridFrame::resize(uint32_t width, uint32_t height) {
   HybridSettings resized = settings_;
   resized.width = width;
   resized.height = height;
-  checkSettings(resized);
+  validate(resized);
   if (width == settings_.width && height == settings_.height) return;
   settings_ = resized;
   gi_.reset();  // its images and sizes follow the resolution

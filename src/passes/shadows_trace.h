@@ -3,6 +3,7 @@
 // that penumbrae are soft after `shadows-denoise` (shaders/passes/shadows_trace.comp).
 #pragma once
 #include "graph/frame_graph.h"
+#include "graph/resource_desc.h"
 #include "passes/frame_context.h"
 #include "passes/gbuffer.h"
 #include "passes/image_pass.h"
@@ -18,9 +19,9 @@ struct ShadowSettings {
   // penumbra (one cone sample per pixel per frame) further but lets moving shadows lag. >= 1.
   float maxHistory = 16.0f;
 
-  // The shadow image's size for a render resolution.
+  // The shadow image's size for a render resolution (as the graph sizes shadows.raw).
   VkExtent2D resolution(VkExtent2D render) const {
-    return {(render.width + divisor - 1) / divisor, (render.height + divisor - 1) / divisor};
+    return graph::ImageSize::dividedRes(divisor).resolve(render);
   }
 };
 

@@ -24,7 +24,9 @@ vk::Buffer deviceBuffer(vk::Context& context, VkDeviceSize bytes, const std::str
   return vk::Buffer(context, bytes, kStorage | extra, vk::MemoryUse::DeviceOnly, name);
 }
 
-void checkSettings(const ClipmapCacheSettings& s) {
+}  // namespace
+
+void validate(const ClipmapCacheSettings& s) {
   bool power = s.raysPerCell > 0 && s.raysPerCell <= gpu::CLIPMAP_ENTRIES &&
                (s.raysPerCell & (s.raysPerCell - 1)) == 0;
   if (!power) fail("clipmap cache: {} rays per cell; expected 1, 2, 4, 8 or 16", s.raysPerCell);
@@ -44,13 +46,12 @@ void checkSettings(const ClipmapCacheSettings& s) {
          gpu::CLIPMAP_MAX_CELLS);
 }
 
-}  // namespace
 
 ClipmapCache::ClipmapCache(vk::Context& context, const GpuScene& gpuScene,
                            const GpuLightTables& lights, const ClipmapCacheSettings& settings)
     : context_(context),
       lights_(lights),
-      settings_((checkSettings(settings), settings)),
+      settings_((validate(settings), settings)),
       constants_(deviceBuffer(context, sizeof(gpu::ClipmapCacheConstants), "cache.constants")),
       grid_(deviceBuffer(context, kTotalSlots * sizeof(uint32_t), "cache.grid")),
       cells_(

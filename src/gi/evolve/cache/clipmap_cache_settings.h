@@ -50,4 +50,7 @@ struct ClipmapCacheSettings {
   uint32_t fullRefreshBounces = 3;
 };
 
+// Throws bounce::Error naming the field when a setting is out of its documented range.
+void validate(const ClipmapCacheSettings& settings);
+
 }  // namespace bounce

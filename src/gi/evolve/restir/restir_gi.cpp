@@ -7,6 +7,7 @@
 
 #include "core/blue_noise.h"
 #include "core/error.h"
+#include "graph/resource_desc.h"
 #include "rt/gpu_scene.h"
 
 namespace bounce {
@@ -25,7 +26,9 @@ const std::vector<uint32_t>& directionBlueNoise() {
   return noise;
 }
 
-void checkSettings(const RestirGiSettings& s) {
+}  // namespace
+
+void validate(const RestirGiSettings& s) {
   if (s.divisor == 0 || s.divisor > 16)
     fail("ReSTIR GI: resolution divisor {} must be 1 to 16", s.divisor);
   if (!(s.settleHistoryScale > 0.0f && s.settleHistoryScale <= 1.0f))
@@ -35,9 +38,25 @@ void checkSettings(const RestirGiSettings& s) {
     if (n > gpu::RESTIR_GI_MAX_SPATIAL_SAMPLES)
       fail("ReSTIR GI: {} spatial samples per pass, at most {}", n,
            gpu::RESTIR_GI_MAX_SPATIAL_SAMPLES);
+  if (s.temporalHistorySamples < 1 || s.temporalHistorySamples > 5)
+    fail("ReSTIR GI: {} temporal history samples; expected 1 to 5", s.temporalHistorySamples);
+  if (s.spatialDenoiseRadius > gpu::GI_SPATIAL_DENOISE_MAX_RADIUS)
+    fail("ReSTIR GI: spatial denoise radius {}; at most {}", s.spatialDenoiseRadius,
+         gpu::GI_SPATIAL_DENOISE_MAX_RADIUS);
+  if (!(s.spatialMinRadius >= 0.5f))
+    fail("ReSTIR GI: spatial minimum radius {} px must be at least 0.5", s.spatialMinRadius);
+  if (s.historyBrightening != 0.0f && !(s.historyBrightening > 1.0f))
+    fail("ReSTIR GI: history brightening {}: expected 0 (off) or a ratio above 1",
+         s.historyBrightening);
+  if (s.fireflyRatio != 0.0f && !(s.fireflyRatio > 1.0f))
+    fail("ReSTIR GI: firefly ratio {}: expected 0 (off) or a ratio above 1", s.fireflyRatio);
+  if (s.maxSampleAge > 100000)
+    fail("ReSTIR GI: maximum sample age {}: expected 0 (no limit) to 100000 frames",
+         s.maxSampleAge);
+  if (s.materialTextureSide > 2048)
+    fail("ReSTIR GI: material texture side {}: expected 0 (full resolution) to 2048 texels",
+         s.materialTextureSide);
 }
-
-}  // namespace
 
 RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
                    const RestirGiSettings& settings, const ClipmapCacheSettings& cache,
@@ -52,11 +71,10 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
       spatialDenoise_(context, gpuScene) {
   if (settings_.secondVertex == RestirGiSecondVertex::Cache)
     cache_ = std::make_unique<ClipmapCache>(context, gpuScene, lights_, cache);
-  checkSettings(settings_);
+  validate(settings_);
   const uint32_t divisor = settings_.divisor;
   settleFramesLeft_ = settings_.settleFrames;  // the first frames: the cache starts empty
-  giResolution_ = {(resolution.width + divisor - 1) / divisor,
-                   (resolution.height + divisor - 1) / divisor};
+  giResolution_ = graph::ImageSize::dividedRes(settings_.divisor).resolve(resolution);
   blueNoise_ = upload(context, std::span<const uint32_t>(directionBlueNoise()), "gi.blue-noise");
   const gpu::RestirGiConstants c = makeConstants();
   constants_ = upload(context, std::span<const gpu::RestirGiConstants>(&c, 1), "gi.constants");
@@ -94,15 +112,15 @@ gpu::RestirGiConstants RestirGi::makeConstants() const {
     c.spatialSamples[i] = s.spatialSamples[i];
     c.spatialRadius[i] = s.spatialRadius[i];
   }
-  c.spatialMinRadius = std::max(s.spatialMinRadius, 0.5f);
+  c.spatialMinRadius = s.spatialMinRadius;
   c.validityBlend = s.validityBlend;
   c.validationPeriod = s.validationPeriod;
   c.validationDistance = s.validationDistance;
   c.validationRadiance = s.validationRadiance;
-  c.temporalHistorySamples = std::clamp(s.temporalHistorySamples, 1u, 5u);
-  c.spatialDenoiseRadius = std::min(s.spatialDenoiseRadius, gpu::GI_SPATIAL_DENOISE_MAX_RADIUS);
-  c.historyBrightening = s.historyBrightening > 1.0f ? s.historyBrightening : 0.0f;
-  c.fireflyRatio = s.fireflyRatio > 1.0f ? s.fireflyRatio : 0.0f;
+  c.temporalHistorySamples = s.temporalHistorySamples;
+  c.spatialDenoiseRadius = s.spatialDenoiseRadius;
+  c.historyBrightening = s.historyBrightening;
+  c.fireflyRatio = s.fireflyRatio;
   c.materialTextureSide = s.materialTextureSide;
   c.blueNoise = s.blueNoise ? blueNoise_.address() : 0;
   c.flags |= s.validationPeriod > 0 ? gpu::RESTIR_GI_FLAG_VALIDATION : 0u;

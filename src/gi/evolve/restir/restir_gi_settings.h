@@ -212,4 +212,8 @@ struct RestirGiSettings {
   }
 };
 
+// Throws bounce::Error naming the field when a setting is out of its documented range (the
+// library and the command line share this one check; nothing is clamped silently).
+void validate(const RestirGiSettings& settings);
+
 }  // namespace bounce
