@@ -37,7 +37,9 @@ Scene CommonOptions::loadScene() const {
   return s;
 }
 
-Resolution CommonOptions::resolution() const { return parseResolution(res); }
+Resolution CommonOptions::resolution() const {
+  return parseResolution(res);
+}
 
 std::unique_ptr<vk::Context> CommonOptions::createContext() const {
   vk::ContextOptions options;
@@ -50,7 +52,8 @@ std::unique_ptr<vk::Context> CommonOptions::createContext() const {
 
 int exitCodeFor(const vk::Context& context) {
   if (context.validationErrorCount() == 0) return 0;
-  std::fprintf(stderr, "bounce: error: %u Vulkan validation error(s)\n", context.validationErrorCount());
+  std::fprintf(stderr, "bounce: error: %u Vulkan validation error(s)\n",
+               context.validationErrorCount());
   return kValidationFailedExit;
 }
 

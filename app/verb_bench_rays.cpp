@@ -8,8 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "common_options.h"
-#include "rt/gpu_scene.h"
 #include "passes/ray_bench.h"
+#include "rt/gpu_scene.h"
 #include "verbs.h"
 
 namespace bounce::app {
@@ -55,16 +55,19 @@ int runBenchRays(const BenchRaysOptions& options) {
   std::printf("scene %s: %llu triangles (%llu unique), device %s\n", scene.name.c_str(),
               (unsigned long long)s.triangles, (unsigned long long)s.uniqueTriangles,
               context->info().name.c_str());
-  std::printf("BVH build %.3f s (%.2f M triangles/s), BVH %.1f MiB, textures %.1f MiB, GPU total %.1f MiB\n",
-              s.bvhBuildSeconds,
-              s.bvhBuildSeconds > 0 ? double(s.uniqueTriangles) / s.bvhBuildSeconds * 1e-6 : 0.0,
-              double(s.bvhBytes) / (1 << 20), double(s.textureBytes) / (1 << 20),
-              double(s.totalBytes) / (1 << 20));
+  std::printf(
+      "BVH build %.3f s (%.2f M triangles/s), BVH %.1f MiB, textures %.1f MiB, GPU total %.1f "
+      "MiB\n",
+      s.bvhBuildSeconds,
+      s.bvhBuildSeconds > 0 ? double(s.uniqueTriangles) / s.bvhBuildSeconds * 1e-6 : 0.0,
+      double(s.bvhBytes) / (1 << 20), double(s.textureBytes) / (1 << 20),
+      double(s.totalBytes) / (1 << 20));
   RayBenchOptions bench;
   bench.resolution = res;
   bench.iterations = options.iterations;
   std::vector<RayKindResult> kinds = runRayBench(*context, gpuScene, scene, bench);
-  std::printf("%-8s %12s %10s %10s %12s %8s\n", "rays", "count", "median ms", "min ms", "Mrays/s", "hit %");
+  std::printf("%-8s %12s %10s %10s %12s %8s\n", "rays", "count", "median ms", "min ms", "Mrays/s",
+              "hit %");
   for (const RayKindResult& k : kinds)
     std::printf("%-8s %12llu %10.3f %10.3f %12.3f %8.1f\n", k.kind.c_str(),
                 (unsigned long long)k.rays, k.medianMilliseconds, k.minMilliseconds,
@@ -81,7 +84,8 @@ int runBenchRays(const BenchRaysOptions& options) {
 
 void addBenchRaysVerb(CLI::App& app, VerbAction& action) {
   auto options = std::make_shared<BenchRaysOptions>();
-  CLI::App* cmd = app.add_subcommand("bench-rays", "Ray-tracing throughput (Mrays/s) and BVH build");
+  CLI::App* cmd =
+      app.add_subcommand("bench-rays", "Ray-tracing throughput (Mrays/s) and BVH build");
   options->common.addSceneOptions(*cmd, "city");
   options->common.addResolution(*cmd, "1920x1080");
   options->common.addDeviceOptions(*cmd);

@@ -5,8 +5,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "vk/context.h"
 #include "verbs.h"
+#include "vk/context.h"
 
 namespace bounce::app {
 
@@ -50,15 +50,17 @@ void printDevice(const vk::DeviceInfo& d, bool chosen) {
     std::printf("      unsupported: %s\n", d.unsuitableBecause.c_str());
     return;
   }
-  std::printf("      subgroup %u, max storage buffer %.0f MiB, push constants %u B, "
-              "device-local %.1f GiB\n",
-              d.subgroupSize, double(d.maxStorageBufferRange) / (1 << 20), d.maxPushConstantsSize,
-              double(d.deviceLocalBytes) / double(1u << 30));
-  std::printf("      timestamps %s, float16 %s; optional: ray-tracing pipeline %s, ray query %s, "
-              "cooperative matrix %s\n",
-              d.timestampsOnComputeQueue ? "yes" : "no", d.shaderFloat16 ? "yes" : "no",
-              d.rayTracingPipeline ? "yes" : "no", d.rayQuery ? "yes" : "no",
-              d.cooperativeMatrix ? "yes" : "no");
+  std::printf(
+      "      subgroup %u, max storage buffer %.0f MiB, push constants %u B, "
+      "device-local %.1f GiB\n",
+      d.subgroupSize, double(d.maxStorageBufferRange) / (1 << 20), d.maxPushConstantsSize,
+      double(d.deviceLocalBytes) / double(1u << 30));
+  std::printf(
+      "      timestamps %s, float16 %s; optional: ray-tracing pipeline %s, ray query %s, "
+      "cooperative matrix %s\n",
+      d.timestampsOnComputeQueue ? "yes" : "no", d.shaderFloat16 ? "yes" : "no",
+      d.rayTracingPipeline ? "yes" : "no", d.rayQuery ? "yes" : "no",
+      d.cooperativeMatrix ? "yes" : "no");
 }
 
 int runInfo(const InfoOptions& options) {
@@ -68,13 +70,15 @@ int runInfo(const InfoOptions& options) {
   uint32_t chosen = context.info().index;
   if (options.json) {
     nlohmann::json out = {{"devices", nlohmann::json::array()}, {"chosen", chosen}};
-    for (const vk::DeviceInfo& d : devices) out["devices"].push_back(deviceJson(d, d.index == chosen));
+    for (const vk::DeviceInfo& d : devices)
+      out["devices"].push_back(deviceJson(d, d.index == chosen));
     std::printf("%s\n", out.dump(2).c_str());
   } else {
     std::printf("Vulkan devices (* = chosen; --device N or BOUNCE_DEVICE=N to choose):\n");
     for (const vk::DeviceInfo& d : devices) printDevice(d, d.index == chosen);
-    std::printf("Required: Vulkan 1.3, bufferDeviceAddress, scalarBlockLayout, shaderInt64, "
-                "synchronization2, dynamicRendering, timelineSemaphore\n");
+    std::printf(
+        "Required: Vulkan 1.3, bufferDeviceAddress, scalarBlockLayout, shaderInt64, "
+        "synchronization2, dynamicRendering, timelineSemaphore\n");
   }
   return context.validationErrorCount() == 0 ? 0 : 4;
 }
@@ -83,7 +87,8 @@ int runInfo(const InfoOptions& options) {
 
 void addInfoVerb(CLI::App& app, VerbAction& action) {
   auto options = std::make_shared<InfoOptions>();
-  CLI::App* cmd = app.add_subcommand("info", "List Vulkan devices and the capabilities Bounce uses");
+  CLI::App* cmd =
+      app.add_subcommand("info", "List Vulkan devices and the capabilities Bounce uses");
   cmd->add_flag("--json", options->json, "Print JSON for machines");
   cmd->callback([&action, options] { action = [options] { return runInfo(*options); }; });
 }

@@ -14,11 +14,11 @@
 
 #include "common_options.h"
 #include "core/error.h"
-#include "passes/primary_view.h"
 #include "frame/animation_player.h"
-#include "rt/gpu_scene.h"
 #include "frame/hybrid_frame.h"
 #include "frame/presets.h"
+#include "passes/primary_view.h"
+#include "rt/gpu_scene.h"
 #include "scene/animation.h"
 #include "tools/image_io.h"
 #include "verbs.h"
@@ -97,17 +97,20 @@ void applyRestirOptions(const RenderOptions& options, RestirGiSettings& gi) {
   if (options.giDivisor != 0) gi.divisor = options.giDivisor;
   if (!options.restirSecondVertex.empty()) {
     std::optional<RestirGiSecondVertex> v = secondVertexFromName(options.restirSecondVertex);
-    if (!v) fail("--restir-second-vertex '{}': expected nee, path or cache", options.restirSecondVertex);
+    if (!v)
+      fail("--restir-second-vertex '{}': expected nee, path or cache", options.restirSecondVertex);
     gi.secondVertex = *v;
   }
-  if (options.restirValidationPeriod >= 0) gi.validationPeriod = uint32_t(options.restirValidationPeriod);
+  if (options.restirValidationPeriod >= 0)
+    gi.validationPeriod = uint32_t(options.restirValidationPeriod);
   if (options.restirMaxSampleAge != -1) {
     if (options.restirMaxSampleAge < 0)
       fail("--restir-max-sample-age {}: expected 0 (no limit) or more frames",
            options.restirMaxSampleAge);
     gi.maxSampleAge = uint32_t(options.restirMaxSampleAge);
   }
-  if (options.restirHistoryBrightening >= 0.0f) gi.historyBrightening = options.restirHistoryBrightening;
+  if (options.restirHistoryBrightening >= 0.0f)
+    gi.historyBrightening = options.restirHistoryBrightening;
   if (options.noGiDenoise) gi.temporalDenoise = gi.spatialDenoise = false;
   if (options.noOccluderVisibility) gi.occluderVisibility = false;
 }
@@ -195,9 +198,8 @@ std::vector<std::pair<std::string, double>> medianPassTimes(const std::vector<Ti
 }
 
 void writeTimingsJson(const std::string& path, const std::vector<TimingRow>& rows,
-                      const std::vector<StatisticRow>& statistics,
-                      const std::string& sceneName, const HybridSettings& settings,
-                      const std::string& device) {
+                      const std::vector<StatisticRow>& statistics, const std::string& sceneName,
+                      const HybridSettings& settings, const std::string& device) {
   createParentDirectory(path);
   std::ofstream f(path);
   if (!f) fail("--timings '{}': cannot write the file", path);

@@ -26,7 +26,8 @@ CommandResult runCommand(const std::string& command, int timeoutSeconds = 120);
 
 // Mean Rec. 709 luminance of an image's RGB.
 double meanLuminance(const ImageRGBA32F& image);
-// A unit normal from the GBuffer's octahedral encoding (encodeOctahedral, shaders/passes/hybrid_frame.glsl).
+// A unit normal from the GBuffer's octahedral encoding (encodeOctahedral,
+// shaders/passes/hybrid_frame.glsl).
 glm::vec3 decodeOctahedral(glm::vec2 e);
 
 }  // namespace bounce::test

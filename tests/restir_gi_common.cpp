@@ -5,9 +5,9 @@
 #include <memory>
 #include <utility>
 
+#include "frame/hybrid_frame.h"
 #include "harness.h"
 #include "reference/path_tracer.h"
-#include "frame/hybrid_frame.h"
 #include "tools/metrics.h"
 
 namespace bounce::test {

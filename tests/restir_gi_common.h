@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "rt/gpu_scene.h"
 #include "frame/presets.h"
+#include "rt/gpu_scene.h"
 #include "scene/scene.h"
 #include "tools/image_io.h"
 #include "vk/context.h"

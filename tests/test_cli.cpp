@@ -21,7 +21,8 @@ TEST(Cli, InfoListsTheChosenDevice) {
   nlohmann::json j = nlohmann::json::parse(r.output.substr(r.output.find('{')));
   ASSERT_FALSE(j["devices"].empty());
   bool anyChosen = false;
-  for (const auto& d : j["devices"]) anyChosen |= d["chosen"].get<bool>() && d["suitable"].get<bool>();
+  for (const auto& d : j["devices"])
+    anyChosen |= d["chosen"].get<bool>() && d["suitable"].get<bool>();
   EXPECT_TRUE(anyChosen);
 }
 
@@ -60,7 +61,8 @@ TEST(Cli, BadInputGetsAClearError) {
     EXPECT_GE(r.exitCode, 1) << c.args << "\n" << r.output;
     EXPECT_LE(r.exitCode, 4) << c.args << " (crash or hang?)\n" << r.output;
     EXPECT_NE(r.output.find(c.expectedText), std::string::npos)
-        << c.args << ": message should mention '" << c.expectedText << "'\n" << r.output;
+        << c.args << ": message should mention '" << c.expectedText << "'\n"
+        << r.output;
   }
 }
 
@@ -72,7 +74,8 @@ TEST(Cli, PrimaryViewsOfBuiltinScenes) {
     for (std::string view : {"primary-albedo", "primary-normal", "primary-depth"}) {
       std::string out = dir + "/" + scene + "-" + view + ".png";
       test::CommandResult r = runCommand(bounceExe() + " render --validate --scene " + scene +
-                                         " --view " + view + " --res 64x48 --out " + out, 300);
+                                             " --view " + view + " --res 64x48 --out " + out,
+                                         300);
       ASSERT_EQ(r.exitCode, 0) << scene << " " << view << "\n" << r.output;
       EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
       ImageRGBA32F image = readImage(out);

@@ -12,9 +12,9 @@
 #include "frame/presets.h"
 #include "harness.h"
 
+#include "frame/hybrid_frame.h"
 #include "reference/path_tracer.h"
 #include "rt/gpu_scene.h"
-#include "frame/hybrid_frame.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
 #include "tools/flip.h"
@@ -42,7 +42,7 @@ struct DirectLightCase {
   uint32_t shadowDivisor = 1;    // shadows traced at resolution / divisor
   uint32_t width = 96;
   uint32_t height = 54;
-  int frames = 4;                // enough for the shadow history to converge
+  int frames = 4;  // enough for the shadow history to converge
   float shadowMaxHistory = 16.0f;
   bool measureReferenceNoise = false;
   uint32_t referenceSamples = 16;
@@ -85,8 +85,9 @@ DirectLightComparison compareDirectLight(const DirectLightCase& c) {
   }
 
   if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES")) {  // for looking at the pair
-    std::string stem = std::string(dir) + "/" + sceneName + "-" + std::to_string(int(sunAngleDegrees)) +
-                       "deg-div" + std::to_string(c.shadowDivisor);
+    std::string stem = std::string(dir) + "/" + sceneName + "-" +
+                       std::to_string(int(sunAngleDegrees)) + "deg-div" +
+                       std::to_string(c.shadowDivisor);
     writeImage(stem + "-hybrid.exr", hybrid);
     writeImage(stem + "-reference.exr", reference);
     writePng(stem + "-hybrid.png", hybrid, 0.02f);
@@ -141,10 +142,8 @@ TEST(DirectLighting, HalfResolutionShadowsMatchReference) {
 // relMSE n; an unbiased frame (128 samples) should differ by about 0.75 n, and a wrong cone
 // distribution (too wide, too narrow, not uniform over the disc) by much more.
 TEST(DirectLighting, SoftShadowsMatchReference) {
-  const DirectLightCase soft{.sunAngleDegrees = 2.0f,
-                             .frames = 128,
-                             .shadowMaxHistory = 128.0f,
-                             .referenceSamples = 64};
+  const DirectLightCase soft{
+      .sunAngleDegrees = 2.0f, .frames = 128, .shadowMaxHistory = 128.0f, .referenceSamples = 64};
   DirectLightCase sunroom = soft;
   sunroom.scene = "sunroom";
   DirectLightComparison c = compareDirectLight(sunroom);

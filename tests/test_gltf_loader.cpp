@@ -13,8 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "scene/load.h"
 #include "harness.h"
+#include "scene/load.h"
 
 namespace bounce {
 namespace {
@@ -176,8 +176,9 @@ class GltfLoaderTest : public ::testing::Test {
       EXPECT_NE(message.find(keyword), std::string::npos)
           << "message lacks '" << keyword << "': " << message;
     }
-    test::CommandResult r = test::runCommand(test::bounceExe() + " render --res 8x8 --scene '" +
-                                             path + "' --out '" + path + ".png'", 60);
+    test::CommandResult r = test::runCommand(
+        test::bounceExe() + " render --res 8x8 --scene '" + path + "' --out '" + path + ".png'",
+        60);
     EXPECT_EQ(r.exitCode, 1) << "bounce render --scene " << path << "\n" << r.output;
     EXPECT_NE(r.output.find("bounce: error: "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(fileName), std::string::npos) << r.output;
@@ -810,9 +811,12 @@ TEST_F(GltfLoaderTest, NodeAnimationsBecomeTransformTracks) {
   int in = w.addAccessor(w.addView(times, sizeof(times)), kFloat, 2, "SCALAR");
   int t = w.addAccessor(w.addView(translations, sizeof(translations)), kFloat, 2, "VEC3");
   int r = w.addAccessor(w.addView(rotations, sizeof(rotations)), kFloat, 2, "VEC4");
-  w.doc["animations"] = json::array(
-      {{{"samplers", {{{"input", in}, {"output", t}}, {{"input", in}, {"output", r}, {"interpolation", "STEP"}}}},
-        {"channels", {{{"sampler", 0}, {"target", {{"node", child}, {"path", "translation"}}}},
+  w.doc["animations"] =
+      json::array({{{"samplers",
+                     {{{"input", in}, {"output", t}},
+                      {{"input", in}, {"output", r}, {"interpolation", "STEP"}}}},
+                    {"channels",
+                     {{{"sampler", 0}, {"target", {{"node", child}, {"path", "translation"}}}},
                       {{"sampler", 1}, {"target", {{"node", child}, {"path", "rotation"}}}}}}}});
   Scene scene = loadGltf(w.writeGltf(dir, "animated"));
   ASSERT_EQ(scene.animation.transforms.size(), 1u);

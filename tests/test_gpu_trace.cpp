@@ -10,12 +10,12 @@
 
 #include <gtest/gtest.h>
 
-#include "rt/gpu_scene.h"
+#include "harness.h"
 #include "passes/trace_rays.h"
 #include "rt/cpu_trace.h"
+#include "rt/gpu_scene.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
-#include "harness.h"
 #include "vk/context.h"
 
 namespace bounce {
@@ -107,12 +107,14 @@ void compareScene(const std::string& name) {
     if (!gpuHit) continue;
     ++m.hits;
     float relative = std::abs(g.t - c.t) / std::max(c.t, 1e-30f);
-    bool samePrimitive = g.instance == c.instance && g.geometry == c.geometry && g.primitive == c.primitive;
+    bool samePrimitive =
+        g.instance == c.instance && g.geometry == c.geometry && g.primitive == c.primitive;
     if (!samePrimitive && relative > 1e-5f) ++m.primitive;
     if (samePrimitive && (g.frontFacing != 0) != c.frontFacing) ++m.facing;
     if (relative > 1e-4f && ++m.distance <= 5)
-      ADD_FAILURE() << "ray " << i << ": t gpu " << g.t << " cpu " << c.t << " instance " << c.instance
-                    << " primitive " << c.primitive << " |dir| " << glm::length(rays[i].direction);
+      ADD_FAILURE() << "ray " << i << ": t gpu " << g.t << " cpu " << c.t << " instance "
+                    << c.instance << " primitive " << c.primitive << " |dir| "
+                    << glm::length(rays[i].direction);
   }
   EXPECT_EQ(m.hitMiss, 0);
   EXPECT_EQ(m.primitive, 0);
@@ -126,7 +128,9 @@ void compareScene(const std::string& name) {
 }
 
 class GpuTraceBuiltin : public ::testing::TestWithParam<std::string> {};
-TEST_P(GpuTraceBuiltin, MatchesBruteForce) { compareScene(GetParam()); }
+TEST_P(GpuTraceBuiltin, MatchesBruteForce) {
+  compareScene(GetParam());
+}
 INSTANTIATE_TEST_SUITE_P(Scenes, GpuTraceBuiltin,
                          ::testing::Values("cornell", "sunroom", "foliage", "manylights", "furnace",
                                            "city"));

@@ -13,15 +13,15 @@
 
 #include <gtest/gtest.h>
 
+#include <glm/gtc/packing.hpp>
 #include "core/error.h"
 #include "frame/presets.h"
 #include "harness.h"
-#include <glm/gtc/packing.hpp>
 
-#include "passes/primary_view.h"
-#include "rt/gpu_scene.h"
 #include "frame/hybrid_frame.h"
+#include "passes/primary_view.h"
 #include "passes/trace_rays.h"
+#include "rt/gpu_scene.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
 #include "shared/camera.h"

@@ -23,13 +23,13 @@
 #include <glm/gtc/packing.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "frame/presets.h"
 #include "core/error.h"
+#include "frame/animation_player.h"
+#include "frame/hybrid_frame.h"
+#include "frame/presets.h"
 #include "harness.h"
 #include "passes/primary_view.h"
-#include "frame/animation_player.h"
 #include "rt/gpu_scene.h"
-#include "frame/hybrid_frame.h"
 #include "scene/animation.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"

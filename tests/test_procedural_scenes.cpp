@@ -16,11 +16,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness.h"
 #include "scene/load.h"
 #include "scene/procedural/furnace.h"
 #include "scene/procedural/random.h"
 #include "scene/procedural/sunroom.h"
-#include "harness.h"
 
 namespace bounce {
 namespace {

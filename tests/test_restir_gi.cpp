@@ -22,8 +22,8 @@
 #include "harness.h"
 #include "restir_gi_common.h"
 
-#include "rt/gpu_scene.h"
 #include "frame/hybrid_frame.h"
+#include "rt/gpu_scene.h"
 #include "scene/animation.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
@@ -185,7 +185,8 @@ TEST(RestirGi, FullChainConvergesOnCornell) {
 // (measured 0.019: the leaves' veins are averaged away).
 TEST(RestirGi, CoarseMipMaterialsKeepTheGi) {
   const uint32_t width = 96, height = 72;
-  Scene scene = loadGltf(test::sharedDir() + "/scenes/glass_vase_flowers/glTF/GlassVaseFlowers.gltf");
+  Scene scene =
+      loadGltf(test::sharedDir() + "/scenes/glass_vase_flowers/glTF/GlassVaseFlowers.gltf");
   scene.sun.direction = glm::normalize(glm::vec3(-0.4f, -0.8f, -0.45f));
   scene.sun.irradiance = 100.0f;
   scene.sky.radiance = glm::vec3(0.5f, 0.6f, 0.9f);
@@ -210,8 +211,10 @@ TEST(RestirGi, CoarseMipMaterialsKeepTheGi) {
   const uint32_t side = 16;
   ImageRGBA32F full = meanNee(0), coarse = meanNee(side);
   Comparison c = compare(coarse, full);
-  std::printf("glass_vase_flowers %ux%u, %s, coarse (%u texels) vs full mips: relMSE %.4f, mean ratio %.4f\n",
-              width, height, kView, side, c.relMse, c.meanRatio);
+  std::printf(
+      "glass_vase_flowers %ux%u, %s, coarse (%u texels) vs full mips: relMSE %.4f, mean ratio "
+      "%.4f\n",
+      width, height, kView, side, c.relMse, c.meanRatio);
   EXPECT_NEAR(c.meanRatio, 1.0, 0.03);
   EXPECT_LT(c.relMse, 0.05);
   EXPECT_EQ(countNonFinitePixels(coarse), 0u);
@@ -294,8 +297,10 @@ TEST(RestirGi, MaxSampleAgeBoundsHowLongSamplesLive) {
   double meanLimited = 0.0, meanFree = 0.0;
   const uint32_t limited = oldestSample(6, meanLimited);
   const uint32_t free = oldestSample(0, meanFree);
-  std::printf("sunroom 32x24, frames 21-40: oldest sample %u frames (mean %.2f) with maxSampleAge 6, "
-              "%u (mean %.2f) without\n", limited, meanLimited, free, meanFree);
+  std::printf(
+      "sunroom 32x24, frames 21-40: oldest sample %u frames (mean %.2f) with maxSampleAge 6, "
+      "%u (mean %.2f) without\n",
+      limited, meanLimited, free, meanFree);
   EXPECT_LE(limited, 7u);
   EXPECT_GT(free, 12u);
   EXPECT_LT(meanLimited, meanFree);
@@ -326,7 +331,8 @@ void sunJumpAndCameraCut(double recoveryFactor) {
   Camera camera = effectiveCamera(scene);
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
-  const ImageRGBA32F reference = referenceImage(context, gpuScene, scene, camera, width, height, 2048);
+  const ImageRGBA32F reference =
+      referenceImage(context, gpuScene, scene, camera, width, height, 2048);
   // The desktop preset with seed 000's validation rays every 3rd frame and the history cut on
   // brightening: the configuration for lighting that jumps (RestirGiSettings::validationPeriod,
   // historyBrightening).
@@ -350,7 +356,8 @@ TEST(RestirGi, SunJumpAndCameraCutRecover) {
 // Issue 6, test 5: 1,000 animated frames (the scene's scripted motion, the default camera sway,
 // a moving sun) at 16x16 with the Vulkan validation layers on, ReSTIR GI's validation rays
 // every 3rd frame and history cut on brightening (both off by default, so their code paths are
-// covered here) and the cache's validation rays: no NaN/Inf in gi.diffuse or composite, silent validation layers.
+// covered here) and the cache's validation rays: no NaN/Inf in gi.diffuse or composite, silent
+// validation layers.
 TEST(RestirGi, LongAnimatedRunStaysFinite) {
   const uint32_t width = 16, height = 16;
   Scene scene = loadScene("sunroom");

@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "harness.h"
 #include "scene/load.h"
 #include "scene/texture_pack.h"
-#include "harness.h"
 
 namespace bounce {
 namespace {

@@ -20,10 +20,10 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.h"
-#include "harness.h"
-#include "rt/gpu_scene.h"
 #include "frame/hybrid_frame.h"
+#include "harness.h"
 #include "restir_gi_common.h"
+#include "rt/gpu_scene.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
 #include "tools/image_io.h"

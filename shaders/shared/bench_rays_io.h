@@ -15,7 +15,7 @@ BOUNCE_CONST uint BENCH_RAYS_DIFFUSE = 2u;
 struct BenchSurface {
   vec3 position;  // offset off the surface along the normal
   uint valid;
-  vec3 normal;    // facing the camera
+  vec3 normal;  // facing the camera
   float pad;
 };
 BOUNCE_CHECK_SIZE(BenchSurface, 32);

@@ -12,9 +12,9 @@ struct GpuCamera {
   float nearDepth;  // for depth visualisation
   vec3 forward;     // unit length
   float farDepth;
-  vec3 right;       // scaled, see above
+  vec3 right;  // scaled, see above
   float pad0;
-  vec3 up;          // scaled, see above
+  vec3 up;  // scaled, see above
   float pad1;
 };
 BOUNCE_CHECK_SIZE(GpuCamera, 64);

@@ -36,8 +36,8 @@ BOUNCE_FN RayShear makeRayShear(vec3 dir) {
 struct TriangleHit {
   bool hit;
   float t;
-  float b1;  // barycentric weight of v1
-  float b2;  // barycentric weight of v2
+  float b1;          // barycentric weight of v1
+  float b2;          // barycentric weight of v2
   bool frontFacing;  // counter-clockwise seen from the ray origin (glTF front face)
 };
 

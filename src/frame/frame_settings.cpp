@@ -29,8 +29,8 @@ void validate(const HybridSettings& s) {
   if (!(s.skyAmbientStrength >= 0.0f) || !std::isfinite(s.skyAmbientStrength))
     fail("sky ambient {}: must be >= 0", s.skyAmbientStrength);
   if (s.gi == GiMode::Evolve) validate(s.restirGi);
-  if (s.gi == GiMode::Cache || (s.gi == GiMode::Evolve &&
-                                s.restirGi.secondVertex == RestirGiSecondVertex::Cache))
+  if (s.gi == GiMode::Cache ||
+      (s.gi == GiMode::Evolve && s.restirGi.secondVertex == RestirGiSecondVertex::Cache))
     validate(s.cache);
 }
 

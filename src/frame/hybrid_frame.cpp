@@ -8,8 +8,8 @@
 #include "gi/evolve/cache_gi.h"
 #include "gi/evolve/restir/restir_gi.h"
 #include "graph/debug_view_image.h"
-#include "passes/primary_view.h"
 #include "lighting/light_table.h"
+#include "passes/primary_view.h"
 #include "rt/scene_bvh.h"
 
 namespace bounce {

@@ -137,7 +137,7 @@ class HybridFrame {
   TonemapPass tonemap_;
   vk::GpuTimer timer_;
   std::unique_ptr<DiffuseGi> gi_;  // nullptr for --gi none
-  graph::FrameGraph graph_;  // after what it imports: destroyed first
+  graph::FrameGraph graph_;        // after what it imports: destroyed first
 
   gpu::FrameConstants constants_{};
   glm::mat4 previousViewProjection_{1.0f};

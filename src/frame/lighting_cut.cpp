@@ -6,7 +6,9 @@
 namespace bounce {
 
 namespace {
-float skyBrightness(const Sky& sky) { return sky.radiance.x + sky.radiance.y + sky.radiance.z; }
+float skyBrightness(const Sky& sky) {
+  return sky.radiance.x + sky.radiance.y + sky.radiance.z;
+}
 }  // namespace
 
 LightingCutDetector::LightingCutDetector(const Sun& sun, const Sky& sky, float cutDegrees)
@@ -23,10 +25,9 @@ bool LightingCutDetector::next(const Sun& sun, const Sky& sky) {
   const float cosine = glm::dot(glm::normalize(sun_.direction), glm::normalize(sun.direction));
   const bool turned = lit && cosine < std::cos(glm::radians(cutDegrees_)) - 1e-6f;
   const bool sunJumped = std::abs(sun.irradiance - sun_.irradiance) > 0.5f * brightestSun_;
-  const bool skyJumped =
-      std::abs(skyBrightness(sky) - skyBrightness(sky_)) > 0.5f * brightestSky_;
-  const bool cut = cutDegrees_ >= 0.0f &&
-                   (turned || sunJumped || skyJumped || sky.model != sky_.model);
+  const bool skyJumped = std::abs(skyBrightness(sky) - skyBrightness(sky_)) > 0.5f * brightestSky_;
+  const bool cut =
+      cutDegrees_ >= 0.0f && (turned || sunJumped || skyJumped || sky.model != sky_.model);
   sun_ = sun;
   sky_ = sky;
   return cut;

@@ -30,7 +30,9 @@ glm::vec4 idColor(uint32_t id) {
   h ^= h >> 15;
   h *= 0x85EBCA77u;
   h ^= h >> 13;
-  auto channel = [&](int shift) { return srgbToLinear(0.25f + 0.75f * float((h >> shift) & 255u) / 255.0f); };
+  auto channel = [&](int shift) {
+    return srgbToLinear(0.25f + 0.75f * float((h >> shift) & 255u) / 255.0f);
+  };
   return {channel(0), channel(8), channel(16), 1.0f};
 }
 
@@ -67,7 +69,8 @@ glm::vec4 decodeTexel(VkFormat format, const std::byte* t) {
     case VK_FORMAT_R32G32B32A32_UINT: {  // ids (vbuffer: instance, geometry, primitive)
       uint32_t first = load<uint32_t>(t, 0);
       if (first == 0xFFFFFFFFu) return idColor(first);
-      return idColor(first * 0x01000193u ^ load<uint32_t>(t, 1) * 0x27D4EB2Du ^ load<uint32_t>(t, 2));
+      return idColor(first * 0x01000193u ^ load<uint32_t>(t, 1) * 0x27D4EB2Du ^
+                     load<uint32_t>(t, 2));
     }
     case VK_FORMAT_R8G8B8A8_SRGB: {
       glm::vec4 c = decodeTexel(VK_FORMAT_R8G8B8A8_UNORM, t);

@@ -8,8 +8,8 @@ CompositePass::CompositePass(vk::Context& context, const GpuScene& scene)
     : pass_(context, scene, "passes/composite", gpu::COMPOSITE_BINDING_COUNT) {}
 
 HdrImage CompositePass::declare(graph::FrameGraph& graph, const FrameContext& frame,
-                                const GBuffer& gbuffer, const Shadows& shadows,
-                                const SkyImage& sky, const IndirectLight& indirect) {
+                                const GBuffer& gbuffer, const Shadows& shadows, const SkyImage& sky,
+                                const IndirectLight& indirect) {
   HdrImage hdr{graph.createImage("composite.hdr", {VK_FORMAT_R16G16B16A16_SFLOAT})};
   graph.addPass("composite", graph::QueueKind::Compute)
       .read(frame.constants, Access::StorageRead)

@@ -12,10 +12,10 @@ struct FrameContext {
   graph::BufferHandle constants;  // frame-constants: gpu::FrameConstants
   VkDeviceAddress constantsAddress = 0;
   const gpu::FrameConstants* hostConstants = nullptr;  // the CPU copy of this frame's constants
-  graph::BufferHandle instances;          // scene.instances (moving objects)
-  graph::BufferHandle previousInstances;  // scene.previous-instances
-  graph::BufferHandle tlas;               // scene.tlas-nodes
-  VkExtent2D resolution{};                // render resolution
+  graph::BufferHandle instances;                       // scene.instances (moving objects)
+  graph::BufferHandle previousInstances;               // scene.previous-instances
+  graph::BufferHandle tlas;                            // scene.tlas-nodes
+  VkExtent2D resolution{};                             // render resolution
   // This frame follows a lighting cut (the sun jumped): temporal passes drop the light they
   // hold, while the view's history stays valid.
   bool lightingCut = false;

@@ -50,7 +50,8 @@ PrimaryViewPass::PrimaryViewPass(vk::Context& context, const GpuScene& scene)
 ImageRGBA32F PrimaryViewPass::render(const Camera& camera, uint32_t width, uint32_t height,
                                      PrimaryViewKind view, vk::GpuTimer* timer) {
   size_t bytes = size_t(width) * height * sizeof(glm::vec4);
-  vk::Buffer output(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+  vk::Buffer output(context_, bytes,
+                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                     vk::MemoryUse::DeviceOnly, "primary-view.output");
   gpu::PrimaryViewConstants pc{};
   pc.camera = makeGpuCamera(camera, width, height, scene_.bounds());

@@ -39,8 +39,9 @@ std::vector<RayKindResult> runRayBench(vk::Context& context, const GpuScene& gpu
   const uint64_t pixels = uint64_t(w) * h;
   vk::ComputePipeline pipeline(context, "rt/bench_rays", {&gpuScene.setLayout()},
                                sizeof(gpu::BenchRaysConstants));
-  vk::Buffer surfaces(context, pixels * sizeof(gpu::BenchSurface), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                      vk::MemoryUse::DeviceOnly, "bench-rays.surfaces");
+  vk::Buffer surfaces(context, pixels * sizeof(gpu::BenchSurface),
+                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::DeviceOnly,
+                      "bench-rays.surfaces");
   std::vector<vk::Buffer> results;
   for (int k = 0; k < 3; ++k)
     results.emplace_back(context, pixels * sizeof(uint32_t),
@@ -52,7 +53,8 @@ std::vector<RayKindResult> runRayBench(vk::Context& context, const GpuScene& gpu
   pc.camera = makeGpuCamera(effectiveCamera(scene), w, h, gpuScene.bounds());
   pc.surfaces = surfaces.address();
   pc.resolution = {w, h};
-  glm::vec3 sunDir = scene.sun.irradiance > 0.0f ? scene.sun.direction : glm::vec3(-0.3f, -1.0f, -0.2f);
+  glm::vec3 sunDir =
+      scene.sun.irradiance > 0.0f ? scene.sun.direction : glm::vec3(-0.3f, -1.0f, -0.2f);
   pc.toSun = -glm::normalize(sunDir);
   pc.sunCosHalfAngle = std::cos(glm::radians(scene.sun.angularDiameterDegrees * 0.5f));
 
@@ -85,7 +87,8 @@ std::vector<RayKindResult> runRayBench(vk::Context& context, const GpuScene& gpu
     kind.kind = kKindNames[k];
     kind.hitFraction = hitFraction(r, &kind.rays);
     kind.medianMilliseconds = median(times[k]);
-    kind.minMilliseconds = times[k].empty() ? 0.0 : *std::min_element(times[k].begin(), times[k].end());
+    kind.minMilliseconds =
+        times[k].empty() ? 0.0 : *std::min_element(times[k].begin(), times[k].end());
     kind.mraysPerSecond =
         kind.medianMilliseconds > 0.0 ? double(kind.rays) / (kind.medianMilliseconds * 1e3) : 0.0;
     out.push_back(kind);

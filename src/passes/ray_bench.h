@@ -12,7 +12,7 @@
 namespace bounce {
 
 struct RayKindResult {
-  std::string kind;  // "primary", "shadow", "diffuse"
+  std::string kind;   // "primary", "shadow", "diffuse"
   uint64_t rays = 0;  // per dispatch
   double medianMilliseconds = 0.0;
   double minMilliseconds = 0.0;

@@ -17,8 +17,8 @@ FrameContext SceneUpdatePass::declare(graph::FrameGraph& graph,
       graph.importBuffer("frame-constants", graph::ImportedBuffer::from(constantsBuffer_));
   f.constantsAddress = constantsBuffer_.address();
   f.hostConstants = &constants;
-  f.instances = graph.importBuffer("scene.instances",
-                                   graph::ImportedBuffer::from(scene_.instanceBuffer()));
+  f.instances =
+      graph.importBuffer("scene.instances", graph::ImportedBuffer::from(scene_.instanceBuffer()));
   f.previousInstances = graph.importBuffer(
       "scene.previous-instances", graph::ImportedBuffer::from(scene_.previousInstanceBuffer()));
   f.tlas = graph.importBuffer("scene.tlas-nodes", graph::ImportedBuffer::from(scene_.tlasBuffer()));

@@ -10,8 +10,8 @@ TraceRaysPass::TraceRaysPass(vk::Context& context, const GpuScene& scene)
 std::vector<gpu::GpuHit> TraceRaysPass::trace(std::span<const gpu::GpuRay> rays, bool alphaTest) {
   std::vector<gpu::GpuHit> hits(rays.size());
   if (rays.empty()) return hits;
-  vk::Buffer rayBuffer = vk::uploadVector(context_, rays, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                          "trace-rays.rays");
+  vk::Buffer rayBuffer =
+      vk::uploadVector(context_, rays, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "trace-rays.rays");
   vk::Buffer hitBuffer(context_, hits.size() * sizeof(gpu::GpuHit),
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                        vk::MemoryUse::DeviceOnly, "trace-rays.hits");

@@ -27,8 +27,7 @@ struct VBuffer {
 
 class VBufferPass {
  public:
-  VBufferPass(vk::Context& context, const GpuScene& gpuScene, const Scene& scene,
-              VBufferMode mode);
+  VBufferPass(vk::Context& context, const GpuScene& gpuScene, const Scene& scene, VBufferMode mode);
   VBuffer declare(graph::FrameGraph& graph, const FrameContext& frame);
 
  private:

@@ -275,7 +275,8 @@ TraceHit BruteForceTracer::trace(const Ray& ray, float tMax, const AlphaTest& al
   return result;
 }
 
-TraceHit BruteForceTracer::closestHit(const Ray& ray, float tMax, const AlphaTest& alphaTest) const {
+TraceHit BruteForceTracer::closestHit(const Ray& ray, float tMax,
+                                      const AlphaTest& alphaTest) const {
   return trace<false>(ray, tMax, alphaTest);
 }
 

@@ -58,7 +58,8 @@ void GpuScene::uploadArrays() {
   // device addresses have no such per-binding limit but keep each array under it anyway.
   const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
   auto upload = [&](const auto& vec, const char* name) {
-    buffers_.push_back(vk::uploadVector(context_, std::span(vec), usage, std::string("scene.") + name));
+    buffers_.push_back(
+        vk::uploadVector(context_, std::span(vec), usage, std::string("scene.") + name));
     return buffers_.back().address();
   };
   // A TLAS over n instance leaves has at most max(1, n - 1) nodes; room for n so that any
@@ -73,8 +74,8 @@ void GpuScene::uploadArrays() {
   tlasBufferIndex_ = buffers_.size() - 1;
   refs.instances = upload(bvh_.instances, "instances");
   instanceBufferIndex_ = buffers_.size() - 1;
-  previousInstances_ = vk::uploadVector(
-      context_, std::span<const gpu::GpuInstance>(bvh_.instances), usage, "scene.previous-instances");
+  previousInstances_ = vk::uploadVector(context_, std::span<const gpu::GpuInstance>(bvh_.instances),
+                                        usage, "scene.previous-instances");
   instanceStaging_ = vk::Buffer(
       context_, 2 * bytesOf(bvh_.instances) + tlasCapacity_ * sizeof(gpu::GpuBvhNode) + 16,
       VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload, "scene.instance-staging");
@@ -112,8 +113,8 @@ void GpuScene::uploadTextures() {
   for (uint32_t slot = 0; slot < kTextureSlots; ++slot) {
     if (textureImages_[slot].handle()) continue;
     bool srgb = slot >= gpu::TEXTURE_SIZE_CLASSES;
-    vk::Image image(context_, srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1,
-                    1, usage, "scene.textures.placeholder");
+    vk::Image image(context_, srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1, 1,
+                    usage, "scene.textures.placeholder");
     vk::uploadImage(context_, image, white, 4);
     textureImages_[slot] = std::move(image);
   }
@@ -133,7 +134,8 @@ void GpuScene::writeDescriptors() {
   std::vector<vk::Binding> bindings = {
       {gpu::SCENE_BINDING_REFS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}};
   for (uint32_t slot = 0; slot < kTextureSlots; ++slot)
-    bindings.push_back({gpu::SCENE_BINDING_TEXTURES + slot, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
+    bindings.push_back(
+        {gpu::SCENE_BINDING_TEXTURES + slot, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER});
   setLayout_ = vk::DescriptorSetLayout(context_, bindings);
   pool_ = std::make_unique<vk::DescriptorPool>(context_, 1, kTextureSlots + 1);
   set_ = pool_->allocate(setLayout_);
@@ -149,7 +151,8 @@ void GpuScene::writeDescriptors() {
   w.pBufferInfo = &refsInfo;
   writes.push_back(w);
   for (uint32_t slot = 0; slot < kTextureSlots; ++slot) {
-    imageInfos[slot] = {sampler_, textureImages_[slot].view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    imageInfos[slot] = {sampler_, textureImages_[slot].view(),
+                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet t{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     t.dstSet = set_;
     t.dstBinding = gpu::SCENE_BINDING_TEXTURES + slot;

@@ -6,8 +6,8 @@
 #include <stb_image.h>  // declarations only; Debian's libstb provides the implementation
 
 #include "core/error.h"
-#include "scene/gltf_internal.h"
 #include "core/parallel_for.h"
+#include "scene/gltf_internal.h"
 
 namespace bounce::gltf {
 namespace {

@@ -62,10 +62,11 @@ void validateScene(const Scene& scene, const std::string& source) {
     const Mesh& mesh = scene.meshes[m];
     for (size_t gi = 0; gi < mesh.geometries.size(); ++gi) {
       const Geometry& g = mesh.geometries[gi];
-      const std::string where = fmt::format("{}: mesh {} ('{}') primitive {}", source, m,
-                                            mesh.name, gi);
+      const std::string where =
+          fmt::format("{}: mesh {} ('{}') primitive {}", source, m, mesh.name, gi);
       size_t n = g.positions.size();
-      if (g.normals.size() != n) fail("{}: {} normals for {} positions", where, g.normals.size(), n);
+      if (g.normals.size() != n)
+        fail("{}: {} normals for {} positions", where, g.normals.size(), n);
       if (g.uvs.size() != n) fail("{}: {} uvs for {} positions", where, g.uvs.size(), n);
       if (!g.tangents.empty() && g.tangents.size() != n)
         fail("{}: {} tangents for {} positions", where, g.tangents.size(), n);

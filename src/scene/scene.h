@@ -130,7 +130,9 @@ struct Sky {
 };
 
 inline constexpr float kDaylightSunKilolux = 100.0f;
-inline float daylightSkyScale(const Sun& sun) { return sun.irradiance / kDaylightSunKilolux; }
+inline float daylightSkyScale(const Sun& sun) {
+  return sun.irradiance / kDaylightSunKilolux;
+}
 
 struct Scene {
   std::string name;
@@ -147,7 +149,7 @@ struct Scene {
   SceneAnimation animation;
 
   Aabb bounds() const;
-  uint64_t triangleCount() const;  // over instances, i.e. what a ray can hit
+  uint64_t triangleCount() const;        // over instances, i.e. what a ray can hit
   uint64_t uniqueTriangleCount() const;  // over meshes
 };
 

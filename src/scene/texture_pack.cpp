@@ -150,8 +150,9 @@ glm::vec4 blockMean(const glm::vec4& a, const glm::vec4& b, const glm::vec4& c, 
   glm::vec4 mean = 0.25f * (a + b + c + d);
   float coverage = a.w + b.w + c.w + d.w;
   if (!coverageWeighted || !(coverage > 0.0f)) return mean;
-  glm::vec3 colour = (glm::vec3(a) * a.w + glm::vec3(b) * b.w + glm::vec3(c) * c.w +
-                      glm::vec3(d) * d.w) / coverage;
+  glm::vec3 colour =
+      (glm::vec3(a) * a.w + glm::vec3(b) * b.w + glm::vec3(c) * c.w + glm::vec3(d) * d.w) /
+      coverage;
   return glm::vec4(colour, mean.w);
 }
 

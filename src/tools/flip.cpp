@@ -12,8 +12,8 @@
 #include <glm/geometric.hpp>
 
 #include "core/error.h"
-#include "tools/color_space.h"
 #include "core/parallel_for.h"
+#include "tools/color_space.h"
 
 namespace bounce {
 namespace {

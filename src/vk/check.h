@@ -8,10 +8,10 @@ namespace bounce::vk {
 const char* resultName(VkResult result);
 }
 
-#define VK_CHECK(call)                                                                     \
-  do {                                                                                     \
-    VkResult vk_check_result_ = (call);                                                    \
-    if (vk_check_result_ != VK_SUCCESS)                                                    \
-      ::bounce::fail("Vulkan call {} failed: {}", #call,                                   \
-                     ::bounce::vk::resultName(vk_check_result_));                          \
+#define VK_CHECK(call)                                            \
+  do {                                                            \
+    VkResult vk_check_result_ = (call);                           \
+    if (vk_check_result_ != VK_SUCCESS)                           \
+      ::bounce::fail("Vulkan call {} failed: {}", #call,          \
+                     ::bounce::vk::resultName(vk_check_result_)); \
   } while (0)

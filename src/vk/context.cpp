@@ -24,8 +24,9 @@ bool hasLayer(const char* name) {
   vkEnumerateInstanceLayerProperties(&count, nullptr);
   std::vector<VkLayerProperties> layers(count);
   vkEnumerateInstanceLayerProperties(&count, layers.data());
-  return std::any_of(layers.begin(), layers.end(),
-                     [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+    return std::strcmp(l.layerName, name) == 0;
+  });
 }
 
 bool hasInstanceExtension(const char* name) {
@@ -50,21 +51,31 @@ std::vector<std::string> deviceExtensions(VkPhysicalDevice pd) {
 
 const char* deviceTypeName(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
-    default: return "other";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return "discrete";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return "integrated";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return "virtual";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return "cpu";
+    default:
+      return "other";
   }
 }
 
 int typeRank(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
-    default: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 1;
+    default:
+      return 0;
   }
 }
 
@@ -105,8 +116,7 @@ std::vector<const char*> missingFeatures(const VkPhysicalDeviceFeatures& f10,
 std::string checkRequirements(VkPhysicalDevice pd, const VkPhysicalDeviceProperties& props) {
   if (props.apiVersion < VK_API_VERSION_1_3) return "needs Vulkan 1.3";
   VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
-                                       &f13};
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
   VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
   vkGetPhysicalDeviceFeatures2(pd, &f2);
   std::vector<const char*> missing = missingFeatures(f2.features, f12, f13);
@@ -186,7 +196,8 @@ EnabledFeatures enabledFeatures(const VkDeviceCreateInfo& ci) {
 }
 
 DeviceInfo describeDevice(VkPhysicalDevice pd, uint32_t index) {
-  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceSubgroupProperties subgroup{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES,
                                           &subgroup};
   VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2, &driver};
@@ -252,9 +263,10 @@ VkInstance createBareInstance(const std::vector<const char*>& layers,
   VkInstance instance = VK_NULL_HANDLE;
   VkResult r = vkCreateInstance(&ci, nullptr, &instance);
   if (r != VK_SUCCESS)
-    fail("cannot create a Vulkan 1.3 instance ({}): is a Vulkan driver installed? "
-         "(lavapipe: apt-get install mesa-vulkan-drivers)",
-         resultName(r));
+    fail(
+        "cannot create a Vulkan 1.3 instance ({}): is a Vulkan driver installed? "
+        "(lavapipe: apt-get install mesa-vulkan-drivers)",
+        resultName(r));
   return instance;
 }
 
@@ -278,7 +290,8 @@ std::vector<DeviceInfo> Context::listDevices() {
   VkInstance instance = createBareInstance({}, {}, nullptr);
   std::vector<DeviceInfo> infos;
   uint32_t index = 0;
-  for (VkPhysicalDevice pd : physicalDevices(instance)) infos.push_back(describeDevice(pd, index++));
+  for (VkPhysicalDevice pd : physicalDevices(instance))
+    infos.push_back(describeDevice(pd, index++));
   vkDestroyInstance(instance, nullptr);
   return infos;
 }
@@ -455,11 +468,13 @@ void Context::pickPhysicalDevice(const ContextOptions& options) {
       fail("--device {} ({}): unsupported: {}", chosen, infos[chosen].name,
            infos[chosen].unsuitableBecause);
   } else {
-    auto best = std::max_element(infos.begin(), infos.end(),
-                                 [](const DeviceInfo& a, const DeviceInfo& b) { return a.rank < b.rank; });
+    auto best =
+        std::max_element(infos.begin(), infos.end(),
+                         [](const DeviceInfo& a, const DeviceInfo& b) { return a.rank < b.rank; });
     if (!best->suitable) {
       std::string reasons;
-      for (const DeviceInfo& d : infos) reasons += fmt::format("\n  {}: {}", d.name, d.unsuitableBecause);
+      for (const DeviceInfo& d : infos)
+        reasons += fmt::format("\n  {}: {}", d.name, d.unsuitableBecause);
       fail("no Vulkan device meets Bounce's requirements:{}", reasons);
     }
     chosen = best->index;
@@ -484,8 +499,7 @@ void Context::createDevice() {
   f13.synchronization2 = VK_TRUE;
   f13.dynamicRendering = VK_TRUE;
   f13.maintenance4 = VK_TRUE;  // workgroup sizes from shared-header constants (LocalSizeId)
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
-                                       &f13};
+  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
   f12.bufferDeviceAddress = VK_TRUE;
   f12.scalarBlockLayout = VK_TRUE;
   f12.timelineSemaphore = VK_TRUE;
@@ -546,7 +560,8 @@ VkDeviceMemory Context::allocate(const VkMemoryRequirements& req, MemoryUse use,
   VkDeviceMemory memory = VK_NULL_HANDLE;
   VkResult r = vkAllocateMemory(device_, &ai, nullptr, &memory);
   if (r != VK_SUCCESS)
-    fail("out of GPU memory allocating {:.1f} MiB ({})", double(req.size) / (1 << 20), resultName(r));
+    fail("out of GPU memory allocating {:.1f} MiB ({})", double(req.size) / (1 << 20),
+         resultName(r));
   ++allocationCount_;
   liveBytes_ += req.size;
   allocationSizes()[memory] = req.size;
@@ -612,18 +627,30 @@ void Context::endDebugLabel(VkCommandBuffer cmd) const {
 
 const char* resultName(VkResult r) {
   switch (r) {
-    case VK_SUCCESS: return "VK_SUCCESS";
-    case VK_NOT_READY: return "VK_NOT_READY";
-    case VK_TIMEOUT: return "VK_TIMEOUT";
-    case VK_ERROR_OUT_OF_HOST_MEMORY: return "VK_ERROR_OUT_OF_HOST_MEMORY";
-    case VK_ERROR_OUT_OF_DEVICE_MEMORY: return "VK_ERROR_OUT_OF_DEVICE_MEMORY";
-    case VK_ERROR_INITIALIZATION_FAILED: return "VK_ERROR_INITIALIZATION_FAILED";
-    case VK_ERROR_DEVICE_LOST: return "VK_ERROR_DEVICE_LOST";
-    case VK_ERROR_LAYER_NOT_PRESENT: return "VK_ERROR_LAYER_NOT_PRESENT";
-    case VK_ERROR_EXTENSION_NOT_PRESENT: return "VK_ERROR_EXTENSION_NOT_PRESENT";
-    case VK_ERROR_FEATURE_NOT_PRESENT: return "VK_ERROR_FEATURE_NOT_PRESENT";
-    case VK_ERROR_INCOMPATIBLE_DRIVER: return "VK_ERROR_INCOMPATIBLE_DRIVER";
-    default: return "VkResult error";
+    case VK_SUCCESS:
+      return "VK_SUCCESS";
+    case VK_NOT_READY:
+      return "VK_NOT_READY";
+    case VK_TIMEOUT:
+      return "VK_TIMEOUT";
+    case VK_ERROR_OUT_OF_HOST_MEMORY:
+      return "VK_ERROR_OUT_OF_HOST_MEMORY";
+    case VK_ERROR_OUT_OF_DEVICE_MEMORY:
+      return "VK_ERROR_OUT_OF_DEVICE_MEMORY";
+    case VK_ERROR_INITIALIZATION_FAILED:
+      return "VK_ERROR_INITIALIZATION_FAILED";
+    case VK_ERROR_DEVICE_LOST:
+      return "VK_ERROR_DEVICE_LOST";
+    case VK_ERROR_LAYER_NOT_PRESENT:
+      return "VK_ERROR_LAYER_NOT_PRESENT";
+    case VK_ERROR_EXTENSION_NOT_PRESENT:
+      return "VK_ERROR_EXTENSION_NOT_PRESENT";
+    case VK_ERROR_FEATURE_NOT_PRESENT:
+      return "VK_ERROR_FEATURE_NOT_PRESENT";
+    case VK_ERROR_INCOMPATIBLE_DRIVER:
+      return "VK_ERROR_INCOMPATIBLE_DRIVER";
+    default:
+      return "VkResult error";
   }
 }
 

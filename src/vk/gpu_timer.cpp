@@ -4,8 +4,10 @@
 
 namespace bounce::vk {
 
-GpuTimer::GpuTimer(Context& context, uint32_t maxScopes) : context_(context), maxScopes_(maxScopes) {
-  supported_ = context.info().timestampsOnComputeQueue && context.limits().timestampComputeAndGraphics;
+GpuTimer::GpuTimer(Context& context, uint32_t maxScopes)
+    : context_(context), maxScopes_(maxScopes) {
+  supported_ =
+      context.info().timestampsOnComputeQueue && context.limits().timestampComputeAndGraphics;
   if (!supported_) return;
   VkQueryPoolCreateInfo ci{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   ci.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -47,10 +49,9 @@ std::vector<PassTiming> GpuTimer::read() {
   if (names_.empty()) return timings;
   std::vector<uint64_t> stamps(names_.size() * 2, 0);
   if (supported_)
-    VK_CHECK(vkGetQueryPoolResults(context_.device(), pool_, 0, uint32_t(stamps.size()),
-                                   stamps.size() * sizeof(uint64_t), stamps.data(),
-                                   sizeof(uint64_t),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    VK_CHECK(vkGetQueryPoolResults(
+        context_.device(), pool_, 0, uint32_t(stamps.size()), stamps.size() * sizeof(uint64_t),
+        stamps.data(), sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   double nsPerTick = context_.info().timestampPeriodNs;
   for (size_t i = 0; i < names_.size(); ++i)
     timings.push_back({names_[i], double(stamps[2 * i + 1] - stamps[2 * i]) * nsPerTick * 1e-6});

@@ -48,7 +48,9 @@ DescriptorPool::DescriptorPool(Context& context, uint32_t maxSets, uint32_t perT
   VK_CHECK(vkCreateDescriptorPool(context.device(), &ci, nullptr, &pool_));
 }
 
-DescriptorPool::~DescriptorPool() { vkDestroyDescriptorPool(context_.device(), pool_, nullptr); }
+DescriptorPool::~DescriptorPool() {
+  vkDestroyDescriptorPool(context_.device(), pool_, nullptr);
+}
 
 VkDescriptorSet DescriptorPool::allocate(const DescriptorSetLayout& layout) {
   VkDescriptorSetLayout l = layout.handle();
@@ -88,7 +90,8 @@ ComputePipeline::ComputePipeline(Context& context, const std::string& shader,
   ci.stage.module = module;
   ci.stage.pName = "main";
   ci.layout = layout_;
-  VkResult r = vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
+  VkResult r =
+      vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
   vkDestroyShaderModule(context.device(), module, nullptr);
   if (r != VK_SUCCESS) fail("creating compute pipeline '{}' failed: {}", shader, resultName(r));
   context.setObjectName(uint64_t(pipeline_), VK_OBJECT_TYPE_PIPELINE, shader);
@@ -120,8 +123,8 @@ void ComputePipeline::bind(VkCommandBuffer cmd, const std::vector<VkDescriptorSe
 
 void ComputePipeline::dispatchCovering(VkCommandBuffer cmd, uint32_t width, uint32_t height,
                                        uint32_t groupWidth, uint32_t groupHeight) {
-  vkCmdDispatch(cmd, (width + groupWidth - 1) / groupWidth, (height + groupHeight - 1) / groupHeight,
-                1);
+  vkCmdDispatch(cmd, (width + groupWidth - 1) / groupWidth,
+                (height + groupHeight - 1) / groupHeight, 1);
 }
 
 void computeBarrier(VkCommandBuffer cmd) {
@@ -129,8 +132,8 @@ void computeBarrier(VkCommandBuffer cmd) {
   barrier.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
   barrier.srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT;
   barrier.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_COPY_BIT;
-  barrier.dstAccessMask = VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT |
-                          VK_ACCESS_2_TRANSFER_READ_BIT;
+  barrier.dstAccessMask =
+      VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_READ_BIT;
   VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
   dep.memoryBarrierCount = 1;
   dep.pMemoryBarriers = &barrier;

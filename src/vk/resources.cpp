@@ -68,7 +68,8 @@ Buffer uploadBuffer(Context& context, std::span<const std::byte> bytes, VkBuffer
 }
 
 void downloadBuffer(Context& context, const Buffer& buffer, std::span<std::byte> out) {
-  if (out.size() > buffer.size()) fail("download of {} bytes from a {}-byte buffer", out.size(), buffer.size());
+  if (out.size() > buffer.size())
+    fail("download of {} bytes from a {}-byte buffer", out.size(), buffer.size());
   if (out.empty()) return;
   Buffer readback(context, out.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUse::Readback,
                   "readback");
@@ -91,7 +92,11 @@ void downloadBuffer(Context& context, const Buffer& buffer, std::span<std::byte>
 Image::Image(Context& context, VkFormat format, uint32_t width, uint32_t height, uint32_t layers,
              uint32_t mips, VkImageUsageFlags usage, const std::string& name,
              std::optional<VkImageViewType> viewType)
-    : context_(&context), format_(format), width_(width), height_(height), layers_(layers),
+    : context_(&context),
+      format_(format),
+      width_(width),
+      height_(height),
+      layers_(layers),
       mips_(mips) {
   if (width == 0 || height == 0 || layers == 0 || mips == 0)
     fail("image '{}': empty extent {}x{}x{} mips {}", name, width, height, layers, mips);
@@ -118,8 +123,9 @@ Image::Image(Context& context, VkFormat format, uint32_t width, uint32_t height,
                                                                    : VK_IMAGE_VIEW_TYPE_2D;
   if (viewType) vi.viewType = *viewType;
   vi.format = format;
-  vi.subresourceRange = {VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT),
-                         0, mips, 0, layers};
+  vi.subresourceRange = {
+      VkImageAspectFlags(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0, mips, 0,
+      layers};
   VK_CHECK(vkCreateImageView(context.device(), &vi, nullptr, &view_));
   context.setObjectName(uint64_t(image_), VK_OBJECT_TYPE_IMAGE, name);
 }

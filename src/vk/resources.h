@@ -94,7 +94,8 @@ class Image {
 };
 
 // Fills every layer and mip of a sampled image from tightly packed texels (mip-major: every
-// layer of mip 0, then every layer of mip 1, ...; rows top to bottom) and leaves it in SHADER_READ_ONLY_OPTIMAL.
+// layer of mip 0, then every layer of mip 1, ...; rows top to bottom) and leaves it in
+// SHADER_READ_ONLY_OPTIMAL.
 void uploadImage(Context& context, Image& image, std::span<const uint8_t> texels,
                  uint32_t bytesPerTexel);
 

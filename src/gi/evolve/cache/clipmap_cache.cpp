@@ -46,7 +46,6 @@ void validate(const ClipmapCacheSettings& s) {
          gpu::CLIPMAP_MAX_CELLS);
 }
 
-
 ClipmapCache::ClipmapCache(vk::Context& context, const GpuScene& gpuScene,
                            const GpuLightTables& lights, const ClipmapCacheSettings& settings)
     : context_(context),
