@@ -23,6 +23,7 @@
 #include "restir_gi_common.h"
 
 #include "frame/hybrid_frame.h"
+#include "frame/presets.h"
 #include "rt/gpu_scene.h"
 #include "scene/animation.h"
 #include "scene/load.h"
@@ -116,7 +117,7 @@ TEST(RestirGi, TemporalReuseReducesVarianceFourfold) {
   Camera camera = effectiveCamera(scene);
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
-  RestirGiSettings gi = RestirGiSettings::desktopPreset();
+  RestirGiSettings gi = presetSettings(Preset::Desktop).restirGi;
   gi.divisor = 1;
   gi.spatialReuse = false;
   gi.validationPeriod = 0;  // validation rays are no candidates: equal rays
@@ -156,7 +157,7 @@ TEST(RestirGi, FullChainConvergesOnCornell) {
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
   HybridFrame frame(context, gpuScene, scene,
-                    giSettings(width, height, RestirGiSettings::desktopPreset()));
+                    giSettings(width, height, presetSettings(Preset::Desktop).restirGi));
   frame.requestDebugView("composite");
   ImageRGBA32F reference = referenceImage(context, gpuScene, scene, camera, width, height, 512);
   Comparison c = fullChainError(frame, camera, reference, 64);
@@ -196,7 +197,7 @@ TEST(RestirGi, CoarseMipMaterialsKeepTheGi) {
   GpuScene gpuScene(context, scene);
   const char* kView = "gi.nee-radiance";
   auto meanNee = [&](uint32_t side) {
-    HybridSettings settings = giSettings(width, height, RestirGiSettings::desktopPreset());
+    HybridSettings settings = giSettings(width, height, presetSettings(Preset::Desktop).restirGi);
     settings.lambert = false;  // metallic-roughness and normal textures are read too
     settings.restirGi.materialTextureSide = settings.cache.materialTextureSide = side;
     HybridFrame frame(context, gpuScene, scene, settings);
@@ -241,7 +242,7 @@ void sunroomFullChain(double maxRelMse) {
   Camera camera = effectiveCamera(scene);
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
-  HybridSettings settings = giSettings(width, height, RestirGiSettings::desktopPreset());
+  HybridSettings settings = giSettings(width, height, presetSettings(Preset::Desktop).restirGi);
   settings.vbuffer = VBufferMode::Trace;  // the reference's primary hits (above)
   ImageRGBA32F reference = referenceImage(context, gpuScene, scene, camera, width, height, 2048);
   HybridFrame frame(context, gpuScene, scene, settings);
@@ -270,7 +271,7 @@ TEST(RestirGi, MaxSampleAgeBoundsHowLongSamplesLive) {
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
   auto oldestSample = [&](uint32_t maxSampleAge, double& meanAge) {
-    RestirGiSettings gi = RestirGiSettings::desktopPreset();
+    RestirGiSettings gi = presetSettings(Preset::Desktop).restirGi;
     gi.maxSampleAge = maxSampleAge;
     HybridFrame frame(context, gpuScene, scene, giSettings(width, height, gi));
     frame.requestDebugView("gi.reservoir.origin");
@@ -336,7 +337,7 @@ void sunJumpAndCameraCut(double recoveryFactor) {
   // The desktop preset with seed 000's validation rays every 3rd frame and the history cut on
   // brightening: the configuration for lighting that jumps (RestirGiSettings::validationPeriod,
   // historyBrightening).
-  RestirGiSettings gi = RestirGiSettings::desktopPreset();
+  RestirGiSettings gi = presetSettings(Preset::Desktop).restirGi;
   gi.validationPeriod = 3;
   gi.historyBrightening = 1.3f;
   const test::SunJumpRun run =
@@ -366,7 +367,7 @@ TEST(RestirGi, LongAnimatedRunStaysFinite) {
   options.validation = true;
   vk::Context context(options);
   GpuScene gpuScene(context, scene);
-  RestirGiSettings gi = RestirGiSettings::desktopPreset();
+  RestirGiSettings gi = presetSettings(Preset::Desktop).restirGi;
   gi.validationPeriod = 3;
   gi.historyBrightening = 1.3f;
   HybridSettings settings = giSettings(width, height, gi);

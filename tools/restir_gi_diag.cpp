@@ -21,6 +21,7 @@
 
 #include "core/error.h"
 #include "frame/hybrid_frame.h"
+#include "frame/presets.h"
 #include "harness.h"
 #include "restir_gi_common.h"
 #include "rt/gpu_scene.h"
@@ -84,7 +85,7 @@ void applyDiagnosticCacheSettings(const std::string& name, ClipmapCacheSettings&
 // configuration, and each part below changing one setting ("path-temporal-only",
 // "validation3-nobright", ...).
 RestirGiSettings diagnosticSettings(const std::string& name) {
-  RestirGiSettings gi = RestirGiSettings::desktopPreset();
+  RestirGiSettings gi = presetSettings(Preset::Desktop).restirGi;
   std::string base = name;
   if (name.rfind("path", 0) == 0)
     gi.secondVertex = RestirGiSecondVertex::Path, base = name.substr(4);
@@ -422,7 +423,7 @@ void writeLookPictures(const std::string& dir) {
   Camera camera = effectiveCamera(scene);
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
-  HybridSettings settings = giSettings(width, height, RestirGiSettings::desktopPreset());
+  HybridSettings settings = giSettings(width, height, presetSettings(Preset::Desktop).restirGi);
   settings.vbuffer = VBufferMode::Trace;
   HybridFrame frame(context, gpuScene, scene, settings);
   frame.requestDebugView("composite");

@@ -4,11 +4,7 @@ namespace bounce {
 
 using graph::Access;
 
-GBufferPass::GBufferPass(vk::Context& context, const GpuScene& scene)
-    : pass_(context, scene, "passes/gbuffer", gpu::GBUFFER_BINDING_COUNT) {}
-
-GBuffer GBufferPass::declare(graph::FrameGraph& graph, const FrameContext& frame,
-                             const VBuffer& vbuffer) {
+GBuffer GBuffer::create(graph::FrameGraph& graph) {
   constexpr VkFormat rgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
   GBuffer g;
   g.baseColor = graph.createImage("gbuffer.base-color", {rgba16f});
@@ -18,6 +14,15 @@ GBuffer GBufferPass::declare(graph::FrameGraph& graph, const FrameContext& frame
   g.velocity = graph.createImage("gbuffer.velocity", {VK_FORMAT_R16G16_SFLOAT});
   g.emissive = graph.createImage("gbuffer.emissive", {rgba16f});
   g.flags = graph.createImage("gbuffer.flags", {VK_FORMAT_R32_UINT});
+  return g;
+}
+
+GBufferPass::GBufferPass(vk::Context& context, const GpuScene& scene)
+    : pass_(context, scene, "passes/gbuffer", gpu::GBUFFER_BINDING_COUNT) {}
+
+GBuffer GBufferPass::declare(graph::FrameGraph& graph, const FrameContext& frame,
+                             const VBuffer& vbuffer) {
+  GBuffer g = GBuffer::create(graph);
   graph.addPass("gbuffer", graph::QueueKind::Compute)
       .read(frame.constants, Access::StorageRead)
       .read(frame.instances, Access::StorageRead)

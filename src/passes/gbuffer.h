@@ -18,6 +18,9 @@ struct GBuffer {
   graph::ImageHandle velocity;   // gbuffer.velocity: pixels moved since last frame
   graph::ImageHandle emissive;   // gbuffer.emissive: rgb emission, a roughness
   graph::ImageHandle flags;      // gbuffer.flags: GBUFFER_FLAG_*
+
+  // The images, declared on the graph; the pass that fills them writes every one.
+  static GBuffer create(graph::FrameGraph& graph);
 };
 
 class GBufferPass {

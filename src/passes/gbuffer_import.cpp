@@ -81,15 +81,7 @@ GBuffer GBufferImportPass::declare(graph::FrameGraph& graph, const FrameContext&
   graph::ImageHandle albedo = graph.importImage("host.albedo", asImported(host.albedo));
   graph::ImageHandle motion = graph.importImage("host.motion", asImported(host.motion));
 
-  constexpr VkFormat rgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
-  GBuffer g;
-  g.baseColor = graph.createImage("gbuffer.base-color", {rgba16f});
-  g.normals = graph.createImage("gbuffer.normals", {rgba16f});
-  g.depth = graph.createHistoryImage("gbuffer.depth", {VK_FORMAT_R32_SFLOAT});
-  g.uv = graph.createImage("gbuffer.uv", {VK_FORMAT_R32G32_SFLOAT});
-  g.velocity = graph.createImage("gbuffer.velocity", {VK_FORMAT_R16G16_SFLOAT});
-  g.emissive = graph.createImage("gbuffer.emissive", {rgba16f});
-  g.flags = graph.createImage("gbuffer.flags", {VK_FORMAT_R32_UINT});
+  GBuffer g = GBuffer::create(graph);
   graph.addPass("gbuffer-import", graph::QueueKind::Compute)
       .read(frame.constants, Access::StorageRead)
       .read(depth, Access::StorageRead, gpu::GBUFFER_IMPORT_BINDING_HOST_DEPTH)

@@ -178,22 +178,7 @@ struct RestirGiSettings {
 
   // The unbiased configuration (RestirGi tests): full resolution, temporal reuse only,
   // a continued path at x2, the biased passes (neighbour reuse in the resolve, denoising) off.
-  // The presets' columns of DESIGN.md §4 (settings.cpp, presetSettings()).
-  static RestirGiSettings mobilePreset() {
-    RestirGiSettings s;
-    s.divisor = 4;  // quarter-resolution diffuse GI (seed 000)
-    s.secondVertex = RestirGiSecondVertex::Cache;
-    s.occluderVisibility = false;  // a large share of the mobile GI budget
-    return s;
-  }
-  static RestirGiSettings desktopPreset() {
-    RestirGiSettings s;
-    s.divisor = 2;  // half-resolution diffuse GI (seed 000)
-    s.secondVertex = RestirGiSecondVertex::Cache;
-    s.spatialDenoise = true;  // seed 000: "additional spatial denoising step" on desktop
-    return s;
-  }
-
+  // The presets' values are the presets table's (frame/presets.cpp).
   static RestirGiSettings unbiased() {
     RestirGiSettings s;
     s.divisor = 1;
