@@ -165,26 +165,41 @@ TEST_F(Api, UnknownImageNameGivesClearError) {
   EXPECT_THAT(errorOf([&] { renderer.readImage("gbuffer.normals"); }), HasSubstr("requestImage"));
 }
 
-// A host device created without Bounce's features: a clear error, and the host's device and
-// instance stay alive (the host destroys them afterwards).
-TEST_F(Api, ExternalDeviceWithoutFeaturesIsRejected) {
+// A host's Vulkan instance on the first physical device, and a graphics + compute queue family
+// there, as an engine would make them before handing its device to Bounce.
+struct HostInstance {
+  VkInstance instance = VK_NULL_HANDLE;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  uint32_t family = 0;       // a graphics + compute queue family
+  uint32_t familyCount = 0;  // queue families of the device
+};
+
+void createHostInstance(HostInstance& host) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.apiVersion = VK_API_VERSION_1_3;
   VkInstanceCreateInfo instanceInfo{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   instanceInfo.pApplicationInfo = &app;
-  VkInstance instance = VK_NULL_HANDLE;
-  ASSERT_EQ(vkCreateInstance(&instanceInfo, nullptr, &instance), VK_SUCCESS);
+  ASSERT_EQ(vkCreateInstance(&instanceInfo, nullptr, &host.instance), VK_SUCCESS);
   uint32_t count = 1;
-  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
-  vkEnumeratePhysicalDevices(instance, &count, &physicalDevice);
-  ASSERT_NE(physicalDevice, VK_NULL_HANDLE);
-  uint32_t familyCount = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, nullptr);
-  std::vector<VkQueueFamilyProperties> families(familyCount);
-  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, families.data());
-  uint32_t family = 0;
-  while (family < familyCount && !(families[family].queueFlags & VK_QUEUE_GRAPHICS_BIT)) ++family;
-  ASSERT_LT(family, familyCount);
+  vkEnumeratePhysicalDevices(host.instance, &count, &host.physicalDevice);
+  ASSERT_NE(host.physicalDevice, VK_NULL_HANDLE);
+  vkGetPhysicalDeviceQueueFamilyProperties(host.physicalDevice, &host.familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(host.familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(host.physicalDevice, &host.familyCount, families.data());
+  const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+  while (host.family < host.familyCount && (families[host.family].queueFlags & need) != need)
+    ++host.family;
+  ASSERT_LT(host.family, host.familyCount);
+}
+
+// A host device created without Bounce's features: a clear error, and the host's device and
+// instance stay alive (the host destroys them afterwards).
+TEST_F(Api, ExternalDeviceWithoutFeaturesIsRejected) {
+  HostInstance host;
+  ASSERT_NO_FATAL_FAILURE(createHostInstance(host));
+  VkInstance instance = host.instance;
+  VkPhysicalDevice physicalDevice = host.physicalDevice;
+  const uint32_t family = host.family, familyCount = host.familyCount;
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -231,24 +246,11 @@ TEST_F(Api, RenderGiChecksTheDeviceAndTheHostImages) {
     EXPECT_THAT(errorOf([&] { own.renderGi(quadCamera(), {}); }), HasSubstr("ExternalDevice"));
   }
 
-  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
-  app.apiVersion = VK_API_VERSION_1_3;
-  VkInstanceCreateInfo instanceInfo{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
-  instanceInfo.pApplicationInfo = &app;
-  VkInstance instance = VK_NULL_HANDLE;
-  ASSERT_EQ(vkCreateInstance(&instanceInfo, nullptr, &instance), VK_SUCCESS);
-  uint32_t count = 1;
-  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
-  vkEnumeratePhysicalDevices(instance, &count, &physicalDevice);
-  ASSERT_NE(physicalDevice, VK_NULL_HANDLE);
-  uint32_t familyCount = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, nullptr);
-  std::vector<VkQueueFamilyProperties> families(familyCount);
-  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, families.data());
-  const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-  uint32_t family = 0;
-  while (family < familyCount && (families[family].queueFlags & need) != need) ++family;
-  ASSERT_LT(family, familyCount);
+  HostInstance host;
+  ASSERT_NO_FATAL_FAILURE(createHostInstance(host));
+  VkInstance instance = host.instance;
+  VkPhysicalDevice physicalDevice = host.physicalDevice;
+  const uint32_t family = host.family;
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   queueInfo.queueFamilyIndex = family;
