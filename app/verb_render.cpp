@@ -3,6 +3,7 @@
 // frame, or every frame, as images; --view shows any pass's debug view instead, and the
 // ray-cast views primary-albedo|normal|depth|instance|geometry remain for checking a scene.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -49,7 +50,7 @@ struct RenderOptions {
   bool noOccluderVisibility = false;
   std::string preset;
   std::string timings;
-  float exposure = HybridSettings{}.exposure;
+  float exposure = 0.03f;
   float skyAmbient = HybridSettings{}.skyAmbientStrength;
   uint32_t shadowDivisor = 0;  // 0: the preset's
   bool lambert = false;
@@ -147,7 +148,9 @@ HybridSettings settingsFrom(const RenderOptions& options) {
     settings.restirGi.materialTextureSide = settings.cache.materialTextureSide =
         uint32_t(options.materialTextureSide);
   }
-  settings.exposure = options.exposure;
+  if (!(options.exposure > 0.0f) || !std::isfinite(options.exposure))
+    fail("--exposure {}: must be positive", options.exposure);
+  settings.exposureStops = std::log2(options.exposure);
   settings.skyAmbientStrength = options.skyAmbient;
   if (options.shadowDivisor != 0) settings.shadows.divisor = options.shadowDivisor;
   settings.lambert = options.lambert;

@@ -200,7 +200,7 @@ TEST(FrameSettings, ValidateRefusesOutOfRangeFieldsByName) {
   };
   refused("resolution 0x1080", [](HybridSettings& s) { s.width = 0; });
   refused("shadow divisor 0", [](HybridSettings& s) { s.shadows.divisor = 0; });
-  refused("exposure 0", [](HybridSettings& s) { s.exposure = 0.0f; });
+  refused("exposure 100 stops", [](HybridSettings& s) { s.exposureStops = 100.0f; });
   refused("resolution divisor 17", [](HybridSettings& s) { s.restirGi.divisor = 17; });
   refused("6 temporal history samples",
           [](HybridSettings& s) { s.restirGi.temporalHistorySamples = 6; });

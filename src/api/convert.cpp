@@ -135,7 +135,8 @@ HybridSettings toInternal(const RendererSettings& settings, const char* where) {
   s.gi = toInternal(settings.gi, where);
   s.width = settings.width;
   s.height = settings.height;
-  s.exposure = settings.exposure;
+  s.autoExposure = false;
+  s.exposureStops = std::log2(settings.exposure);
   return s;
 }
 

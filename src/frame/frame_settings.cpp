@@ -24,8 +24,8 @@ void validate(const HybridSettings& s) {
     fail("shadow divisor {}: expected 1 to 16", s.shadows.divisor);
   if (!(s.shadows.maxHistory >= 1.0f))
     fail("shadow history {} frames: expected at least 1", s.shadows.maxHistory);
-  if (!(s.exposure > 0.0f) || !std::isfinite(s.exposure))
-    fail("exposure {}: must be positive", s.exposure);
+  if (!(std::abs(s.exposureStops) <= 64.0f))
+    fail("exposure {} stops: expected -64 to 64", s.exposureStops);
   if (!(s.skyAmbientStrength >= 0.0f) || !std::isfinite(s.skyAmbientStrength))
     fail("sky ambient {}: must be >= 0", s.skyAmbientStrength);
   if (s.gi == GiMode::Evolve) validate(s.restirGi);

@@ -28,9 +28,12 @@ struct HybridSettings {
   uint32_t width = 1920;
   uint32_t height = 1080;
   ShadowSettings shadows;  // shadows-trace, shadows-denoise
-  // Radiance multiplier before the tone curve. At 0.03 a white Lambert surface under a sun of
-  // E = 100 W/m^2 (the built-in scenes' sun) maps to about 0.8 on the display.
-  float exposure = 0.03f;
+  // Exposure before the tone curve. Automatic exposure adapts to the frame's luminance
+  // histogram over frames (passes/auto_exposure.h) and adds `exposureStops` as compensation;
+  // fixed exposure multiplies radiance by 2^exposureStops. At -5 stops a white Lambert surface
+  // under a sun of E = 100 W/m^2 (the built-in scenes' sun) maps to about 0.8 on the display.
+  bool autoExposure = false;
+  float exposureStops = -5.0f;
   // Weight of a placeholder ambient (unoccluded sky irradiance on the diffuse albedo) for
   // previews while no GI mode exists. Off by default: it ignores occlusion, so closed rooms
   // under a bright sky glow with light that cannot reach them.

@@ -111,7 +111,7 @@ gpu::FrameConstants HybridFrame::makeFrameConstants(const Camera& camera) const 
   c.skyTurbidity = sky_.turbidity;
   c.skyScale = daylightSkyScale(sun_);
   c.skyAmbientStrength = settings_.skyAmbientStrength;
-  c.exposure = settings_.exposure;
+  c.exposure = std::exp2(settings_.exposureStops);
   c.frameIndex = uint32_t(graph_.frameIndex());
   c.resolution = {settings_.width, settings_.height};
   c.shadowDivisor = settings_.shadows.divisor;
