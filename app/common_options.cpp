@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "scene/default_light.h"
 #include "scene/load.h"
 
 namespace bounce::app {
@@ -34,6 +35,8 @@ Scene CommonOptions::loadScene() const {
   if (!sun.empty()) overrides.sun = parseSun(sun);
   if (!sky.empty()) overrides.sky = parseSky(sky);
   applyOverrides(s, overrides);
+  if (std::optional<std::string> note = applyDefaultLight(s, overrides, scene))
+    std::fprintf(stderr, "note: %s\n", note->c_str());
   return s;
 }
 
