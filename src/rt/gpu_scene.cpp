@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
-#include <utility>
+#include <type_traits>
 
 #include <glm/gtc/packing.hpp>
 
@@ -64,10 +64,10 @@ void GpuScene::uploadArrays() {
   // sky): an empty array still gets a buffer of one zeroed element, never read since every
   // count in the refs is 0, so that every address is valid.
   auto upload = [&](const auto& vec, const char* name) {
-    auto items = vec;
-    if (items.empty()) items.emplace_back();
-    buffers_.push_back(vk::uploadVector(context_, std::span(std::as_const(items)), usage,
-                                        std::string("scene.") + name));
+    using T = typename std::decay_t<decltype(vec)>::value_type;
+    static const T placeholder{};
+    std::span<const T> items = vec.empty() ? std::span<const T>(&placeholder, 1) : std::span(vec);
+    buffers_.push_back(vk::uploadVector(context_, items, usage, std::string("scene.") + name));
     return buffers_.back().address();
   };
   // A TLAS over n instance leaves has at most max(1, n - 1) nodes; room for n so that any
