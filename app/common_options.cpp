@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "scene/default_light.h"
 #include "scene/load.h"
 #include "suggest.h"
 
@@ -79,7 +80,10 @@ void CommonOptions::checkArguments() const {
 
 Scene CommonOptions::loadScene() const {
   Scene s = bounce::loadScene(scene);
-  applyOverrides(s, parseOverrides(*this));
+  const SceneOverrides overrides = parseOverrides(*this);
+  applyOverrides(s, overrides);
+  if (std::optional<std::string> note = applyDefaultLight(s, overrides, scene))
+    std::fprintf(stderr, "note: %s\n", note->c_str());
   return s;
 }
 
