@@ -72,7 +72,6 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
   if (settings_.secondVertex == RestirGiSecondVertex::Cache)
     cache_ = std::make_unique<ClipmapCache>(context, gpuScene, lights_, cache);
   validate(settings_);
-  const uint32_t divisor = settings_.divisor;
   settleFramesLeft_ = settings_.settleFrames;  // the first frames: the cache starts empty
   giResolution_ = graph::ImageSize::dividedRes(settings_.divisor).resolve(resolution);
   blueNoise_ = upload(context, std::span<const uint32_t>(directionBlueNoise()), "gi.blue-noise");
