@@ -50,7 +50,7 @@ struct RenderOptions {
   bool noOccluderVisibility = false;
   std::string preset;
   std::string timings;
-  float exposure = 0.03f;
+  std::optional<float> exposure;  // a fixed linear factor; unset: automatic exposure
   float skyAmbient = HybridSettings{}.skyAmbientStrength;
   uint32_t shadowDivisor = 0;  // 0: the preset's
   bool lambert = false;
@@ -148,9 +148,12 @@ HybridSettings settingsFrom(const RenderOptions& options) {
     settings.restirGi.materialTextureSide = settings.cache.materialTextureSide =
         uint32_t(options.materialTextureSide);
   }
-  if (!(options.exposure > 0.0f) || !std::isfinite(options.exposure))
-    fail("--exposure {}: must be positive", options.exposure);
-  settings.exposureStops = std::log2(options.exposure);
+  if (options.exposure) {
+    if (!(*options.exposure > 0.0f) || !std::isfinite(*options.exposure))
+      fail("--exposure {}: must be positive", *options.exposure);
+    settings.autoExposure = false;
+    settings.exposureStops = std::log2(*options.exposure);
+  }
   settings.skyAmbientStrength = options.skyAmbient;
   if (options.shadowDivisor != 0) settings.shadows.divisor = options.shadowDivisor;
   settings.lambert = options.lambert;
@@ -363,8 +366,9 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
       ->capture_default_str();
   cmd->add_option("--timings", options->timings,
                   "Write per-pass GPU times of every frame to this JSON file");
-  cmd->add_option("--exposure", options->exposure, "Radiance multiplier before the tone curve")
-      ->capture_default_str();
+  cmd->add_option("--exposure", options->exposure,
+                  "Fixed radiance multiplier before the tone curve (default: automatic exposure "
+                  "from each frame's luminance histogram)");
   cmd->add_option("--sky-ambient", options->skyAmbient,
                   "Weight of the placeholder ambient (unoccluded sky light); 0 = direct light only")
       ->capture_default_str();
