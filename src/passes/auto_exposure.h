@@ -22,16 +22,16 @@
 namespace bounce {
 
 // How the exposure is metered and how fast it follows. The defaults follow histogram metering
-// in engines (Unreal's "Auto Exposure Histogram", Filament's), tuned on the built-in scenes
-// (docs/frame.md#automatic-exposure). Luminance is Rec. 709 Y of the composite's radiance
-// (W/(m^2 sr)); "level" below means its log2.
+// in engines (Unreal's "Auto Exposure Histogram"); docs/frame.md#automatic-exposure shows what
+// they do to the built-in scenes. Both presets use the defaults. Luminance is Rec. 709 Y of the
+// composite's radiance (W/(m^2 sr)); "level" below means its log2.
 struct AutoExposureSettings {
   // The metering window, as fractions of the counted pixels (finite, above 0) sorted from dark
   // to bright: the darkest `lowPercentile` and the brightest 1 - `highPercentile` are left out
   // and the mean level of the pixels between is the scene's level. Leaving out the dark half
   // exposes for what is lit (a room lit by a sun patch, not its dark corners); leaving out the
   // top 5% keeps a lamp, the sun's disc or a specular highlight from darkening the rest.
-  // 0 <= low < high <= 1. Defaults 0.5 and 0.95; both presets.
+  // 0 <= low < high <= 1.
   float lowPercentile = 0.5f;
   float highPercentile = 0.95f;
   // The exposed luminance the metered level is mapped to: 0.18, photography's middle grey
