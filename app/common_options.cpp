@@ -1,10 +1,31 @@
 #include "common_options.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
+#include "core/error.h"
+#include "scene/default_light.h"
 #include "scene/load.h"
+#include "suggest.h"
 
 namespace bounce::app {
+
+void GivenOptions::record(const CLI::App& cmd) {
+  for (const CLI::Option* option : cmd.get_options())
+    if (option->count() > 0) names.insert(option->get_name());
+}
+
+void GivenOptions::refuseTogether(const std::string& a, const std::string& b,
+                                  const std::string& why) const {
+  if (has(a) && has(b)) fail("{} and {} cannot be used together: {}", a, b, why);
+}
+
+void requireOneOf(const std::string& option, const std::string& value,
+                  const std::vector<std::string>& names) {
+  if (std::find(names.begin(), names.end(), value) != names.end()) return;
+  fail("{} '{}': expected one of {}{}", option, value, joinNames(names), didYouMean(value, names));
+}
 
 void CommonOptions::addSceneOptions(CLI::App& cmd, const std::string& defaultScene) {
   scene = defaultScene;
@@ -27,13 +48,42 @@ void CommonOptions::addResolution(CLI::App& cmd, const std::string& defaultRes) 
   cmd.add_option("--res", res, "Image size WxH")->capture_default_str();
 }
 
+namespace {
+
+bool isGltfPath(const std::string& scene) {
+  std::string ext = std::filesystem::path(scene).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return ext == ".gltf" || ext == ".glb";
+}
+
+SceneOverrides parseOverrides(const CommonOptions& o) {
+  SceneOverrides overrides;
+  if (!o.camera.empty()) overrides.camera = parseCamera(o.camera);
+  if (!o.sun.empty()) overrides.sun = parseSun(o.sun);
+  if (!o.sky.empty()) overrides.sky = parseSky(o.sky);
+  return overrides;
+}
+
+}  // namespace
+
+void CommonOptions::checkArguments() const {
+  if (!isGltfPath(scene)) {
+    const std::vector<std::string> builtins = builtinSceneNames();
+    if (std::find(builtins.begin(), builtins.end(), scene) == builtins.end())
+      fail("--scene '{}': not a built-in scene ({}) nor a .gltf/.glb path{}", scene,
+           joinNames(builtins), didYouMean(scene, builtins));
+  }
+  if (!res.empty()) parseResolution(res);
+  parseOverrides(*this);
+}
+
 Scene CommonOptions::loadScene() const {
   Scene s = bounce::loadScene(scene);
-  SceneOverrides overrides;
-  if (!camera.empty()) overrides.camera = parseCamera(camera);
-  if (!sun.empty()) overrides.sun = parseSun(sun);
-  if (!sky.empty()) overrides.sky = parseSky(sky);
+  const SceneOverrides overrides = parseOverrides(*this);
   applyOverrides(s, overrides);
+  if (std::optional<std::string> note = applyDefaultLight(s, overrides, scene))
+    std::fprintf(stderr, "note: %s\n", note->c_str());
   return s;
 }
 
@@ -55,6 +105,10 @@ int exitCodeFor(const vk::Context& context) {
   std::fprintf(stderr, "bounce: error: %u Vulkan validation error(s)\n",
                context.validationErrorCount());
   return kValidationFailedExit;
+}
+
+bool isCpuDevice(const vk::Context& context) {
+  return context.info().type == "cpu";
 }
 
 }  // namespace bounce::app

@@ -1,9 +1,12 @@
 // Options that keep one meaning in every verb (DESIGN.md §7), registered once and turned into
-// a loaded scene and a Vulkan context.
+// a loaded scene and a Vulkan context; and the rules every verb follows with its options:
+// which were given, refused pairs, enumerated values with a suggestion.
 #pragma once
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -13,6 +16,17 @@
 
 namespace bounce::app {
 
+// The options given on the command line ("--camera", ...), for refusing conflicts: recorded
+// by each verb's callback, after parsing.
+struct GivenOptions {
+  std::set<std::string> names;
+
+  void record(const CLI::App& cmd);
+  bool has(const std::string& option) const { return names.count(option) != 0; }
+  // Throws bounce::Error "A and B cannot be used together: why" when both were given.
+  void refuseTogether(const std::string& a, const std::string& b, const std::string& why) const;
+};
+
 struct CommonOptions {
   std::string scene = "cornell";
   std::string res;
@@ -21,20 +35,31 @@ struct CommonOptions {
   std::string sky;
   std::optional<uint32_t> device;
   bool validate = false;
-  uint64_t seed = 1;
+  GivenOptions given;
 
   // Which options a verb offers.
   void addSceneOptions(CLI::App& cmd, const std::string& defaultScene);
   void addDeviceOptions(CLI::App& cmd);
   void addResolution(CLI::App& cmd, const std::string& defaultRes);
 
+  // Checks the scene options' text without loading anything (a scene name not built in gets a
+  // suggestion), so that usage errors come before any work.
+  void checkArguments() const;
   Scene loadScene() const;  // --scene plus --camera/--sun/--sky overrides
   Resolution resolution() const;
   std::unique_ptr<vk::Context> createContext() const;
 };
 
+// `value` must be one of `names` (enumerated option values: --gi, --preset, ...); otherwise
+// bounce::Error "--gi 'evolv': expected one of none, evolve, cache (did you mean evolve?)".
+void requireOneOf(const std::string& option, const std::string& value,
+                  const std::vector<std::string>& names);
+
 // Exit code for a run whose validation layer reported errors.
 constexpr int kValidationFailedExit = 4;
 int exitCodeFor(const vk::Context& context);
+
+// True on a CPU implementation (lavapipe), where GPU timestamps measure the emulation.
+bool isCpuDevice(const vk::Context& context);
 
 }  // namespace bounce::app

@@ -1,8 +1,6 @@
 // bounce bench-rays: Mrays/s of primary, sun-shadow and diffuse-bounce rays through the
 // software BVH, plus BVH build time, triangles/s and memory.
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <memory>
 
 #include <nlohmann/json.hpp>
@@ -10,6 +8,7 @@
 #include "common_options.h"
 #include "passes/ray_bench.h"
 #include "rt/gpu_scene.h"
+#include "tools/output_file.h"
 #include "verbs.h"
 
 namespace bounce::app {
@@ -22,10 +21,12 @@ struct BenchRaysOptions {
   std::string json;
 };
 
-nlohmann::json reportJson(const Scene& scene, const vk::Context& context, const GpuSceneStats& s,
-                          const Resolution& res, const std::vector<RayKindResult>& kinds) {
+nlohmann::json reportJson(const Scene& scene, const std::string& source, const vk::Context& context,
+                          const GpuSceneStats& s, const Resolution& res,
+                          const std::vector<RayKindResult>& kinds) {
   nlohmann::json j;
   j["scene"] = scene.name;
+  j["scene_source"] = source;
   j["device"] = context.info().name;
   j["driver"] = context.info().driver;
   j["resolution"] = {res.width, res.height};
@@ -47,6 +48,8 @@ nlohmann::json reportJson(const Scene& scene, const vk::Context& context, const 
 }
 
 int runBenchRays(const BenchRaysOptions& options) {
+  options.common.checkArguments();
+  if (!options.json.empty()) requireWritableFile("--json", options.json);
   Resolution res = options.common.resolution();
   Scene scene = options.common.loadScene();
   std::unique_ptr<vk::Context> context = options.common.createContext();
@@ -73,9 +76,10 @@ int runBenchRays(const BenchRaysOptions& options) {
                 (unsigned long long)k.rays, k.medianMilliseconds, k.minMilliseconds,
                 k.mraysPerSecond, 100.0 * k.hitFraction);
   if (!options.json.empty()) {
-    std::filesystem::path p(options.json);
-    if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-    std::ofstream(options.json) << reportJson(scene, *context, s, res, kinds).dump(2) << "\n";
+    const nlohmann::json report = reportJson(scene, options.common.scene, *context, s, res, kinds);
+    // Paths are bytes, not always UTF-8: replace an invalid sequence rather than throw.
+    writeTextFile(options.json,
+                  report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   }
   return exitCodeFor(*context);
 }
@@ -93,7 +97,10 @@ void addBenchRaysVerb(CLI::App& app, VerbAction& action) {
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--json", options->json, "Write the results as JSON");
-  cmd->callback([&action, options] { action = [options] { return runBenchRays(*options); }; });
+  cmd->callback([&action, options, cmd] {
+    options->common.given.record(*cmd);
+    action = [options] { return runBenchRays(*options); };
+  });
 }
 
 }  // namespace bounce::app

@@ -72,7 +72,7 @@ int runInfo(const InfoOptions& options) {
     nlohmann::json out = {{"devices", nlohmann::json::array()}, {"chosen", chosen}};
     for (const vk::DeviceInfo& d : devices)
       out["devices"].push_back(deviceJson(d, d.index == chosen));
-    std::printf("%s\n", out.dump(2).c_str());
+    std::printf("%s\n", out.dump(2, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
   } else {
     std::printf("Vulkan devices (* = chosen; --device N or BOUNCE_DEVICE=N to choose):\n");
     for (const vk::DeviceInfo& d : devices) printDevice(d, d.index == chosen);

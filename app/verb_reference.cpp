@@ -1,9 +1,8 @@
 // bounce reference: the ground-truth path tracer (src/reference/path_tracer.h). Renders a scene
 // progressively to --spp samples per pixel (or until --time-limit), writes EXR (linear, scene-
 // referred) or PNG (sRGB, no tone curve, optionally scaled by --exposure), and prints the samples
-// reached, the time and the device.
-#include <unistd.h>
-
+// reached, the time and the device. Ctrl-C stops it and writes the image traced so far (exit
+// code 130).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,9 +13,12 @@
 
 #include "common_options.h"
 #include "core/error.h"
+#include "interrupt.h"
+#include "progress.h"
 #include "reference/path_tracer.h"
 #include "rt/gpu_scene.h"
 #include "tools/image_io.h"
+#include "tools/output_file.h"
 #include "verbs.h"
 
 namespace bounce::app {
@@ -46,23 +48,17 @@ uint32_t checkedRange(int64_t value, int64_t lo, int64_t hi, const char* option)
 }
 
 // "[#########---------------------]  30%  29 spp  3.1 s  ETA 7.2 s" on one line, redrawn in place.
-void drawProgress(const ReferenceProgress& p) {
-  constexpr int kWidth = 30;
+void drawProgress(ProgressLine& line, const ReferenceProgress& p) {
   double fraction = double(p.samplesDone) / double(p.samplesTarget);
   double eta = fraction > 0.0 ? p.seconds * (1.0 - fraction) / fraction : 0.0;
   if (p.timeLimitSeconds > 0.0) {
     fraction = std::max(fraction, std::min(p.seconds / p.timeLimitSeconds, 1.0));
     eta = std::min(eta, std::max(p.timeLimitSeconds - p.seconds, 0.0));
   }
-  int filled = int(std::round(fraction * kWidth));
-  std::string bar(size_t(filled), '#');
-  bar.append(size_t(kWidth - filled), '-');
-  std::fprintf(stderr, "\r[%s] %3d%%  %u spp  %.1f s  ETA %.1f s   ", bar.c_str(),
-               int(std::round(100.0 * fraction)), p.samplesDone, p.seconds, eta);
-  std::fflush(stderr);
+  line.draw(fraction, std::to_string(p.samplesDone) + " spp", p.seconds, eta);
 }
 
-int runReference(const ReferenceVerbOptions& o) {
+ReferenceOptions tracerOptions(const ReferenceVerbOptions& o) {
   ReferenceOptions options;
   Resolution res = o.common.resolution();
   options.width = res.width;
@@ -79,23 +75,46 @@ int runReference(const ReferenceVerbOptions& o) {
   if (!(o.timeLimit >= 0.0) || !std::isfinite(o.timeLimit))
     fail("--time-limit {}: expected seconds >= 0", o.timeLimit);
   options.timeLimitSeconds = o.timeLimit;
-  if (!isLdrExtension(o.out) && !isHdrExtension(o.out))
-    fail("--out '{}': expected a .exr or .png file", o.out);
+  return options;
+}
+
+// Usage errors and the output file, before the scene is loaded or a sample traced.
+void checkArguments(const ReferenceVerbOptions& o) {
+  o.common.checkArguments();
+  requireExtension("--out", o.out, {"png", "exr"});
   if (!std::isfinite(o.exposureStops) || std::abs(o.exposureStops) > 64.0)
     fail("--exposure {}: expected stops in [-64, 64]", o.exposureStops);
+  if (o.common.given.has("--exposure") && isHdrExtension(o.out))
+    fail(
+        "--exposure and --out '{}' cannot be used together: an EXR holds linear radiance "
+        "unscaled; --exposure scales PNG output only",
+        o.out);
+  requireWritableFile("--out", o.out);
+}
+
+int runReference(const ReferenceVerbOptions& o) {
+  ReferenceOptions options = tracerOptions(o);
+  checkArguments(o);
 
   Scene scene = o.common.loadScene();
   std::unique_ptr<vk::Context> context = o.common.createContext();
   GpuScene gpuScene(*context, scene);
   ReferencePathTracer tracer(*context, gpuScene, scene);
-  const bool progress = ::isatty(STDERR_FILENO) != 0;
-  if (progress) options.onProgress = drawProgress;
+  ProgressLine progress;
+  if (progress.enabled())
+    options.onProgress = [&progress](const ReferenceProgress& p) { drawProgress(progress, p); };
+  // From here Ctrl-C keeps what was traced (a second one ends the program at once).
+  InterruptRequest interrupt;
+  options.cancel = &interrupt.flag();
+  std::fprintf(stderr, "reference: tracing %ux%u on %s; Ctrl-C stops and writes the image so far\n",
+               options.width, options.height, context->info().name.c_str());
   ReferenceResult result = tracer.render(effectiveCamera(scene), options);
-  if (progress) std::fputc('\n', stderr);
+  progress.finish();
 
-  std::filesystem::path outPath(o.out);
-  if (outPath.has_parent_path()) std::filesystem::create_directories(outPath.parent_path());
-  writeImage(o.out, result.image, float(std::exp2(o.exposureStops)));
+  const ImageMetadata metadata = {{"bounce.spp", std::to_string(result.samplesPerPixel)},
+                                  {"bounce.interrupted", result.cancelled ? "true" : "false"},
+                                  {"bounce.scene", o.common.scene}};
+  writeImage(o.out, result.image, float(std::exp2(o.exposureStops)), metadata);
 
   const double msPerSpp = result.gpuMilliseconds > 0.0
                               ? result.gpuMilliseconds / result.samplesPerPixel
@@ -111,7 +130,14 @@ int runReference(const ReferenceVerbOptions& o) {
   if (result.droppedSamples > 0)
     std::fprintf(stderr, "bounce: warning: %llu NaN/infinite samples were dropped\n",
                  static_cast<unsigned long long>(result.droppedSamples));
-  return exitCodeFor(*context);
+  const int exitCode = exitCodeFor(*context);
+  if (result.cancelled) {
+    std::fprintf(stderr, "bounce: interrupted after %u of %u spp; wrote %s%s\n",
+                 result.samplesPerPixel, options.samplesPerPixel, o.out.c_str(),
+                 isHdrExtension(o.out) ? " (its bounce.spp attribute says so too)" : "");
+    return kInterruptedExit;
+  }
+  return exitCode;
 }
 
 }  // namespace
@@ -138,12 +164,16 @@ void addReferenceVerb(CLI::App& app, VerbAction& action) {
                 "pixel with `bounce render`");
   cmd->add_option("--time-limit", options->timeLimit,
                   "Stop after the batch that passes this many seconds; reports the spp reached");
-  cmd->add_option("--out", options->out, "Output image (.exr linear, .png sRGB)")
+  cmd->add_option("--out", options->out,
+                  "Output image (.exr linear, .png sRGB); checked writable before any work")
       ->capture_default_str();
   cmd->add_option("--exposure", options->exposureStops,
                   "PNG only: scale by 2^STOPS before the sRGB encoding (no tone curve)")
       ->capture_default_str();
-  cmd->callback([&action, options] { action = [options] { return runReference(*options); }; });
+  cmd->callback([&action, options, cmd] {
+    options->common.given.record(*cmd);
+    action = [options] { return runReference(*options); };
+  });
 }
 
 }  // namespace bounce::app

@@ -3,15 +3,18 @@
 // frame, or every frame, as images; --view shows any pass's debug view instead, and the
 // ray-cast views primary-albedo|normal|depth|instance|geometry remain for checking a scene.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "common_options.h"
 #include "core/error.h"
@@ -19,9 +22,12 @@
 #include "frame/hybrid_frame.h"
 #include "frame/presets.h"
 #include "passes/primary_view.h"
+#include "progress.h"
 #include "rt/gpu_scene.h"
 #include "scene/animation.h"
+#include "suggest.h"
 #include "tools/image_io.h"
+#include "tools/output_file.h"
 #include "verbs.h"
 
 namespace bounce::app {
@@ -35,24 +41,25 @@ struct RenderOptions {
   std::string view = "tonemap";
   bool listViews = false;
   std::string out = "out/render.png";
-  uint32_t frames = 8;
+  // Wide integer types so that negative or huge values reach our own range checks (with a
+  // clear message) instead of a conversion error; std::nullopt: not given, the preset's value.
+  int64_t frames = 8;
   std::string gi = "evolve";  // seed 000's full diffuse GI
   std::string vbuffer = "raster";
-  // ReSTIR GI overrides (0 / empty: the preset's value).
-  uint32_t giDivisor = 0;
+  std::optional<int64_t> giDivisor;
   std::string restirSecondVertex;
   bool restirUnbiased = false;
-  int restirValidationPeriod = -1;
-  int restirMaxSampleAge = -1;  // -1: the settings' default
-  float restirHistoryBrightening = -1.0f;
+  std::optional<int64_t> restirValidationPeriod;
+  std::optional<int64_t> restirMaxSampleAge;
+  std::optional<float> restirHistoryBrightening;
   bool noGiDenoise = false;
-  int materialTextureSide = -1;  // -1: the settings' default
+  std::optional<int64_t> materialTextureSide;
   bool noOccluderVisibility = false;
   std::string preset;
   std::string timings;
-  std::optional<float> exposure;  // a fixed linear factor; unset: automatic exposure
-  float skyAmbient = HybridSettings{}.skyAmbientStrength;
-  uint32_t shadowDivisor = 0;  // 0: the preset's
+  std::optional<float> exposureStops;  // not given: the settings' exposure (automatic or fixed)
+  std::optional<float> skyAmbient;
+  std::optional<int64_t> shadowDivisor;
   bool lambert = false;
   // Motion and time.
   bool animate = false;
@@ -62,9 +69,104 @@ struct RenderOptions {
   float dayCycle = 0.0f;
 };
 
-void createParentDirectory(const std::string& path) {
-  std::filesystem::path p(path);
-  if (p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+constexpr int64_t kMaxFrames = 1000000;
+
+// The options that only ReSTIR GI (--gi evolve) reads.
+const std::vector<std::string>& restirOptions() {
+  static const std::vector<std::string> names = {"--gi-divisor",
+                                                 "--restir-second-vertex",
+                                                 "--restir-unbiased",
+                                                 "--restir-max-sample-age",
+                                                 "--restir-validation-period",
+                                                 "--restir-history-brightening",
+                                                 "--no-gi-denoise",
+                                                 "--no-occluder-visibility"};
+  return names;
+}
+
+// What the ray-cast views (primary-*) read: one camera ray per pixel, no frame.
+const std::set<std::string>& primaryViewOptions() {
+  static const std::set<std::string> names = {"--scene",  "--camera",   "--sun",  "--sky", "--res",
+                                              "--device", "--validate", "--view", "--out"};
+  return names;
+}
+
+// --out: an image file gets the last frame; a directory, written with a trailing '/', gets
+// every frame as frame_NNNN.png.
+bool outIsDirectory(const std::string& out) {
+  return !out.empty() && out.back() == '/';
+}
+
+std::string frameImagePath(const std::string& directory, uint32_t frame) {
+  return (std::filesystem::path(directory) / fmt::format("frame_{:04}.png", frame)).string();
+}
+
+// Options that cannot be honoured together are refused, never resolved in silence.
+void refuseConflicts(const RenderOptions& o) {
+  const GivenOptions& given = o.common.given;
+  given.refuseTogether("--camera", "--camera-path",
+                       "the camera path sets the camera of every frame");
+  given.refuseTogether("--time-of-day", "--sun", "the time of day sets the sun");
+  given.refuseTogether("--day-cycle", "--sun", "the day cycle moves the sun");
+  given.refuseTogether("--restir-unbiased", "--restir-second-vertex",
+                       "the unbiased configuration continues the path at the 2nd vertex");
+  given.refuseTogether("--list-views", "--out", "--list-views prints names and renders nothing");
+  given.refuseTogether("--list-views", "--timings",
+                       "--list-views prints names and renders nothing");
+  if (o.gi != "evolve")
+    for (const std::string& option : restirOptions())
+      if (given.has(option))
+        fail(
+            "--gi {} and {} cannot be used together: {} sets ReSTIR GI, which only --gi evolve "
+            "runs",
+            o.gi, option, option);
+  if (o.gi == "none" && given.has("--gi-texture-side"))
+    fail(
+        "--gi none and --gi-texture-side cannot be used together: without GI no ray reads "
+        "textures at a coarse mip");
+  if (primaryViewFromName(o.view))
+    for (const std::string& option : given.names)
+      if (!primaryViewOptions().count(option))
+        fail(
+            "--view {} and {} cannot be used together: the ray-cast views draw the scene's "
+            "surfaces with one camera ray per pixel, without the real-time frame",
+            o.view, option);
+}
+
+// Every output path checked before any scene is loaded or frame rendered.
+void checkOutputs(const RenderOptions& o) {
+  if (o.listViews) return;
+  if (outIsDirectory(o.out)) {
+    if (primaryViewFromName(o.view))
+      fail("--out '{}': a ray-cast view is one image; give a .png or .exr file name", o.out);
+    requireWritableDirectory("--out", o.out);
+  } else {
+    if (std::filesystem::is_directory(o.out))
+      fail("--out '{}': is a directory; give an image file name, or '{}/' for every frame", o.out,
+           o.out);
+    requireExtension("--out", o.out, {"png", "exr"});
+    requireWritableFile("--out", o.out);
+  }
+  if (!o.timings.empty()) requireWritableFile("--timings", o.timings);
+}
+
+// Usage errors first, then the outputs: all before any work.
+void checkArguments(const RenderOptions& o) {
+  o.common.checkArguments();
+  requireOneOf("--gi", o.gi, splitNames(giModeNames()));
+  requireOneOf("--vbuffer", o.vbuffer, {"raster", "trace"});
+  if (!o.preset.empty()) requireOneOf("--preset", o.preset, splitNames(presetNames()));
+  if (!o.restirSecondVertex.empty())
+    requireOneOf("--restir-second-vertex", o.restirSecondVertex, {"nee", "path", "cache"});
+  if (o.frames < 1 || o.frames > kMaxFrames)
+    fail("--frames {}: expected 1 to {} frames", o.frames, kMaxFrames);
+  if (!(o.fps > 0.0f) || !std::isfinite(o.fps)) fail("--fps {}: must be positive", o.fps);
+  if (o.timeOfDay && !(*o.timeOfDay >= 0.0f && *o.timeOfDay <= 24.0f))
+    fail("--time-of-day {}: expected hours in [0, 24]", *o.timeOfDay);
+  if (!(o.dayCycle >= 0.0f) || !std::isfinite(o.dayCycle))
+    fail("--day-cycle {}: must be >= 0 seconds", o.dayCycle);
+  refuseConflicts(o);
+  checkOutputs(o);
 }
 
 int renderPrimaryView(const RenderOptions& options, PrimaryViewKind view) {
@@ -76,7 +178,6 @@ int renderPrimaryView(const RenderOptions& options, PrimaryViewKind view) {
   PrimaryViewPass pass(*context, gpuScene);
   vk::GpuTimer timer(*context);
   ImageRGBA32F image = pass.render(effectiveCamera(scene), res.width, res.height, view, &timer);
-  createParentDirectory(options.out);
   writeImage(options.out, image);
   double ms = timer.available() ? timer.read().at(0).milliseconds : 0.0;
   std::printf("%s: %s %ux%u on %s: primary-view %.3f ms -> %s\n", scene.name.c_str(),
@@ -85,90 +186,96 @@ int renderPrimaryView(const RenderOptions& options, PrimaryViewKind view) {
   return exitCodeFor(*context);
 }
 
-std::optional<RestirGiSecondVertex> secondVertexFromName(const std::string& name) {
+RestirGiSecondVertex secondVertexFromName(const std::string& name) {
   if (name == "nee") return RestirGiSecondVertex::Nee;
   if (name == "path") return RestirGiSecondVertex::Path;
-  if (name == "cache") return RestirGiSecondVertex::Cache;
-  return std::nullopt;
+  return RestirGiSecondVertex::Cache;
+}
+
+// A whole number option as a settings field: negative or huge values refused, not wrapped.
+uint32_t wholeNumber(const char* option, int64_t value) {
+  if (value < 0 || value > int64_t(std::numeric_limits<uint32_t>::max()))
+    fail("{} {}: expected a whole number >= 0", option, value);
+  return uint32_t(value);
+}
+
+// Applies one option to the settings and checks the result with the library's validate(), so
+// that a value out of range is refused naming the option (the library's message names the
+// field) while each range stays defined once, in the library. The settings were valid before,
+// so whatever validate() finds now is this option's doing.
+template <typename Value, typename Apply>
+void applyOption(HybridSettings& settings, const char* option, const Value& value, Apply apply) {
+  apply(settings);
+  try {
+    validate(settings);
+  } catch (const Error& e) {
+    fail("{} {}: {}", option, value, e.what());
+  }
 }
 
 // The --restir-* and --gi-* overrides, after the preset (RestirGiSettings documents each).
-void applyRestirOptions(const RenderOptions& options, RestirGiSettings& gi) {
-  if (options.restirUnbiased) gi = RestirGiSettings::unbiased();
-  if (options.giDivisor != 0) gi.divisor = options.giDivisor;
-  if (!options.restirSecondVertex.empty()) {
-    std::optional<RestirGiSecondVertex> v = secondVertexFromName(options.restirSecondVertex);
-    if (!v)
-      fail("--restir-second-vertex '{}': expected nee, path or cache", options.restirSecondVertex);
-    gi.secondVertex = *v;
-  }
-  if (options.restirValidationPeriod >= 0)
-    gi.validationPeriod = uint32_t(options.restirValidationPeriod);
-  if (options.restirMaxSampleAge != -1) {
-    if (options.restirMaxSampleAge < 0)
-      fail("--restir-max-sample-age {}: expected 0 (no limit) or more frames",
-           options.restirMaxSampleAge);
-    gi.maxSampleAge = uint32_t(options.restirMaxSampleAge);
-  }
-  if (options.restirHistoryBrightening >= 0.0f)
-    gi.historyBrightening = options.restirHistoryBrightening;
-  if (options.noGiDenoise) gi.temporalDenoise = gi.spatialDenoise = false;
-  if (options.noOccluderVisibility) gi.occluderVisibility = false;
+void applyRestirOptions(const RenderOptions& o, HybridSettings& settings) {
+  RestirGiSettings& gi = settings.restirGi;
+  if (o.restirUnbiased) gi = RestirGiSettings::unbiased();
+  if (o.giDivisor)
+    applyOption(settings, "--gi-divisor", *o.giDivisor, [&](HybridSettings& s) {
+      s.restirGi.divisor = wholeNumber("--gi-divisor", *o.giDivisor);
+    });
+  if (!o.restirSecondVertex.empty()) gi.secondVertex = secondVertexFromName(o.restirSecondVertex);
+  if (o.restirValidationPeriod)
+    gi.validationPeriod = wholeNumber("--restir-validation-period", *o.restirValidationPeriod);
+  if (o.restirMaxSampleAge)
+    applyOption(settings, "--restir-max-sample-age", *o.restirMaxSampleAge, [&](HybridSettings& s) {
+      s.restirGi.maxSampleAge = wholeNumber("--restir-max-sample-age", *o.restirMaxSampleAge);
+    });
+  if (o.restirHistoryBrightening)
+    applyOption(
+        settings, "--restir-history-brightening", *o.restirHistoryBrightening,
+        [&](HybridSettings& s) { s.restirGi.historyBrightening = *o.restirHistoryBrightening; });
+  if (o.noGiDenoise) gi.temporalDenoise = gi.spatialDenoise = false;
+  if (o.noOccluderVisibility) gi.occluderVisibility = false;
 }
 
-// Preset first, then --res, then the rest of the options.
-HybridSettings settingsFrom(const RenderOptions& options) {
+// Preset first, then --res, then the rest of the options, each checked as it is applied.
+HybridSettings settingsFrom(const RenderOptions& o) {
   HybridSettings settings;
-  if (!options.preset.empty()) {
-    std::optional<Preset> preset = presetFromName(options.preset);
-    if (!preset) fail("--preset '{}': expected one of {}", options.preset, presetNames());
-    settings = presetSettings(*preset);
+  if (!o.preset.empty()) {
+    settings = presetSettings(*presetFromName(o.preset));
   } else {
     Resolution res = parseResolution(kDefaultResolution);
     settings.width = res.width;
     settings.height = res.height;
   }
-  if (!options.common.res.empty()) {
-    Resolution res = options.common.resolution();
-    settings.width = res.width;
-    settings.height = res.height;
-  }
-  std::optional<GiMode> gi = giModeFromName(options.gi);
-  if (!gi) fail("--gi '{}': expected one of {}", options.gi, giModeNames());
-  settings.gi = *gi;
-  std::optional<VBufferMode> vbuffer = vbufferModeFromName(options.vbuffer);
-  if (!vbuffer) fail("--vbuffer '{}': expected raster or trace", options.vbuffer);
-  settings.vbuffer = *vbuffer;
-  applyRestirOptions(options, settings.restirGi);
-  if (options.materialTextureSide != -1) {
-    if (options.materialTextureSide < 0)
-      fail("--gi-texture-side {}: expected 0 (full resolution) or more texels",
-           options.materialTextureSide);
-    // One flag for the two ray sets that read materials at x2: ReSTIR GI's and the cache's.
-    settings.restirGi.materialTextureSide = settings.cache.materialTextureSide =
-        uint32_t(options.materialTextureSide);
-  }
-  if (options.exposure) {
-    if (!(*options.exposure > 0.0f) || !std::isfinite(*options.exposure))
-      fail("--exposure {}: must be positive", *options.exposure);
-    settings.autoExposure = false;
-    settings.exposureStops = std::log2(*options.exposure);
-  }
-  settings.skyAmbientStrength = options.skyAmbient;
-  if (options.shadowDivisor != 0) settings.shadows.divisor = options.shadowDivisor;
-  settings.lambert = options.lambert;
-  validate(settings);  // the library's ranges, before any work
+  if (!o.common.res.empty())
+    applyOption(settings, "--res", o.common.res, [&](HybridSettings& s) {
+      Resolution res = o.common.resolution();
+      s.width = res.width;
+      s.height = res.height;
+    });
+  settings.gi = *giModeFromName(o.gi);
+  settings.vbuffer = *vbufferModeFromName(o.vbuffer);
+  validate(settings);  // the preset's values, for the chosen GI
+  applyRestirOptions(o, settings);
+  if (o.materialTextureSide)
+    applyOption(settings, "--gi-texture-side", *o.materialTextureSide, [&](HybridSettings& s) {
+      // One flag for the two ray sets that read materials at x2: ReSTIR GI's and the cache's.
+      s.restirGi.materialTextureSide = s.cache.materialTextureSide =
+          wholeNumber("--gi-texture-side", *o.materialTextureSide);
+    });
+  if (o.exposureStops)
+    applyOption(settings, "--exposure", *o.exposureStops, [&](HybridSettings& s) {
+      s.autoExposure = false;
+      s.exposureStops = *o.exposureStops;
+    });
+  if (o.skyAmbient)
+    applyOption(settings, "--sky-ambient", *o.skyAmbient,
+                [&](HybridSettings& s) { s.skyAmbientStrength = *o.skyAmbient; });
+  if (o.shadowDivisor)
+    applyOption(settings, "--shadow-divisor", *o.shadowDivisor, [&](HybridSettings& s) {
+      s.shadows.divisor = wholeNumber("--shadow-divisor", *o.shadowDivisor);
+    });
+  settings.lambert = o.lambert;
   return settings;
-}
-
-// --out: a file with an image extension gets the last frame; anything else is a directory
-// that gets every frame.
-bool outIsDirectory(const std::string& out) {
-  return imageExtension(out).empty();
-}
-
-std::string frameImagePath(const std::string& directory, uint32_t frame) {
-  return (std::filesystem::path(directory) / fmt::format("frame_{:04}.png", frame)).string();
 }
 
 struct TimingRow {
@@ -203,35 +310,42 @@ std::vector<std::pair<std::string, double>> medianPassTimes(const std::vector<Ti
   return result;
 }
 
-void writeTimingsJson(const std::string& path, const std::vector<TimingRow>& rows,
-                      const std::vector<StatisticRow>& statistics, const std::string& sceneName,
-                      const HybridSettings& settings, const std::string& device) {
-  createParentDirectory(path);
-  std::ofstream f(path);
-  if (!f) fail("--timings '{}': cannot write the file", path);
-  f << fmt::format(
-      "{{\n  \"scene\": \"{}\",\n  \"device\": \"{}\",\n  \"width\": {},\n"
-      "  \"height\": {},\n  \"timings\": [\n",
-      sceneName, device, settings.width, settings.height);
-  for (size_t i = 0; i < rows.size(); ++i)
-    f << fmt::format("    {{\"frame\": {}, \"pass\": \"{}\", \"ms\": {:.4f}}}{}\n", rows[i].frame,
-                     rows[i].pass.name, rows[i].pass.milliseconds, i + 1 < rows.size() ? "," : "");
-  f << "  ],\n  \"statistics\": [\n";
-  for (size_t i = 0; i < statistics.size(); ++i)
-    f << fmt::format("    {{\"frame\": {}, \"name\": \"{}\", \"value\": {}}}{}\n",
-                     statistics[i].frame, statistics[i].statistic.name,
-                     statistics[i].statistic.value, i + 1 < statistics.size() ? "," : "");
-  f << "  ]\n}\n";
+// What a run measured, for --timings.
+struct RenderRecord {
+  std::vector<TimingRow> timings;
+  std::vector<StatisticRow> statistics;
+  std::vector<double> frameWallSeconds;
+};
+
+void writeTimingsJson(const RenderOptions& o, const RenderRecord& record, const Scene& scene,
+                      const HybridSettings& settings, const vk::Context& context) {
+  nlohmann::json j;
+  j["scene"] = scene.name;
+  j["scene_source"] = o.common.scene;
+  j["device"] = context.info().name;
+  j["device_type"] = context.info().type;
+  // On a CPU device the timestamps measure the emulation of a GPU, not a GPU.
+  j["gpu_times_meaningful"] = !isCpuDevice(context);
+  j["width"] = settings.width;
+  j["height"] = settings.height;
+  j["timings"] = nlohmann::json::array();
+  for (const TimingRow& row : record.timings)
+    j["timings"].push_back(
+        {{"frame", row.frame}, {"pass", row.pass.name}, {"ms", row.pass.milliseconds}});
+  j["statistics"] = nlohmann::json::array();
+  for (const StatisticRow& row : record.statistics)
+    j["statistics"].push_back(
+        {{"frame", row.frame}, {"name", row.statistic.name}, {"value", row.statistic.value}});
+  j["frame_wall_ms"] = nlohmann::json::array();
+  for (double seconds : record.frameWallSeconds) j["frame_wall_ms"].push_back(1e3 * seconds);
+  // Paths are bytes, not always UTF-8: replace an invalid sequence rather than throw.
+  writeTextFile(o.timings, j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 // What moves: --animate plays the scene's own animation (with a slow orbit where it has no
 // camera path), --camera-path replaces the camera motion, --time-of-day / --day-cycle drive
 // the sun. Empty when none is given: a still frame, as before.
 SceneAnimation animationFrom(const RenderOptions& options, const Scene& scene) {
-  if (!(options.fps > 0.0f)) fail("--fps {}: must be positive", options.fps);
-  if (options.timeOfDay && !(*options.timeOfDay >= 0.0f && *options.timeOfDay <= 24.0f))
-    fail("--time-of-day {}: expected hours in [0, 24]", *options.timeOfDay);
-  if (!(options.dayCycle >= 0.0f)) fail("--day-cycle {}: must be >= 0 seconds", options.dayCycle);
   SceneAnimation animation;
   if (options.animate) {
     animation = scene.animation;
@@ -256,8 +370,45 @@ int listViews(HybridFrame& frame) {
   return 0;
 }
 
+// --view must name a pass or resource of this frame (known once the frame is declared).
+void checkView(HybridFrame& frame, const std::string& view) {
+  std::vector<std::string> names = frame.passNames();
+  for (const std::string& name : frame.resourceNames()) names.push_back(name);
+  for (const std::string& name : splitNames(primaryViewNames())) names.push_back(name);
+  if (std::find(names.begin(), names.end(), view) == names.end())
+    fail(
+        "--view '{}': not a pass or resource of this frame nor a ray-cast view{}; --list-views "
+        "prints them",
+        view, didYouMean(view, names));
+}
+
+void printSummary(const RenderOptions& o, const RenderRecord& record, const Scene& scene,
+                  const HybridSettings& settings, const vk::Context& context, double startupSeconds,
+                  double framesSeconds) {
+  const uint32_t frames = uint32_t(o.frames);
+  std::printf("%s: %s %ux%u, %u frame(s) on %s -> %s\n", scene.name.c_str(), o.view.c_str(),
+              settings.width, settings.height, frames, context.info().name.c_str(), o.out.c_str());
+  std::printf(
+      "  wall time %.2f s: start-up %.2f s (scene, shaders, resources), %u frame(s) in "
+      "%.2f s (%.1f ms per frame)\n",
+      startupSeconds + framesSeconds, startupSeconds, frames, framesSeconds,
+      1e3 * framesSeconds / frames);
+  if (isCpuDevice(context)) {
+    std::printf("  GPU time per pass: not meaningful on a CPU device (%s emulates the GPU)%s\n",
+                context.info().name.c_str(),
+                o.timings.empty() ? "" : "; --timings records them anyway");
+  } else {
+    std::printf("  GPU time per pass, median over the frames:\n");
+    for (const auto& [name, ms] : medianPassTimes(record.timings, frames))
+      std::printf("  %-28s %8.3f ms\n", name.c_str(), ms);
+  }
+  for (const StatisticRow& s : record.statistics)
+    if (s.frame + 1 == frames)
+      std::printf("  %-28s %g\n", s.statistic.name.c_str(), s.statistic.value);
+}
+
 int renderHybridFrame(const RenderOptions& options) {
-  if (options.frames == 0) fail("--frames 0: render at least one frame");
+  const auto start = std::chrono::steady_clock::now();
   HybridSettings settings = settingsFrom(options);
   Scene scene = options.common.loadScene();
   SceneAnimation animation = animationFrom(options, scene);
@@ -265,39 +416,39 @@ int renderHybridFrame(const RenderOptions& options) {
   GpuScene gpuScene(*context, scene);
   HybridFrame frame(*context, gpuScene, scene, settings);
   if (options.listViews) return listViews(frame);
+  checkView(frame, options.view);
   frame.requestDebugView(options.view);
   AnimationPlayer player(scene, std::move(animation));
-  bool everyFrame = outIsDirectory(options.out);
-  if (everyFrame) std::filesystem::create_directories(options.out);
+  const bool everyFrame = outIsDirectory(options.out);
+  const uint32_t frames = uint32_t(options.frames);
 
-  std::vector<TimingRow> timings;
-  std::vector<StatisticRow> statistics;
-  for (uint32_t i = 0; i < options.frames; ++i) {
+  RenderRecord record;
+  ProgressLine progress;
+  const auto firstFrame = std::chrono::steady_clock::now();
+  for (uint32_t i = 0; i < frames; ++i) {
+    const auto frameStart = std::chrono::steady_clock::now();
     Camera camera = player.apply(frame, float(i) / options.fps);
-    for (vk::PassTiming& t : frame.render(camera)) timings.push_back({i, std::move(t)});
-    for (GiStatistic& s : frame.giStatistics()) statistics.push_back({i, std::move(s)});
+    for (vk::PassTiming& t : frame.render(camera)) record.timings.push_back({i, std::move(t)});
+    for (GiStatistic& s : frame.giStatistics()) record.statistics.push_back({i, std::move(s)});
     if (everyFrame) writeImage(frameImagePath(options.out, i), frame.debugViewImage(options.view));
+    record.frameWallSeconds.push_back(secondsSince(frameStart));
+    const double elapsed = secondsSince(firstFrame);
+    const double perFrame = elapsed / double(i + 1);
+    progress.draw(double(i + 1) / frames,
+                  fmt::format("{}/{} frames  {:.0f} ms/frame", i + 1, frames, 1e3 * perFrame),
+                  elapsed, perFrame * double(frames - i - 1));
   }
-  if (!everyFrame) {
-    createParentDirectory(options.out);
-    writeImage(options.out, frame.debugViewImage(options.view));
-  }
-  if (!options.timings.empty())
-    writeTimingsJson(options.timings, timings, statistics, scene.name, settings,
-                     context->info().name);
-  std::printf("%s: %s %ux%u, %u frame(s) on %s -> %s\n", scene.name.c_str(), options.view.c_str(),
-              settings.width, settings.height, options.frames, context->info().name.c_str(),
-              options.out.c_str());
-  std::printf("  GPU time per pass, median over the frames:\n");
-  for (const auto& [name, ms] : medianPassTimes(timings, options.frames))
-    std::printf("  %-28s %8.3f ms\n", name.c_str(), ms);
-  for (const StatisticRow& s : statistics)
-    if (s.frame + 1 == options.frames)
-      std::printf("  %-28s %g\n", s.statistic.name.c_str(), s.statistic.value);
+  progress.finish();
+  if (!everyFrame) writeImage(options.out, frame.debugViewImage(options.view));
+  if (!options.timings.empty()) writeTimingsJson(options, record, scene, settings, *context);
+  const double startupSeconds = std::chrono::duration<double>(firstFrame - start).count();
+  printSummary(options, record, scene, settings, *context, startupSeconds,
+               secondsSince(firstFrame));
   return exitCodeFor(*context);
 }
 
 int runRender(const RenderOptions& options) {
+  checkArguments(options);
   if (std::optional<PrimaryViewKind> view = primaryViewFromName(options.view))
     return renderPrimaryView(options, *view);
   return renderHybridFrame(options);
@@ -361,17 +512,19 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                 "Print the passes and resources the frame declares for these settings (what "
                 "--view accepts) and exit");
   cmd->add_option("--out", options->out,
-                  "Output image (.png sRGB, .exr linear) of the last frame, or a directory that "
-                  "gets every frame as frame_NNNN.png")
+                  "Output image (.png sRGB, .exr linear) of the last frame, or a directory "
+                  "written with a trailing '/' (out/frames/) that gets every frame as "
+                  "frame_NNNN.png; checked writable before any work")
       ->capture_default_str();
   cmd->add_option("--timings", options->timings,
-                  "Write per-pass GPU times of every frame to this JSON file");
-  cmd->add_option("--exposure", options->exposure,
-                  "Fixed radiance multiplier before the tone curve (default: automatic exposure "
-                  "from each frame's luminance histogram)");
+                  "Write per-pass GPU times, GI statistics and wall time of every frame to this "
+                  "JSON file (gpu_times_meaningful: false on a CPU device)");
+  cmd->add_option("--exposure", options->exposureStops,
+                  "Fixed exposure in stops: radiance x 2^STOPS before the tone curve (-64 to 64; "
+                  "default: the settings' exposure)");
   cmd->add_option("--sky-ambient", options->skyAmbient,
-                  "Weight of the placeholder ambient (unoccluded sky light); 0 = direct light only")
-      ->capture_default_str();
+                  "Weight of the placeholder ambient (unoccluded sky light) >= 0; 0 (the "
+                  "default) = direct light only");
   cmd->add_option(
       "--shadow-divisor", options->shadowDivisor,
       "Trace shadows at render resolution / N (1 = full res; default: the preset's, 2)");
@@ -395,7 +548,10 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
   cmd->add_option("--day-cycle", options->dayCycle,
                   "Seconds of animation time per 24 h: the time of day advances from "
                   "--time-of-day (default 12) over the frames");
-  cmd->callback([&action, options] { action = [options] { return runRender(*options); }; });
+  cmd->callback([&action, options, cmd] {
+    options->common.given.record(*cmd);
+    action = [options] { return runRender(*options); };
+  });
 }
 
 }  // namespace bounce::app

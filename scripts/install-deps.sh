@@ -8,7 +8,7 @@ packages=(
   glslc spirv-tools                          # shader compiler (SPIR-V embedded at build time)
   libvulkan-dev mesa-vulkan-drivers          # Vulkan loader + lavapipe (CPU Vulkan device)
   vulkan-validationlayers vulkan-tools       # validation in tests, vulkaninfo
-  libtinygltf-dev nlohmann-json3-dev         # glTF 2.0 loader
+  libtinygltf-dev nlohmann-json3-dev         # glTF 2.0 loader; the JSON bounce writes
   libstb-dev libtinyexr-dev                  # PNG/JPEG and EXR image I/O
   libglm-dev libcli11-dev libfmt-dev         # maths, command line, formatting
   libgtest-dev libgmock-dev                  # tests

@@ -6,6 +6,8 @@
 // runs it with BOUNCE_VALIDATE=1: the Khronos validation layer reports to stderr, which must stay
 // free of validation errors.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -68,6 +70,27 @@ class Api : public testing::Test {
     EXPECT_THAT(stderrText, testing::Not(HasSubstr("validation error"))) << stderrText;
   }
 };
+
+// A glTF without any light gets the default daylight sun and sky when loaded through the
+// library, as on the command line (docs/scenes.md); setSky / setSun replace it.
+TEST_F(Api, UnlitGltfGetsTheDefaultDaylight) {
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / "bounce-test-api-unlit-triangle.gltf";
+  std::ofstream(path) << R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}],
+    "buffers": [{"byteLength": 36,
+      "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+  bounce::Scene scene = bounce::Scene::load(path.string());
+  std::filesystem::remove(path);
+  EXPECT_EQ(scene.triangleCount(), 1u);
+  EXPECT_GT(scene.sun().irradiance, 0.0f);
+  EXPECT_LT(scene.sun().direction.y, 0.0f);
+  EXPECT_EQ(scene.sky().model, bounce::Sky::Model::Daylight);
+  scene.setSky({});
+  EXPECT_EQ(scene.sky().model, bounce::Sky::Model::Constant);
+}
 
 TEST_F(Api, BadScenePathNamesThePath) {
   const std::string path = "/nonexistent/bounce-test/missing.gltf";

@@ -773,8 +773,22 @@ TEST(SceneBvh, RejectsUnusableScenes) {
   }
   {
     Scene bad = scene;
-    bad.instances[2].transform = glm::scale(glm::mat4(1.0f), glm::vec3(1, 0, 1));
+    bad.instances[2].transform[3][0] = std::numeric_limits<float>::infinity();
     EXPECT_THROW(buildSceneBvh(bad), Error);
+  }
+  {
+    // A singular transform (scale 0, how glTF animations hide objects) hides the instance: it
+    // stays in the instance array, out of the TLAS.
+    Scene flat = scene;
+    flat.instances[2].transform = glm::scale(glm::mat4(1.0f), glm::vec3(1, 0, 1));
+    SceneBvh bvh = buildSceneBvh(flat);
+    ASSERT_EQ(bvh.instances.size(), flat.instances.size());
+    EXPECT_NE(bvh.instances[2].flags & gpu::GPU_INSTANCE_HIDDEN, 0u);
+    EXPECT_EQ(bvh.instances[1].flags & gpu::GPU_INSTANCE_HIDDEN, 0u);
+    for (const gpu::GpuBvhNode& node : bvh.tlasNodes) {
+      EXPECT_FALSE(node.leftCount > 0 && node.leftIndex == 2u);
+      EXPECT_FALSE(node.rightCount > 0 && node.rightIndex == 2u);
+    }
   }
   {
     Scene bad = scene;

@@ -1,6 +1,7 @@
 // The glTF loader: malformed files must give a bounce::Error naming the file and the problem
 // (never a crash, hang or huge allocation), unusual valid files must load with the documented
 // defaults, and the shared scenes must load with their known contents.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -13,145 +14,24 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "gltf_writer.h"
 #include "harness.h"
+#include "rt/cpu_trace.h"
+#include "rt/scene_bvh.h"
+#include "scene/default_light.h"
 #include "scene/load.h"
+#include "scene/scene_options.h"
+#include "scene/time_of_day.h"
 
 namespace bounce {
 namespace {
 
 using nlohmann::json;
+using test::GltfWriter;
+using test::kFloat;
+using test::kUnsignedInt;
+using test::kUnsignedShort;
 namespace fs = std::filesystem;
-
-constexpr int kFloat = 5126, kUnsignedShort = 5123, kUnsignedInt = 5125;
-
-// Builds small glTF files: a JSON document plus one binary buffer, written as .gltf + .bin,
-// as a .gltf with a data-URI buffer, or as .glb.
-class GltfWriter {
- public:
-  GltfWriter() {
-    doc = {{"asset", {{"version", "2.0"}}}, {"scene", 0},
-           {"scenes", json::array()},       {"nodes", json::array()},
-           {"meshes", json::array()},       {"accessors", json::array()},
-           {"bufferViews", json::array()},  {"buffers", json::array()}};
-  }
-
-  // Appends bytes (4-byte aligned) and a bufferView over them.
-  int addView(const void* data, size_t bytes, size_t stride = 0) {
-    while (bin.size() % 4) bin.push_back(0);
-    json view = {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", bytes}};
-    if (stride) view["byteStride"] = stride;
-    bin.insert(bin.end(), static_cast<const uint8_t*>(data),
-               static_cast<const uint8_t*>(data) + bytes);
-    doc["bufferViews"].push_back(view);
-    return int(doc["bufferViews"].size()) - 1;
-  }
-
-  int addAccessor(int view, int componentType, size_t count, const char* type) {
-    doc["accessors"].push_back(
-        {{"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}});
-    return int(doc["accessors"].size()) - 1;
-  }
-
-  int addPositions(const std::vector<glm::vec3>& p) {
-    return addAccessor(addView(p.data(), p.size() * 12), kFloat, p.size(), "VEC3");
-  }
-  int addUvs(const std::vector<glm::vec2>& uv) {
-    return addAccessor(addView(uv.data(), uv.size() * 8), kFloat, uv.size(), "VEC2");
-  }
-  int addIndices16(const std::vector<uint16_t>& i) {
-    return addAccessor(addView(i.data(), i.size() * 2), kUnsignedShort, i.size(), "SCALAR");
-  }
-
-  // A mesh of one primitive; returns the mesh index.
-  int addMesh(json primitive) {
-    doc["meshes"].push_back({{"primitives", json::array({primitive})}});
-    return int(doc["meshes"].size()) - 1;
-  }
-
-  int addNode(json node, bool root = true) {
-    doc["nodes"].push_back(node);
-    int index = int(doc["nodes"].size()) - 1;
-    if (root) rootNodes.push_back(index);
-    return index;
-  }
-
-  // The unit quad in the XY plane (two triangles), one node, one scene.
-  void addQuadScene() {
-    int pos = addPositions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
-    int idx = addIndices16({0, 1, 2, 0, 2, 3});
-    addNode({{"mesh", addMesh({{"attributes", {{"POSITION", pos}}}, {"indices", idx}})}});
-  }
-
-  std::string writeGltf(const std::string& dir, const std::string& name) {
-    finish(name + ".bin");
-    writeBytes(dir + "/" + name + ".bin", bin);
-    return writeText(dir + "/" + name + ".gltf", doc.dump());
-  }
-
-  std::string writeGltfDataUri(const std::string& dir, const std::string& name) {
-    finish("data:application/octet-stream;base64," + base64(bin));
-    return writeText(dir + "/" + name + ".gltf", doc.dump());
-  }
-
-  std::string writeGlb(const std::string& dir, const std::string& name) {
-    finish("");
-    std::string text = doc.dump();
-    while (text.size() % 4) text += ' ';
-    while (bin.size() % 4) bin.push_back(0);
-    std::vector<uint8_t> out;
-    auto u32 = [&](uint32_t v) {
-      for (int i = 0; i < 4; ++i) out.push_back(uint8_t(v >> (8 * i)));
-    };
-    out.insert(out.end(), {'g', 'l', 'T', 'F'});
-    u32(2);
-    u32(uint32_t(12 + 8 + text.size() + 8 + bin.size()));
-    u32(uint32_t(text.size()));
-    u32(0x4E4F534A);
-    out.insert(out.end(), text.begin(), text.end());
-    u32(uint32_t(bin.size()));
-    u32(0x004E4942);
-    out.insert(out.end(), bin.begin(), bin.end());
-    std::string path = dir + "/" + name + ".glb";
-    writeBytes(path, out);
-    return path;
-  }
-
-  static void writeBytes(const std::string& path, const std::vector<uint8_t>& bytes) {
-    std::ofstream(path, std::ios::binary)
-        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-  }
-  static std::string writeText(const std::string& path, const std::string& text) {
-    std::ofstream(path, std::ios::binary) << text;
-    return path;
-  }
-
-  json doc;
-  std::vector<uint8_t> bin;
-  std::vector<int> rootNodes;
-
- private:
-  void finish(const std::string& bufferUri) {
-    json buffer = {{"byteLength", bin.size()}};
-    if (!bufferUri.empty()) buffer["uri"] = bufferUri;
-    if (doc["buffers"].empty()) doc["buffers"].push_back(buffer);
-    if (doc["scenes"].empty()) doc["scenes"].push_back({{"nodes", rootNodes}});
-  }
-
-  static std::string base64(const std::vector<uint8_t>& data) {
-    static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    for (size_t i = 0; i < data.size(); i += 3) {
-      uint32_t n = uint32_t(data[i]) << 16;
-      if (i + 1 < data.size()) n |= uint32_t(data[i + 1]) << 8;
-      if (i + 2 < data.size()) n |= data[i + 2];
-      out += table[(n >> 18) & 63];
-      out += table[(n >> 12) & 63];
-      out += i + 1 < data.size() ? table[(n >> 6) & 63] : '=';
-      out += i + 2 < data.size() ? table[n & 63] : '=';
-    }
-    return out;
-  }
-};
 
 class GltfLoaderTest : public ::testing::Test {
  protected:
@@ -333,14 +213,6 @@ TEST_F(GltfLoaderTest, InfinitePosition) {
   int pos = w.addPositions({{0, 0, 0}, {1, 0, 0}, {1, inf, 0}});
   w.addNode({{"mesh", w.addMesh({{"attributes", {{"POSITION", pos}}}})}});
   expectError(w.writeGltf(dir, "inf"), "infinite");
-}
-
-TEST_F(GltfLoaderTest, AllTrianglesZeroArea) {
-  GltfWriter w;
-  int pos = w.addPositions({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {0, 0, 0}});
-  int idx = w.addIndices16({0, 1, 2, 0, 3, 1});  // collinear, then a repeated vertex
-  w.addNode({{"mesh", w.addMesh({{"attributes", {{"POSITION", pos}}}, {"indices", idx}})}});
-  expectError(w.writeGltf(dir, "flat"), "all 2 triangles have zero area");
 }
 
 TEST_F(GltfLoaderTest, UnsupportedRequiredExtension) {
@@ -618,6 +490,104 @@ TEST_F(GltfLoaderTest, DropsSomeZeroAreaTriangles) {
   EXPECT_EQ(scene.meshes[0].geometries[0].indices, (std::vector<uint32_t>{0, 1, 2}));
 }
 
+// A valid file whose only triangles are degenerate loads as an empty scene, which renders as
+// sky (test_gltf_render.cpp); it says which primitive and mesh it skipped.
+TEST_F(GltfLoaderTest, AllTrianglesZeroArea) {
+  GltfWriter w;
+  int pos = w.addPositions({{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {0, 0, 0}});
+  int idx = w.addIndices16({0, 1, 2, 0, 3, 1});  // collinear, then a repeated vertex
+  w.addNode({{"mesh", w.addMesh({{"attributes", {{"POSITION", pos}}}, {"indices", idx}})}});
+  LoadWarnings warnings;
+  Scene scene = loadGltf(w.writeGltf(dir, "flat"), warnings);
+  EXPECT_TRUE(scene.meshes.empty());
+  EXPECT_TRUE(scene.instances.empty());
+  EXPECT_EQ(scene.triangleCount(), 0u);
+  EXPECT_FALSE(scene.materials.empty());
+  EXPECT_EQ(warnings.summary(), (std::vector<std::string>{
+                                    "mesh 0 primitive 0: skipped: all 2 triangles have zero area",
+                                    "mesh 0: no triangles to render, nodes using it are skipped"}));
+  rt::SceneBvh bvh = rt::buildSceneBvh(scene);  // an empty TLAS, not an error
+  EXPECT_TRUE(bvh.instances.empty());
+}
+
+// One primitive without a valid triangle beside a valid one: only that primitive is skipped.
+TEST_F(GltfLoaderTest, PrimitiveWithoutValidTrianglesAmongValidOnes) {
+  GltfWriter w;
+  int pos = w.addPositions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  int quad = w.addIndices16({0, 1, 2, 0, 2, 3});
+  int flat = w.addIndices16({0, 0, 1, 2, 2, 2});
+  json valid = {{"attributes", {{"POSITION", pos}}}, {"indices", quad}};
+  json degenerate = {{"attributes", {{"POSITION", pos}}}, {"indices", flat}};
+  w.doc["meshes"].push_back({{"name", "mixed"}, {"primitives", {degenerate, valid, degenerate}}});
+  w.addNode({{"mesh", 0}});
+  LoadWarnings warnings;
+  Scene scene = loadGltf(w.writeGltf(dir, "mixed"), warnings);
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  ASSERT_EQ(scene.meshes[0].geometries.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].geometries[0].indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(scene.instances.size(), 1u);
+  EXPECT_EQ(warnings.summary(),
+            (std::vector<std::string>{"skipped: every triangle has zero area: 2 primitives (4 "
+                                      "triangles), e.g. mesh 0 ('mixed') primitive 0"}));
+}
+
+// glTF animations hide objects with scale 0. A node that stays singular is skipped with a
+// warning; so are the children of a node that flattens space.
+TEST_F(GltfLoaderTest, ZeroScaleNodeIsSkipped) {
+  GltfWriter w;
+  w.addQuadScene();  // node 0
+  w.addNode({{"mesh", 0}, {"name", "hidden"}, {"scale", {0.0, 0.0, 0.0}}});
+  w.addNode({{"mesh", 0}, {"scale", {1.0, 0.0, 1.0}}, {"children", {3}}});
+  w.addNode({{"mesh", 0}, {"translation", {0.0, 0.0, 1.0}}}, false);
+  LoadWarnings warnings;
+  Scene scene = loadGltf(w.writeGltf(dir, "zero_scale"), warnings);
+  ASSERT_EQ(scene.instances.size(), 1u);
+  EXPECT_EQ(scene.instances[0].name, "node 0");
+  EXPECT_EQ(warnings.summary(),
+            (std::vector<std::string>{"skipped: singular transform (scale 0), nothing to show: 3 "
+                                      "nodes, e.g. node 1 ('hidden')"}));
+  EXPECT_EQ(rt::buildSceneBvh(scene).instances.size(), 1u);
+}
+
+// A node animated from scale 0 up is kept: hidden (out of the TLAS) while singular, traced once
+// its animated transform is invertible, with no error on the way.
+TEST_F(GltfLoaderTest, AnimatedZeroScaleNodeIsHiddenUntilScaledUp) {
+  GltfWriter w;
+  w.addQuadScene();
+  w.doc["nodes"][0]["scale"] = {0.0, 0.0, 0.0};
+  const float times[] = {0.0f, 1.0f};
+  const float scales[] = {0, 0, 0, 1, 1, 1};
+  int in = w.addAccessor(w.addView(times, sizeof(times)), kFloat, 2, "SCALAR");
+  int out = w.addAccessor(w.addView(scales, sizeof(scales)), kFloat, 2, "VEC3");
+  w.doc["animations"] = json::array(
+      {{{"samplers", {{{"input", in}, {"output", out}}}},
+        {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "scale"}}}}}}}});
+  LoadWarnings warnings;
+  Scene scene = loadGltf(w.writeGltf(dir, "grows"), warnings);
+  ASSERT_EQ(scene.instances.size(), 1u);
+  EXPECT_EQ(warnings.count("starts with a singular transform (scale 0): hidden until its "
+                           "animation scales it up"),
+            1u);
+
+  rt::SceneBvh bvh = rt::buildSceneBvh(scene);
+  EXPECT_NE(bvh.instances[0].flags & gpu::GPU_INSTANCE_HIDDEN, 0u);
+  EXPECT_EQ(bvh.tlasNodes[0].leftCount, 0u) << "a hidden instance must not be in the TLAS";
+  rt::BruteForceTracer hidden(scene);
+  rt::Ray ray{{0.5f, 0.5f, 1.0f}, {0.0f, 0.0f, -1.0f}, 0.0f};
+  EXPECT_FALSE(hidden.closestHit(ray, 10.0f).hit);
+
+  std::vector<glm::mat4> transforms = {scene.instances[0].transform};
+  evaluateTransforms(scene.animation, 0.999f, transforms);
+  rt::setInstanceTransform(bvh.instances[0], transforms[0]);
+  EXPECT_EQ(bvh.instances[0].flags & gpu::GPU_INSTANCE_HIDDEN, 0u);
+  bvh.tlasNodes = rt::buildTlas(bvh.instances, bvh.meshBounds);
+  EXPECT_EQ(bvh.tlasNodes[0].leftCount, 1u);
+  EXPECT_EQ(bvh.tlasNodes[0].leftIndex, 0u);
+  scene.instances[0].transform = transforms[0];
+  rt::BruteForceTracer shown(scene);
+  EXPECT_TRUE(shown.closestHit(ray, 10.0f).hit);
+}
+
 TEST_F(GltfLoaderTest, SparseAccessorOverridesBase) {
   GltfWriter w;
   w.addQuadScene();
@@ -701,6 +671,214 @@ TEST_F(GltfLoaderTest, TextureDecodedAndTransformBaked) {
   EXPECT_EQ(scene.materials.at(0).baseColorTexture, 0);
   const Geometry& g = scene.meshes[0].geometries[0];
   EXPECT_NEAR(glm::distance(g.uvs[2], glm::vec2(2.5f, 3.0f)), 0.0f, 1e-6f);  // (1,1) -> S then T
+}
+
+// COLOR_0 in each encoding glTF 2.0 allows (§3.7.2.1), read as linear RGBA in [0, 1]; a
+// primitive without it keeps an empty stream (white).
+TEST_F(GltfLoaderTest, VertexColorsInEveryEncoding) {
+  GltfWriter w;
+  int pos = w.addPositions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  int idx = w.addIndices16({0, 1, 2, 0, 2, 3});
+  const uint8_t bytes[16] = {255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 0, 51, 102, 153, 255};
+  int u8 = w.addAccessor(w.addView(bytes, sizeof(bytes)), 5121, 4, "VEC4");
+  w.doc["accessors"][u8]["normalized"] = true;
+  const uint16_t shorts[16] = {65535, 0, 0, 65535, 0, 32768, 0, 65535, 0, 0, 0, 0, 1, 2, 3, 4};
+  int u16 = w.addAccessor(w.addView(shorts, sizeof(shorts)), kUnsignedShort, 4, "VEC4");
+  w.doc["accessors"][u16]["normalized"] = true;
+  const float floats[12] = {0.25f, 0.5f, 0.75f, 1, 1, 1, 2.0f, -1.0f, 0, 0, 0, 0};
+  int f32 = w.addAccessor(w.addView(floats, sizeof(floats)), kFloat, 4, "VEC3");
+  auto primitive = [&](int colors) {
+    json attributes = {{"POSITION", pos}};
+    if (colors >= 0) attributes["COLOR_0"] = colors;
+    return json{{"attributes", attributes}, {"indices", idx}};
+  };
+  w.doc["meshes"].push_back(
+      {{"primitives", {primitive(u8), primitive(u16), primitive(f32), primitive(-1)}}});
+  w.addNode({{"mesh", 0}});
+  Scene scene = loadGltf(w.writeGltf(dir, "colors"));
+  const std::vector<Geometry>& g = scene.meshes.at(0).geometries;
+  ASSERT_EQ(g.size(), 4u);
+  ASSERT_EQ(g[0].colors.size(), 4u);
+  EXPECT_EQ(g[0].colors[0], glm::vec4(1, 0, 0, 1));
+  EXPECT_EQ(g[0].colors[1], glm::vec4(0, 1, 0, 128.0f / 255.0f));
+  EXPECT_EQ(g[0].colors[3], glm::vec4(0.2f, 0.4f, 0.6f, 1.0f));
+  ASSERT_EQ(g[1].colors.size(), 4u);
+  EXPECT_EQ(g[1].colors[0], glm::vec4(1, 0, 0, 1));
+  EXPECT_EQ(g[1].colors[1].y, 32768.0f / 65535.0f);
+  ASSERT_EQ(g[2].colors.size(), 4u);
+  EXPECT_EQ(g[2].colors[0], glm::vec4(0.25f, 0.5f, 0.75f, 1.0f));  // VEC3: alpha 1
+  EXPECT_EQ(g[2].colors[2], glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));    // clamped to [0, 1]
+  EXPECT_TRUE(g[3].colors.empty());
+}
+
+TEST_F(GltfLoaderTest, VertexColorsOfAnInvalidType) {
+  GltfWriter w;
+  w.addQuadScene();
+  const uint8_t bytes[12] = {};
+  int u8 = w.addAccessor(w.addView(bytes, sizeof(bytes)), 5121, 4, "VEC3");  // not normalized
+  w.doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = u8;
+  expectError(w.writeGltf(dir, "raw_bytes"), "COLOR_0 has componentType 5121");
+}
+
+// Every feature Bounce does not draw is named in exactly one line per file, however often it
+// is used, with the count of its uses; what Bounce supports is not named.
+TEST_F(GltfLoaderTest, IgnoredFeaturesAreNamedOnce) {
+  writePng("tile.png");
+  GltfWriter w;
+  int pos = w.addPositions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  int uv = w.addUvs({{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  int idx = w.addIndices16({0, 1, 2, 0, 2, 3});
+  w.doc["images"] = json::array({{{"uri", "tile.png"}}});
+  w.doc["samplers"] = json::array({{{"wrapS", 33071}, {"wrapT", 33071}}});  // CLAMP_TO_EDGE
+  w.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
+  w.doc["extensionsUsed"] = {"KHR_materials_sheen",        "KHR_materials_clearcoat",
+                             "KHR_materials_transmission", "EXT_mesh_gpu_instancing",
+                             "KHR_texture_transform",      "KHR_materials_emissive_strength"};
+  const int kUses = 3;
+  for (int i = 0; i < kUses; ++i) {
+    json transform = {{"KHR_texture_transform", {{"scale", {2.0, 2.0}}}}};
+    w.doc["materials"].push_back(
+        {{"name", "m" + std::to_string(i)},
+         {"alphaMode", "BLEND"},
+         {"occlusionTexture", {{"index", 0}}},
+         {"pbrMetallicRoughness",
+          {{"baseColorTexture", {{"index", 0}, {"texCoord", 1}, {"extensions", transform}}}}},
+         {"extensions",
+          {{"KHR_materials_sheen", json::object()},
+           {"KHR_materials_clearcoat", json::object()},
+           {"KHR_materials_emissive_strength", {{"emissiveStrength", 2.0}}}}}});
+    json primitive = {{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv}, {"TEXCOORD_1", uv}}},
+                      {"indices", idx},
+                      {"material", i},
+                      {"targets", {{{"POSITION", pos}}}}};
+    w.doc["meshes"].push_back({{"primitives", {primitive}}});
+    w.addNode({{"mesh", i}, {"skin", 0}});
+  }
+  int joint = w.addNode({{"name", "joint"}});
+  w.doc["skins"] = json::array({{{"joints", {joint}}}});
+  const float times[] = {0.0f, 1.0f};
+  const float moves[] = {0, 0, 0, 1, 0, 0};
+  int in = w.addAccessor(w.addView(times, sizeof(times)), kFloat, 2, "SCALAR");
+  int out = w.addAccessor(w.addView(moves, sizeof(moves)), kFloat, 2, "VEC3");
+  json channel = {{"sampler", 0}, {"target", {{"node", joint}, {"path", "translation"}}}};
+  w.doc["animations"] = json::array({{{"samplers", {{{"input", in}, {"output", out}}}},
+                                      {"channels", json::array({channel, channel, channel})}}});
+  w.doc["cameras"] = {
+      {{"type", "orthographic"},
+       {"orthographic", {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", 0.1}, {"zfar", 9.0}}}},
+      {{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}}};
+  for (int camera : {0, 1, 1}) w.addNode({{"camera", camera}});
+  LoadWarnings warnings;
+  Scene scene = loadGltf(w.writeGltf(dir, "features"), warnings);
+  EXPECT_EQ(scene.instances.size(), size_t(kUses));
+
+  const std::vector<std::string> lines = warnings.summary();
+  auto linesNaming = [&](const std::string& feature) {
+    return std::count_if(lines.begin(), lines.end(), [&](const std::string& line) {
+      return line.find(feature) != std::string::npos;
+    });
+  };
+  auto lineNaming = [&](const std::string& feature) {
+    auto it = std::find_if(lines.begin(), lines.end(), [&](const std::string& line) {
+      return line.find(feature) != std::string::npos;
+    });
+    return it == lines.end() ? std::string() : *it;
+  };
+  std::string all;
+  for (const std::string& line : lines) all += line + "\n";
+  SCOPED_TRACE(all);
+  for (const char* feature :
+       {"occlusionTexture is ignored", "KHR_materials_sheen is ignored",
+        "KHR_materials_clearcoat is ignored", "alphaMode BLEND", "TEXCOORD_1 and higher",
+        "skins are ignored", "morph targets are ignored", "nodes that place no mesh"}) {
+    EXPECT_EQ(linesNaming(feature), 1) << feature;
+    EXPECT_NE(lineNaming(feature).find(": " + std::to_string(kUses) + " "), std::string::npos)
+        << feature << ": expected the count of its " << kUses << " uses";
+  }
+  // One texture, used by every material: its sampler is named once, as one use.
+  EXPECT_EQ(linesNaming("sampler wrap and filter modes are ignored"), 1);
+  // Named from extensionsUsed alone (no used material or loaded object carries them).
+  EXPECT_EQ(linesNaming("KHR_materials_transmission is ignored: surfaces are opaque"), 1);
+  EXPECT_EQ(linesNaming("EXT_mesh_gpu_instancing is ignored"), 1);
+  EXPECT_EQ(linesNaming("cameras other than perspective ones are ignored"), 1);
+  EXPECT_EQ(linesNaming("cameras after the first perspective one are ignored"), 1);
+  EXPECT_EQ(linesNaming("KHR_texture_transform"), 0) << "supported: baked into the UVs";
+  EXPECT_EQ(linesNaming("emissive_strength"), 0) << "supported";
+  EXPECT_EQ(lines.size(), 13u);
+}
+
+// 20 meshes that each drop one zero-area triangle give one line with the count, the total and
+// the first example, not 20 lines; the one-argument loader prints exactly that line.
+TEST_F(GltfLoaderTest, RepeatedWarningsAreSummarised) {
+  GltfWriter w;
+  int pos = w.addPositions({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+  int idx = w.addIndices16({0, 1, 2, 0, 2, 3, 0, 0, 1});
+  const int kMeshes = 20;
+  for (int i = 0; i < kMeshes; ++i) {
+    w.doc["meshes"].push_back(
+        {{"name", "m" + std::to_string(i)},
+         {"primitives", {{{"attributes", {{"POSITION", pos}}}, {"indices", idx}}}}});
+    w.addNode({{"mesh", i}});
+  }
+  std::string path = w.writeGltf(dir, "many");
+  LoadWarnings warnings;
+  Scene scene = loadGltf(path, warnings);
+  EXPECT_EQ(scene.triangleCount(), uint64_t(2 * kMeshes));
+  const std::string line =
+      "dropped zero-area triangles: 20 primitives (20 triangles), e.g. mesh 0 ('m0') primitive 0";
+  EXPECT_EQ(warnings.summary(), std::vector<std::string>{line});
+
+  testing::internal::CaptureStderr();
+  loadGltf(path);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "warning: " + path + ": " + line + "\n");
+}
+
+// An unlit file (no sun, sky, punctual light or emitter) gets the default daylight unless
+// --sun or --sky is given; a file with any light of its own keeps it.
+TEST_F(GltfLoaderTest, DefaultLightForAnUnlitFile) {
+  GltfWriter w;
+  w.addQuadScene();
+  std::string path = w.writeGltf(dir, "unlit");
+  Scene scene = loadGltf(path);
+  EXPECT_FALSE(hasAnyLight(scene));
+  Scene lit = scene;
+  std::optional<std::string> note = applyDefaultLight(lit, {}, path);
+  ASSERT_TRUE(note.has_value());
+  EXPECT_NE(note->find(path + " has no lights: using a daylight sky and sun"), std::string::npos)
+      << *note;
+  EXPECT_TRUE(hasAnyLight(lit));
+  EXPECT_EQ(lit.sun.irradiance, kDaylightSunKilolux);
+  EXPECT_EQ(lit.sky.model, SkyModel::Daylight);
+  // The built-in daylight at mid-morning: well above the horizon, not straight down.
+  EXPECT_EQ(lit.sun.direction, -towardSunAt(kDefaultSunHours));
+  EXPECT_GT(-lit.sun.direction.y, std::sin(glm::radians(30.0f)));
+  EXPECT_LT(-lit.sun.direction.y, std::sin(glm::radians(60.0f)));
+
+  for (bool sky : {false, true}) {
+    Scene dark = scene;
+    SceneOverrides overrides;
+    if (sky)
+      overrides.sky = parseSky("0,0,0");
+    else
+      overrides.sun = parseSun("0,-1,0:0");
+    applyOverrides(dark, overrides);
+    EXPECT_FALSE(applyDefaultLight(dark, overrides, path).has_value());
+    EXPECT_FALSE(hasAnyLight(dark)) << "an explicit --sun or --sky keeps the scene as given";
+  }
+  Scene glowing = scene;
+  glowing.materials[0].emissive = glm::vec3(0.0f, 0.0f, 1.0f);
+  EXPECT_FALSE(applyDefaultLight(glowing, {}, path).has_value());
+  EXPECT_EQ(glowing.sun.irradiance, 0.0f);
+  Scene bulb = scene;
+  bulb.lights.push_back(PunctualLight{});
+  EXPECT_FALSE(applyDefaultLight(bulb, {}, path).has_value());
+}
+
+TEST(DefaultLight, EveryBuiltinSceneHasItsOwnLight) {
+  for (const std::string& name : builtinSceneNames()) {
+    if (name == "city") continue;  // 1.9 M triangles to build; lit by its sun and sky
+    EXPECT_TRUE(hasAnyLight(*makeBuiltinScene(name))) << name;
+  }
 }
 
 // ---- the shared scenes -------------------------------------------------------------------------

@@ -153,7 +153,7 @@ TEST(Animation, RenderVerbReportsCameraPathErrorsAndPlaysAnimations) {
             std::string::npos)
       << r.output;
   r = test::runCommand(test::bounceExe() + " render --res 32x16 --animate --frames 4 --fps 2 " +
-                       "--day-cycle 8 --time-of-day 17 --out '" + dir + "/frames'");
+                       "--day-cycle 8 --time-of-day 17 --out '" + dir + "/frames/'");
   EXPECT_EQ(r.exitCode, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir + "/frames/frame_0003.png")) << r.output;
   r = test::runCommand(test::bounceExe() + " render --res 16x8 --time-of-day 25 --out '" + dir +

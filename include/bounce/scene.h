@@ -75,7 +75,9 @@ class Scene {
 
   // A built-in scene by name (builtinNames()), or a glTF 2.0 file (a path ending in .gltf or
   // .glb). Throws bounce::Error naming the path and the problem (missing file, malformed glTF,
-  // unknown name).
+  // unknown name); prints what it ignores or repairs in the file to stderr, one line per kind
+  // of problem. A file without any light (no lights, no emissive material) gets a daylight
+  // sun and sky at mid-morning, as glTF viewers do; setSun / setSky replace them.
   static Scene load(const std::string& nameOrPath);
   // cornell, sunroom, foliage, manylights, furnace, city (docs/scenes.md describes each).
   static std::vector<std::string> builtinNames();

@@ -108,7 +108,7 @@ Surface loadSurfaceAtCoarseMip(TraceHit hit, vec3 rayDirection, bool lambertOnly
   if (dot(ns, -rayDirection) <= 0.0 || any(isnan(ns))) ns = ng;
   s.shadingNormal = ns;
 
-  vec3 baseColor = m.baseColor.rgb;
+  vec3 baseColor = m.baseColor.rgb * interpolateVertexColor(tri, b).rgb;
   if (m.baseColorTexture != NO_TEXTURE)
     baseColor *= sampleSceneTexture(m.baseColorTexture, uv, coarseTextureLod(m.baseColorTexture, maxTextureSide)).rgb;
   float metallic = m.metallic;

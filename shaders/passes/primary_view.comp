@@ -12,11 +12,10 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) writeonly buffer Ou
 vec3 surfaceAlbedo(TraceHit hit) {
   GpuGeometry g = sceneGeometry(hit.geometry);
   GpuMaterial m = sceneMaterial(g.material);
-  vec3 albedo = m.baseColor.rgb;
-  if (m.baseColorTexture != NO_TEXTURE) {
-    vec2 uv = interpolateUv(triangleVertices(g, hit.primitive), hit.barycentrics);
-    albedo *= sampleSceneTexture(m.baseColorTexture, uv, 0.0).rgb;
-  }
+  uvec3 tri = triangleVertices(g, hit.primitive);
+  vec3 albedo = m.baseColor.rgb * interpolateVertexColor(tri, hit.barycentrics).rgb;
+  if (m.baseColorTexture != NO_TEXTURE)
+    albedo *= sampleSceneTexture(m.baseColorTexture, interpolateUv(tri, hit.barycentrics), 0.0).rgb;
   return albedo;
 }
 

@@ -9,6 +9,7 @@ layout(push_constant, scalar) uniform Push { VBufferDrawConstants pc; };
 
 layout(location = 0) out vec2 outUv;
 layout(location = 1) flat out uint outPrimitive;
+layout(location = 2) out float outVertexAlpha;  // COLOR_0's alpha, for the alpha test
 
 void main() {
   uint primitive = uint(gl_VertexIndex) / 3u;
@@ -20,4 +21,5 @@ void main() {
   gl_Position = FrameBlock(pc.frame).v.viewProjection * vec4(world, 1.0);
   outUv = Vec2Array(scene.uvs).v[vertex];
   outPrimitive = primitive;
+  outVertexAlpha = scene.colors == uint64_t(0) ? 1.0 : unpackUnorm4x8(UintArray(scene.colors).v[vertex]).a;
 }

@@ -1,6 +1,6 @@
 // vbuffer (fragment stage, alpha-tested materials): writes which triangle covers the pixel
-// unless the tracer's own alpha test (base-colour alpha, nearest texel of mip 0,
-// shaders/rt/trace.glsl) cuts it out, so that raster and rays agree on what is cut out. A
+// unless the tracer's own alpha test (base-colour alpha, nearest texel of mip 0, vertex colour
+// alpha; shaders/rt/trace.glsl) cuts it out, so that raster and rays agree on what is cut out. A
 // shader that may discard loses early depth testing, hence the separate opaque pipeline
 // (vbuffer_opaque.frag) for everything else.
 #version 460
@@ -11,6 +11,7 @@ layout(push_constant, scalar) uniform Push { VBufferDrawConstants pc; };
 
 layout(location = 0) in vec2 inUv;
 layout(location = 1) flat in uint inPrimitive;
+layout(location = 2) in float inVertexAlpha;
 layout(location = 0) out uvec4 outIds;
 
 bool alphaCutOut() {
@@ -18,6 +19,7 @@ bool alphaCutOut() {
   if ((m.flags & (MATERIAL_ALPHA_MASK | MATERIAL_ALPHA_BLEND)) == 0u) return false;
   float alpha = m.baseColor.a;
   if (m.baseColorTexture != NO_TEXTURE) alpha *= fetchSceneTexelNearest(m.baseColorTexture, inUv).a;
+  alpha *= inVertexAlpha;
   float cutoff = (m.flags & MATERIAL_ALPHA_BLEND) != 0u ? 0.5 : m.alphaCutoff;
   return alpha < cutoff;
 }

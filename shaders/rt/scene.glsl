@@ -111,6 +111,15 @@ vec2 interpolateUv(uvec3 tri, vec2 bary) {
   return uvs.v[tri.x] * (1.0 - bary.x - bary.y) + uvs.v[tri.y] * bary.x + uvs.v[tri.z] * bary.y;
 }
 
+// The vertex colour (glTF COLOR_0) at the hit: it multiplies the material's base colour and
+// alpha (glTF 2.0 §3.9.2). White when the scene has no vertex colours (scene.colors == 0).
+vec4 interpolateVertexColor(uvec3 tri, vec2 bary) {
+  if (scene.colors == uint64_t(0)) return vec4(1.0);
+  UintArray colors = UintArray(scene.colors);
+  return unpackUnorm4x8(colors.v[tri.x]) * (1.0 - bary.x - bary.y) +
+         unpackUnorm4x8(colors.v[tri.y]) * bary.x + unpackUnorm4x8(colors.v[tri.z]) * bary.y;
+}
+
 vec3 interpolateNormal(uvec3 tri, vec2 bary) {
   Vec3Array normals = Vec3Array(scene.normals);
   return normals.v[tri.x] * (1.0 - bary.x - bary.y) + normals.v[tri.y] * bary.x +

@@ -68,15 +68,15 @@ float intersectBox(vec3 boxMin, vec3 boxMax, BoxRay r, float tMin, float tMax) {
 }
 
 // Alpha test of a candidate hit on a MASK/BLEND material: base-colour alpha (factor x texel,
-// nearest, mip 0) against the cutoff; BLEND counts as a mask at 0.5.
+// nearest, mip 0, x vertex colour) against the cutoff; BLEND counts as a mask at 0.5.
 bool alphaAccepts(uint globalGeometry, uint primitive, vec2 bary) {
   GpuGeometry g = sceneGeometry(globalGeometry);
   GpuMaterial m = sceneMaterial(g.material);
   float alpha = m.baseColor.a;
-  if (m.baseColorTexture != NO_TEXTURE) {
-    vec2 uv = interpolateUv(triangleVertices(g, primitive), bary);
-    alpha *= fetchSceneTexelNearest(m.baseColorTexture, uv).a;
-  }
+  uvec3 tri = triangleVertices(g, primitive);
+  if (m.baseColorTexture != NO_TEXTURE)
+    alpha *= fetchSceneTexelNearest(m.baseColorTexture, interpolateUv(tri, bary)).a;
+  alpha *= interpolateVertexColor(tri, bary).a;
   float cutoff = (m.flags & MATERIAL_ALPHA_BLEND) != 0u ? 0.5 : m.alphaCutoff;
   return alpha >= cutoff;
 }

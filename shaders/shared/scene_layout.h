@@ -56,6 +56,10 @@ struct GpuTriangle {
 BOUNCE_CHECK_SIZE(GpuTriangle, 44);
 
 // One placed mesh. Transforms are affine, stored as the three rows of a 3x4 matrix.
+// GPU_INSTANCE_HIDDEN: the placement is singular (a scale of 0, how glTF animations hide
+// objects); both matrices are then zero and the TLAS leaves the instance out, so no ray and no
+// raster draw can reach it until a later placement is invertible again.
+BOUNCE_CONST uint GPU_INSTANCE_HIDDEN = 1u;
 struct GpuInstance {
   vec4 objectToWorld[3];
   vec4 worldToObject[3];
@@ -118,6 +122,9 @@ struct GpuSceneRefs {
   DeviceAddress normals;     // vec3[]
   DeviceAddress uvs;         // vec2[]
   DeviceAddress tangents;    // vec4[] (xyz tangent, w handedness)
+  // uint[] per vertex: glTF COLOR_0 as RGBA8 unorm (R in the low byte, unpackUnorm4x8), white
+  // for geometries without it; 0 when no geometry of the scene has vertex colours.
+  DeviceAddress colors;
   uint instanceCount;
   uint geometryCount;
   uint materialCount;
@@ -127,7 +134,7 @@ struct GpuSceneRefs {
   vec3 boundsMax;
   float pad1;
 };
-BOUNCE_CHECK_SIZE(GpuSceneRefs, 136);
+BOUNCE_CHECK_SIZE(GpuSceneRefs, 144);
 
 BOUNCE_CONST uint SCENE_SET = 0u;
 BOUNCE_CONST uint SCENE_BINDING_REFS = 0u;

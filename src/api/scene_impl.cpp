@@ -8,6 +8,7 @@
 #include "api/convert.h"
 #include "api/scene_impl.h"
 #include "core/error.h"
+#include "scene/default_light.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
 
@@ -54,6 +55,9 @@ Scene Scene::load(const std::string& nameOrPath) {
   Scene result;
   if (hasGltfExtension(nameOrPath)) {
     result.impl_->scene = loadGltf(nameOrPath);  // errors name the path
+    // As the command line does without --sun and --sky (scene/default_light.h); setSun and
+    // setSky replace it.
+    applyDefaultLight(result.impl_->scene, {}, nameOrPath);
     return result;
   }
   if (std::optional<bounce::Scene> builtin = makeBuiltinScene(nameOrPath)) {

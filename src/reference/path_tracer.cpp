@@ -146,6 +146,11 @@ ReferenceResult ReferencePathTracer::render(const Camera& camera, const Referenc
     if (options.onProgress)
       options.onProgress({result.samplesPerPixel, options.samplesPerPixel, result.seconds,
                           options.timeLimitSeconds});
+    if (options.cancel && options.cancel->load() &&
+        result.samplesPerPixel < options.samplesPerPixel) {
+      result.cancelled = true;
+      break;
+    }
     if (options.timeLimitSeconds > 0.0 && result.seconds >= options.timeLimitSeconds &&
         result.samplesPerPixel < options.samplesPerPixel) {
       result.stoppedByTimeLimit = true;

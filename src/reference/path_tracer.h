@@ -5,6 +5,7 @@
 // Progressive: samples are added to a running sum in batches sized to keep each GPU submission
 // short, so a time limit can stop it between batches.
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <functional>
 
@@ -44,6 +45,10 @@ struct ReferenceOptions {
   // GPU watchdogs (~2 s), long enough to amortise submission overhead.
   double batchSeconds = 0.25;
   std::function<void(const ReferenceProgress&)> onProgress;  // after every batch; may be empty
+  // Checked after every batch: once true, the render stops and returns what it has (at least
+  // one batch). Set from another thread or a signal handler (a lock-free atomic store is
+  // async-signal-safe), e.g. by `bounce reference` on Ctrl-C.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct ReferenceResult {
@@ -54,6 +59,7 @@ struct ReferenceResult {
   double gpuMilliseconds = 0.0;  // sum of the pass's GPU timestamps (0 without timestamps)
   uint64_t droppedSamples = 0;   // NaN/infinite samples left out of the sums (should be 0)
   bool stoppedByTimeLimit = false;
+  bool cancelled = false;  // stopped early through ReferenceOptions::cancel
 };
 
 class ReferencePathTracer {

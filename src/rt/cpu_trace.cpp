@@ -248,6 +248,7 @@ TraceHit BruteForceTracer::trace(const Ray& ray, float tMax, const AlphaTest& al
   TraceHit result;
   for (uint32_t i = 0; i < scene_.instances.size(); ++i) {
     const PreparedInstance& prepared = instances_[i];
+    if (prepared.transform.flags & gpu::GPU_INSTANCE_HIDDEN) continue;  // scaled to nothing
     if (!segmentTouchesBox(ray, tMax, prepared.worldBounds)) continue;
     const Instance& instance = scene_.instances[i];
     const glm::vec3 origin = transformPoint(prepared.transform.worldToObject, ray.origin);

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <type_traits>
+
+#include <glm/gtc/packing.hpp>
 
 #include "core/error.h"
 
@@ -57,9 +60,14 @@ void GpuScene::uploadArrays() {
   // Storage buffers are limited to 128 MiB per binding on lavapipe (DESIGN.md §1); buffer
   // device addresses have no such per-binding limit but keep each array under it anyway.
   const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  // A scene may have no triangles at all (a file whose only geometry was degenerate renders as
+  // sky): an empty array still gets a buffer of one zeroed element, never read since every
+  // count in the refs is 0, so that every address is valid.
   auto upload = [&](const auto& vec, const char* name) {
-    buffers_.push_back(
-        vk::uploadVector(context_, std::span(vec), usage, std::string("scene.") + name));
+    using T = typename std::decay_t<decltype(vec)>::value_type;
+    static const T placeholder{};
+    std::span<const T> items = vec.empty() ? std::span<const T>(&placeholder, 1) : std::span(vec);
+    buffers_.push_back(vk::uploadVector(context_, items, usage, std::string("scene.") + name));
     return buffers_.back().address();
   };
   // A TLAS over n instance leaves has at most max(1, n - 1) nodes; room for n so that any
@@ -74,7 +82,9 @@ void GpuScene::uploadArrays() {
   tlasBufferIndex_ = buffers_.size() - 1;
   refs.instances = upload(bvh_.instances, "instances");
   instanceBufferIndex_ = buffers_.size() - 1;
-  previousInstances_ = vk::uploadVector(context_, std::span<const gpu::GpuInstance>(bvh_.instances),
+  std::vector<gpu::GpuInstance> previous = bvh_.instances;
+  if (previous.empty()) previous.emplace_back();
+  previousInstances_ = vk::uploadVector(context_, std::span<const gpu::GpuInstance>(previous),
                                         usage, "scene.previous-instances");
   instanceStaging_ = vk::Buffer(
       context_, 2 * bytesOf(bvh_.instances) + tlasCapacity_ * sizeof(gpu::GpuBvhNode) + 16,
@@ -86,6 +96,7 @@ void GpuScene::uploadArrays() {
   refs.normals = upload(bvh_.normals, "normals");
   refs.uvs = upload(bvh_.uvs, "uvs");
   refs.tangents = upload(bvh_.tangents, "tangents");
+  refs.colors = bvh_.colors.empty() ? 0 : upload(bvh_.colors, "colors");
   refs.instanceCount = uint32_t(bvh_.instances.size());
   refs.geometryCount = uint32_t(bvh_.geometries.size());
   refs.materialCount = uint32_t(textures_.materials.size());
@@ -215,7 +226,14 @@ bool GpuScene::alphaAccepts(uint32_t globalGeometry, uint32_t primitive, float b
   // Same expression order as interpolateUv in shaders/rt/scene.glsl.
   glm::vec2 uv = uv0 * (1.0f - b1 - b2) + uv1 * b1 + uv2 * b2;
   float cutoff = (m.flags & gpu::MATERIAL_ALPHA_BLEND) ? 0.5f : m.alphaCutoff;
-  return materialAlpha(textures_, m, uv) >= cutoff;
+  float alpha = materialAlpha(textures_, m, uv);
+  if (!bvh_.colors.empty()) {  // as interpolateVertexColor in shaders/rt/scene.glsl
+    auto vertexAlpha = [&](uint32_t k) {
+      return glm::unpackUnorm4x8(bvh_.colors[bvh_.indices[base + k] + g.vertexOffset]).w;
+    };
+    alpha *= vertexAlpha(0) * (1.0f - b1 - b2) + vertexAlpha(1) * b1 + vertexAlpha(2) * b2;
+  }
+  return alpha >= cutoff;
 }
 
 }  // namespace bounce

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <thread>
 
+#include <glm/gtc/packing.hpp>
+
 #include "core/error.h"
 #include "rt/task_pool.h"
 
@@ -39,9 +41,13 @@ void checkGeometry(const Scene& scene, size_t meshIndex, size_t geometryIndex) {
                        geometryIndex);
   };
   const size_t n = g.positions.size();
-  if (g.normals.size() != n || g.uvs.size() != n || (!g.tangents.empty() && g.tangents.size() != n))
-    fail("{}: vertex streams differ in length ({} positions, {} normals, {} uvs, {} tangents)",
-         where(), n, g.normals.size(), g.uvs.size(), g.tangents.size());
+  if (g.normals.size() != n || g.uvs.size() != n ||
+      (!g.tangents.empty() && g.tangents.size() != n) ||
+      (!g.colors.empty() && g.colors.size() != n))
+    fail(
+        "{}: vertex streams differ in length ({} positions, {} normals, {} uvs, {} tangents, {} "
+        "colours)",
+        where(), n, g.normals.size(), g.uvs.size(), g.tangents.size(), g.colors.size());
   if (g.indices.size() % 3 != 0)
     fail("{}: index count {} is not a multiple of 3", where(), g.indices.size());
   for (uint32_t index : g.indices)
@@ -53,8 +59,26 @@ void checkGeometry(const Scene& scene, size_t meshIndex, size_t geometryIndex) {
          scene.materials.size());
 }
 
+bool hasVertexColors(const Scene& scene) {
+  for (const Mesh& mesh : scene.meshes)
+    for (const Geometry& g : mesh.geometries)
+      if (!g.colors.empty()) return true;
+  return false;
+}
+
+// RGBA8 unorm keeps a colour in 4 bytes per vertex (a float vec4 would take 16); COLOR_0 is
+// most often 8-bit in the file anyway.
+void appendColors(const Geometry& g, std::vector<uint32_t>& out) {
+  if (g.colors.empty()) {
+    out.insert(out.end(), g.positions.size(), 0xFFFFFFFFu);
+    return;
+  }
+  for (const glm::vec4& c : g.colors) out.push_back(glm::packUnorm4x8(c));
+}
+
 // Appends every geometry's streams in mesh order and records where each starts.
 void flattenGeometries(const Scene& scene, SceneBvh& out) {
+  const bool colors = hasVertexColors(scene);
   size_t vertices = 0, indices = 0;
   for (const Mesh& mesh : scene.meshes)
     for (const Geometry& g : mesh.geometries) {
@@ -83,6 +107,7 @@ void flattenGeometries(const Scene& scene, SceneBvh& out) {
         out.tangents.insert(out.tangents.end(), g.positions.size(), glm::vec4(1, 0, 0, 1));
       else
         out.tangents.insert(out.tangents.end(), g.tangents.begin(), g.tangents.end());
+      if (colors) appendColors(g, out.colors);
     }
   }
 }
@@ -251,7 +276,15 @@ void setInstanceTransform(gpu::GpuInstance& instance, const glm::mat4& objectToW
   const glm::vec3 inverseTranslation = -(inverseLinear * glm::vec3(objectToWorld[3]));
   bool invertible = det != 0.0f && std::isfinite(det) && finite(inverseTranslation);
   for (int c = 0; c < 3; ++c) invertible = invertible && finite(inverseLinear[c]);
-  if (!invertible) fail("instance transform is singular (determinant {})", det);
+  if (!invertible) {
+    // Scaled to nothing: hidden (GPU_INSTANCE_HIDDEN), not an error, so that an animation
+    // may pass through scale 0.
+    for (int r = 0; r < 3; ++r)
+      instance.objectToWorld[r] = instance.worldToObject[r] = glm::vec4(0);
+    instance.flags |= gpu::GPU_INSTANCE_HIDDEN;
+    return;
+  }
+  instance.flags &= ~gpu::GPU_INSTANCE_HIDDEN;
   // Rows of the 3x4 matrices; glm stores columns.
   for (int r = 0; r < 3; ++r) {
     instance.objectToWorld[r] = glm::vec4(objectToWorld[0][r], objectToWorld[1][r],
@@ -270,7 +303,6 @@ gpu::GpuInstance makeGpuInstance(const glm::mat4& objectToWorld, uint32_t mesh,
   instance.blasRoot = bvh.blasRoot[mesh];
   instance.geometryBase = bvh.geometryBase[mesh];
   instance.mesh = mesh;
-  instance.flags = 0;
   return instance;
 }
 
@@ -310,7 +342,7 @@ std::vector<gpu::GpuBvhNode> buildTlas(std::span<const gpu::GpuInstance> instanc
       fail("TLAS build: instance {} refers to mesh {} ({} meshes)", i, instance.mesh,
            meshBounds.size());
     const Aabb& bounds = meshBounds[instance.mesh];
-    if (bounds.empty()) continue;  // nothing to hit
+    if (bounds.empty() || (instance.flags & gpu::GPU_INSTANCE_HIDDEN)) continue;  // nothing to hit
     boxes.push_back(instanceWorldBounds(instance, bounds));
     centroids.push_back(boxes.back().center());
     instanceOfPrimitive.push_back(uint32_t(i));
@@ -372,7 +404,7 @@ SceneBvh buildSceneBvh(const Scene& scene, const SceneBvhOptions& options) {
   stats.bytes = {bytesOf(out.blasNodes), bytesOf(out.triangles),  bytesOf(out.tlasNodes),
                  bytesOf(out.instances), bytesOf(out.geometries), bytesOf(out.indices),
                  bytesOf(out.positions), bytesOf(out.normals),    bytesOf(out.uvs),
-                 bytesOf(out.tangents)};
+                 bytesOf(out.tangents),  bytesOf(out.colors)};
   stats.seconds = secondsSince(start);
   return out;
 }

@@ -101,10 +101,10 @@ struct SceneBvhStats {
   // Bytes of each array as uploaded.
   struct Bytes {
     size_t blasNodes = 0, triangles = 0, tlasNodes = 0, instances = 0, geometries = 0;
-    size_t indices = 0, positions = 0, normals = 0, uvs = 0, tangents = 0;
+    size_t indices = 0, positions = 0, normals = 0, uvs = 0, tangents = 0, colors = 0;
     size_t total() const {
       return blasNodes + triangles + tlasNodes + instances + geometries + indices + positions +
-             normals + uvs + tangents;
+             normals + uvs + tangents + colors;
     }
   } bytes;
 };
@@ -123,6 +123,9 @@ struct SceneBvh {
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;
   std::vector<glm::vec4> tangents;  // (1, 0, 0, 1) where a geometry has none
+  // Vertex colours (glTF COLOR_0) as RGBA8 unorm, R in the low byte (GLSL unpackUnorm4x8):
+  // white where a geometry has none; empty when no geometry of the scene has any.
+  std::vector<uint32_t> colors;
 
   std::vector<gpu::GpuInstance> instances;  // in Scene::instances order
   std::vector<gpu::GpuBvhNode> tlasNodes;
@@ -132,21 +135,23 @@ struct SceneBvh {
 
 // Builds all of the above. Meshes' BLAS are built in parallel (a large mesh uses the threads
 // itself). Throws bounce::Error for input no tracer could use: out-of-range indices or mesh
-// references, NaN/infinite positions, singular or non-finite instance transforms, more than
-// 2^32 - 1 triangles.
+// references, NaN/infinite positions, non-finite instance transforms, more than 2^32 - 1
+// triangles. An instance with a singular transform is hidden (GPU_INSTANCE_HIDDEN).
 SceneBvh buildSceneBvh(const Scene& scene, const SceneBvhOptions& options = {});
 
 // The GPU instance for a mesh placed by objectToWorld (affine; the last row is ignored).
-// Throws bounce::Error when the transform is not finite or not invertible.
+// Throws bounce::Error when the transform is not finite; a singular one gives a hidden
+// instance (GPU_INSTANCE_HIDDEN in flags, zero matrices).
 gpu::GpuInstance makeGpuInstance(const glm::mat4& objectToWorld, uint32_t mesh,
                                  const SceneBvh& bvh);
-// Rewrites both matrices of an instance, e.g. when it moves; the TLAS must then be rebuilt.
+// Rewrites both matrices of an instance, e.g. when it moves, and its hidden flag (set while
+// the transform is singular); the TLAS must then be rebuilt.
 void setInstanceTransform(gpu::GpuInstance& instance, const glm::mat4& objectToWorld);
 
 // The TLAS over `instances`: one leaf per instance (leaf index = instance index), boxes in
-// world space from meshBounds[instance.mesh] transformed by objectToWorld. Instances of meshes
-// without triangles are left out. Cheap enough to run every frame (docs/ray-tracing.md has
-// its build times; test_bvh prints them).
+// world space from meshBounds[instance.mesh] transformed by objectToWorld. Hidden instances
+// and instances of meshes without triangles are left out. Cheap enough to run every frame
+// (docs/ray-tracing.md has its build times; test_bvh prints them).
 std::vector<gpu::GpuBvhNode> buildTlas(std::span<const gpu::GpuInstance> instances,
                                        std::span<const Aabb> meshBounds,
                                        const BvhBuildOptions& options = tlasBuildOptions(),

@@ -13,6 +13,10 @@ namespace tinygltf {
 class Model;
 }
 
+namespace bounce {
+class LoadWarnings;
+}
+
 namespace bounce::gltf {
 
 // Largest element count we accept in one accessor (2^28: 3 GiB of float positions). Anything
@@ -22,10 +26,12 @@ inline constexpr size_t kMaxAccessorCount = size_t(1) << 28;
 // bounded by the file size; cap it lower so a tiny file cannot demand gigabytes.
 inline constexpr size_t kMaxUnbackedAccessorCount = size_t(1) << 20;
 
-// What every read needs: the parsed model, and the file path that starts each error message.
+// What every read needs: the parsed model, the file path that starts each error message, and
+// where non-fatal problems are collected.
 struct Source {
   const tinygltf::Model& model;
   const std::string& path;
+  LoadWarnings& warnings;
 };
 
 // The bytes of buffer view `index`, checked to lie inside its buffer. `what` says who refers to

@@ -85,7 +85,7 @@ void loadAnimations(const Source& src, const std::vector<AnimatedInstance>& inst
       const tinygltf::AnimationChannel& channel = animation.channels[c];
       std::string what = fmt::format("animation {} channel {}", a, c);
       if (channel.target_path == "weights") {
-        warn(src.path, what + " animates morph weights, which are not supported; ignored");
+        warnIgnored(src, "morph target weight animations are ignored", "animation channels", what);
         continue;
       }
       if (channel.sampler < 0 || size_t(channel.sampler) >= animation.samplers.size())
@@ -95,7 +95,9 @@ void loadAnimations(const Source& src, const std::vector<AnimatedInstance>& inst
       for (const AnimatedInstance& i : instances)
         if (i.node == channel.target_node) target = &i;
       if (!target) {
-        warn(src.path, what + " animates a node without a mesh (e.g. a parent); ignored");
+        warnIgnored(src,
+                    "animations of nodes that place no mesh (skin joints, parents) are ignored",
+                    "animation channels", what);
         continue;
       }
       auto [it, added] = trackOfNode.try_emplace(target->node, out.transforms.size());

@@ -3,6 +3,7 @@
 #pragma once
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -10,16 +11,34 @@
 #include <glm/glm.hpp>
 
 #include "scene/gltf_accessor.h"
+#include "scene/load_warnings.h"
 #include "scene/scene.h"
 
 namespace bounce::gltf {
 
-// Non-fatal problems (skipped primitives, dropped triangles, ignored features) go to stderr so
-// the user sees them, but loading goes on.
-void warn(const std::string& path, const std::string& message);
+// Non-fatal problems (skipped primitives, dropped triangles, ignored features) are collected
+// in src.warnings, grouped (load_warnings.h), and loading goes on.
+inline void warn(const Source& src, LoadWarning warning) {
+  src.warnings.add(std::move(warning));
+}
+
+// A feature of the file that Bounce does not render (an extension, occlusion maps, skins...):
+// one line per feature and file, with how many `things` use it and the first of them.
+inline void warnIgnored(const Source& src, const std::string& feature, const std::string& things,
+                        const std::string& where) {
+  warn(src, {.group = feature, .things = things, .where = where});
+}
+
+// Extensions the loader reads (or that carry nothing to render, like XMP metadata).
+bool isSupportedExtension(const std::string& name);
+// The warning for an extension that is not supported, saying what is drawn instead; the same
+// text wherever the extension is met, so that it is named once per file.
+std::string ignoredExtensionWarning(const std::string& name);
 
 // "node 3", or "node 3 ('Chair')" when the object has a name, for messages.
 std::string describe(const char* kind, int index, const std::string& name);
+// "mesh 2 ('Cube.003') primitive 0".
+std::string describePrimitive(const Source& src, int mesh, int primitive);
 
 // One glTF mesh primitive as a Geometry with every stream filled (normals computed when absent,
 // zero UVs when absent) and zero-area triangles removed. Returns nothing, after a warning, for
@@ -67,9 +86,12 @@ class MaterialTable {
   int imageFor(int texture, int texCoord, const tinygltf::ExtensionMap& extensions,
                const std::string& slot, int material, std::optional<glm::mat3>& uvTransform);
 
+  void warnIgnoredSampler(int texture, const std::string& where);
+
   const Source& src_;
   Scene& scene_;
   std::map<int, Converted> converted_;  // glTF material -> scene material
+  std::set<int> samplerChecked_;        // textures whose sampler was checked
   std::optional<uint32_t> defaultMaterial_;
   std::map<int, int> sceneImageOfGltfImage_;
   std::vector<int> gltfImageOfSceneImage_;  // decode list, in scene.images order

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <new>
+#include <set>
 
 #include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -24,6 +25,7 @@ namespace {
 
 using gltf::Source;
 using gltf::warn;
+using gltf::warnIgnored;
 
 // tinygltf takes 32-bit lengths.
 constexpr uint64_t kMaxFileBytes = 0xFFFFFFFFull;
@@ -143,12 +145,13 @@ std::string oneLine(std::string text) {
   return text;
 }
 
-void printTinygltfWarnings(const std::string& path, const std::string& warnings) {
+// tinygltf's own warnings, one group per distinct line.
+void collectTinygltfWarnings(const std::string& text, LoadWarnings& warnings) {
   size_t start = 0;
-  while (start < warnings.size()) {
-    size_t end = warnings.find('\n', start);
-    if (end == std::string::npos) end = warnings.size();
-    if (end > start) warn(path, oneLine(warnings.substr(start, end - start)));
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    if (end > start) warnings.add({.group = oneLine(text.substr(start, end - start))});
     start = end + 1;
   }
 }
@@ -159,7 +162,7 @@ std::string lowercaseExtension(const std::string& path) {
   return ext;
 }
 
-tinygltf::Model parseModel(const std::string& path) {
+tinygltf::Model parseModel(const std::string& path, LoadWarnings& loadWarnings) {
   std::vector<uint8_t> bytes = readFile(path);
   bool binary = hasGlbMagic(bytes);
   if (lowercaseExtension(path) == ".glb" && !binary)
@@ -183,7 +186,7 @@ tinygltf::Model parseModel(const std::string& path) {
                                     reinterpret_cast<const char*>(bytes.data()),
                                     unsigned(bytes.size()), baseDir);
   }
-  printTinygltfWarnings(path, warnings);
+  collectTinygltfWarnings(warnings, loadWarnings);
   if (!ok) {
     if (error.find("json.exception.parse_error") != std::string::npos)
       fail("{}: invalid JSON: {}", path, oneLine(error));
@@ -202,9 +205,7 @@ void checkVersion(const std::string& path, const tinygltf::Model& model) {
 // and material extensions that only refine shading (the base metallic-roughness material stays
 // a fair approximation). Spec-gloss is excluded: it replaces the material model altogether.
 bool isSupportedRequiredExtension(const std::string& name) {
-  if (name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" ||
-      name == "KHR_texture_transform")
-    return true;
+  if (gltf::isSupportedExtension(name)) return true;
   return name.starts_with("KHR_materials_") && name != "KHR_materials_pbrSpecularGlossiness";
 }
 
@@ -221,6 +222,22 @@ bool isFinite(const glm::mat4& m) {
   return true;
 }
 
+// A transform that flattens space (a scale of 0 on some axis) cannot be inverted, so rays cannot
+// be taken into its object space; glTF animations use scale 0 to hide objects.
+bool isSingular(const glm::mat4& m) {
+  float det = glm::determinant(glm::mat3(m));
+  return !(std::abs(det) > 0.0f) || !isFinite(glm::inverse(m));
+}
+
+// Nodes whose translation, rotation or scale an animation drives.
+std::set<int> animatedNodes(const tinygltf::Model& model) {
+  std::set<int> nodes;
+  for (const tinygltf::Animation& animation : model.animations)
+    for (const tinygltf::AnimationChannel& channel : animation.channels)
+      if (channel.target_path != "weights") nodes.insert(channel.target_node);
+  return nodes;
+}
+
 std::optional<glm::vec3> unitDirection(const glm::mat4& toWorld, glm::vec3 local) {
   glm::vec3 d(toWorld * glm::vec4(local, 0.0f));
   float length = glm::length(d);
@@ -230,7 +247,8 @@ std::optional<glm::vec3> unitDirection(const glm::mat4& toWorld, glm::vec3 local
 
 class SceneBuilder {
  public:
-  explicit SceneBuilder(const Source& src) : src_(src), materials_(src, scene_) {}
+  explicit SceneBuilder(const Source& src)
+      : src_(src), materials_(src, scene_), animatedNodes_(animatedNodes(src.model)) {}
 
   Scene build(const std::string& name) {
     nodeState_.assign(src_.model.nodes.size(), NodeState::Unvisited);
@@ -238,6 +256,7 @@ class SceneBuilder {
     gltf::loadAnimations(src_, animatedInstances_, scene_.animation);
     materials_.ensureNotEmpty();
     materials_.decodeImages();
+    warnUnusedExtensions();
     scene_.name = name;
     validateScene(scene_, src_.path);
     return std::move(scene_);
@@ -254,6 +273,9 @@ class SceneBuilder {
       int s = model.defaultScene >= 0 ? model.defaultScene : 0;
       if (size_t(s) >= model.scenes.size())
         fail("{}: default scene {} does not exist ({} scenes)", src_.path, s, model.scenes.size());
+      if (model.scenes.size() > 1)
+        warn(src_, {.group = fmt::format("the file has {} scenes; only scene {} is loaded",
+                                         model.scenes.size(), s)});
       return model.scenes[size_t(s)].nodes;
     }
     std::vector<bool> isChild(model.nodes.size(), false);
@@ -285,7 +307,7 @@ class SceneBuilder {
     if (!isFinite(toWorld))
       fail("{}: {} has a non-finite world transform", src_.path,
            gltf::describe("node", index, node.name));
-    if (node.mesh >= 0) {
+    if (node.mesh >= 0 && placeable(index, toWorld)) {
       size_t before = scene_.instances.size();
       addInstance(index, toWorld);
       if (scene_.instances.size() > before)
@@ -335,15 +357,33 @@ class SceneBuilder {
     return m;
   }
 
+  // A mesh node whose world transform is singular (scale 0: how animations hide objects) has
+  // nothing to show. Without an animation of its own it is skipped; with one it is kept, and
+  // the renderer hides it while its transform stays singular (rt/scene_bvh.h).
+  bool placeable(int index, const glm::mat4& toWorld) {
+    if (!isSingular(toWorld)) return true;
+    const tinygltf::Node& node = src_.model.nodes[size_t(index)];
+    if (animatedNodes_.count(index)) {
+      warn(src_, {.group = "starts with a singular transform (scale 0): hidden until its "
+                           "animation scales it up",
+                  .things = "nodes",
+                  .where = gltf::describe("node", index, node.name)});
+      return true;
+    }
+    warn(src_, {.group = "skipped: singular transform (scale 0), nothing to show",
+                .things = "nodes",
+                .where = gltf::describe("node", index, node.name)});
+    return false;
+  }
+
   void addInstance(int index, const glm::mat4& toWorld) {
     const tinygltf::Node& node = src_.model.nodes[size_t(index)];
     if (size_t(node.mesh) >= src_.model.meshes.size())
       fail("{}: node {} refers to mesh {} ({} meshes)", src_.path, index, node.mesh,
            src_.model.meshes.size());
-    if (node.skin >= 0 && !warnedSkin_) {
-      warn(src_.path, "skins are not supported; skinned meshes are placed by their node transform");
-      warnedSkin_ = true;
-    }
+    if (node.skin >= 0)
+      warnIgnored(src_, "skins are ignored: skinned meshes are drawn in their bind pose", "nodes",
+                  gltf::describe("node", index, node.name));
     std::optional<uint32_t> mesh = sceneMesh(node.mesh);
     if (!mesh) return;
     std::string name = node.name.empty() ? fmt::format("node {}", index) : node.name;
@@ -372,13 +412,15 @@ class SceneBuilder {
       if (std::optional<glm::mat3> uvTransform = materials_.uvTransform(material))
         gltf::transformUvs(*geometry, *uvTransform);
       if (!source.primitives[p].targets.empty())
-        warn(src_.path, fmt::format("mesh {} primitive {}: morph targets ignored", gltfMesh, p));
+        warnIgnored(src_, "morph targets are ignored", "primitives",
+                    gltf::describePrimitive(src_, gltfMesh, int(p)));
       mesh.geometries.push_back(std::move(*geometry));
     }
     std::optional<uint32_t> result;
     if (mesh.geometries.empty()) {
-      warn(src_.path, fmt::format("{} has no triangles; its nodes are skipped",
-                                  gltf::describe("mesh", gltfMesh, source.name)));
+      warn(src_, {.group = "no triangles to render, nodes using it are skipped",
+                  .things = "meshes",
+                  .where = gltf::describe("mesh", gltfMesh, source.name)});
     } else {
       result = uint32_t(scene_.meshes.size());
       scene_.meshes.push_back(std::move(mesh));
@@ -394,11 +436,15 @@ class SceneBuilder {
     if (size_t(node.camera) >= src_.model.cameras.size())
       fail("{}: node {} refers to camera {} ({} cameras)", src_.path, index, node.camera,
            src_.model.cameras.size());
-    if (scene_.camera) return;
     const tinygltf::Camera& camera = src_.model.cameras[size_t(node.camera)];
+    std::string where = gltf::describe("node", index, node.name);
     if (camera.type != "perspective") {
-      warn(src_.path, fmt::format("camera {} is {}, only perspective cameras are used", node.camera,
-                                  camera.type));
+      warnIgnored(src_, "cameras other than perspective ones are ignored", "camera nodes", where);
+      return;
+    }
+    if (scene_.camera) {
+      warnIgnored(src_, "cameras after the first perspective one are ignored", "camera nodes",
+                  where);
       return;
     }
     double yfov = camera.perspective.yfov;
@@ -448,7 +494,10 @@ class SceneBuilder {
     else if (l.type == "directional")
       out.type = PunctualLight::Type::Directional;
     else {
-      warn(src_.path, fmt::format("light {} has unknown type '{}'; ignored", index, l.type));
+      warn(src_, {.group = "lights of unknown type are ignored",
+                  .things = "lights",
+                  .where = gltf::describe("light", int(index), l.name),
+                  .detail = fmt::format("unknown type '{}'; ignored", l.type)});
       return std::nullopt;
     }
     out.name = l.name;
@@ -472,31 +521,41 @@ class SceneBuilder {
     return out;
   }
 
+  // Extensions listed in extensionsUsed that Bounce ignores and that no loaded material named
+  // already (an unused material's, or one on nodes, textures or meshes).
+  void warnUnusedExtensions() {
+    for (const std::string& name : src_.model.extensionsUsed) {
+      if (gltf::isSupportedExtension(name)) continue;
+      std::string group = gltf::ignoredExtensionWarning(name);
+      if (src_.warnings.count(group) == 0) warn(src_, {.group = group});
+    }
+  }
+
   const Source& src_;
   Scene scene_;
   gltf::MaterialTable materials_;  // refers to scene_, so declared after it
+  std::set<int> animatedNodes_;
   std::vector<NodeState> nodeState_;
   std::vector<gltf::AnimatedInstance> animatedInstances_;
   std::map<int, std::optional<uint32_t>> meshes_;
-  bool warnedSkin_ = false;
   uint64_t loadedElements_ = 0;
 };
 
-Scene loadParsed(const std::string& path) {
-  tinygltf::Model model = parseModel(path);
+Scene loadParsed(const std::string& path, LoadWarnings& warnings) {
+  tinygltf::Model model = parseModel(path, warnings);
   checkVersion(path, model);
   checkRequiredExtensions(path, model);
-  Source src{model, path};
+  Source src{model, path, warnings};
   return SceneBuilder(src).build(std::filesystem::path(path).stem().string());
 }
 
 }  // namespace
 
-Scene loadGltf(const std::string& path) {
+Scene loadGltf(const std::string& path, LoadWarnings& warnings) {
   // Our own checks throw bounce::Error; anything else escaping tinygltf or the standard
   // library (an allocation failure, a length error) still becomes an error naming the file.
   try {
-    return loadParsed(path);
+    return loadParsed(path, warnings);
   } catch (const Error&) {
     throw;
   } catch (const std::bad_alloc&) {
@@ -504,6 +563,13 @@ Scene loadGltf(const std::string& path) {
   } catch (const std::exception& e) {
     fail("{}: {}", path, e.what());
   }
+}
+
+Scene loadGltf(const std::string& path) {
+  LoadWarnings warnings;
+  Scene scene = loadGltf(path, warnings);
+  warnings.print(stderr, path);
+  return scene;
 }
 
 }  // namespace bounce

@@ -123,7 +123,45 @@ Image decodeImage(const Source& src, int index) {
   return image;
 }
 
+// What Bounce draws in place of each extension it ignores, by extension-name prefix.
+struct IgnoredExtension {
+  const char* name;
+  const char* consequence;
+};
+constexpr IgnoredExtension kIgnoredExtensions[] = {
+    {"KHR_materials_transmission", "surfaces are opaque (no transmission)"},
+    {"KHR_materials_diffuse_transmission", "surfaces are opaque (no transmission)"},
+    {"KHR_materials_volume", "surfaces are opaque (no volume)"},
+    {"KHR_materials_unlit", "the material is lit like any other"},
+    {"KHR_materials_pbrSpecularGlossiness", "the metallic-roughness fallback is used"},
+    {"KHR_materials_variants", "each primitive keeps its default material"},
+    {"KHR_materials_", "shaded as plain metallic-roughness"},
+    {"KHR_draco_mesh_compression", "the uncompressed fallback data is used"},
+    {"EXT_meshopt_compression", "the uncompressed fallback data is used"},
+    {"KHR_texture_basisu", "textures without a PNG or JPEG source are dropped"},
+    {"EXT_texture_", "textures without a PNG or JPEG source are dropped"},
+    {"MSFT_texture_dds", "textures without a PNG or JPEG source are dropped"},
+    {"EXT_mesh_gpu_instancing", "each node is drawn once, at its own transform"},
+};
+
+// Material extensions Bounce reads; every other one on a used material is named.
+bool isReadMaterialExtension(const std::string& name) {
+  return name == "KHR_materials_emissive_strength";
+}
+
 }  // namespace
+
+bool isSupportedExtension(const std::string& name) {
+  return name == "KHR_materials_emissive_strength" || name == "KHR_lights_punctual" ||
+         name == "KHR_texture_transform" || name == "KHR_mesh_quantization" ||
+         name == "KHR_xmp_json_ld" || name == "KHR_xmp";
+}
+
+std::string ignoredExtensionWarning(const std::string& name) {
+  for (const IgnoredExtension& e : kIgnoredExtensions)
+    if (name.starts_with(e.name)) return fmt::format("{} is ignored: {}", name, e.consequence);
+  return fmt::format("{} is ignored", name);
+}
 
 uint32_t MaterialTable::sceneIndex(int gltfMaterial) {
   if (gltfMaterial < 0) {
@@ -175,10 +213,28 @@ static float finiteFactor(const Source& src, double value, const std::string& wh
 static AlphaMode parseAlphaMode(const Source& src, const std::string& mode,
                                 const std::string& where) {
   if (mode == "MASK") return AlphaMode::Mask;
-  if (mode == "BLEND") return AlphaMode::Blend;
+  if (mode == "BLEND") {
+    warnIgnored(src, "alphaMode BLEND is drawn as an alpha mask at 0.5 (no blending)", "materials",
+                where);
+    return AlphaMode::Blend;
+  }
   if (mode != "OPAQUE")
-    warn(src.path, fmt::format("{}: unknown alphaMode '{}', using OPAQUE", where, mode));
+    warn(src, {.group = "unknown alphaMode, OPAQUE used",
+               .things = "materials",
+               .where = where,
+               .detail = fmt::format("unknown alphaMode '{}', using OPAQUE", mode)});
   return AlphaMode::Opaque;
+}
+
+// Features of a used material that Bounce does not draw, each named once per file.
+static void warnIgnoredMaterialFeatures(const Source& src, const tinygltf::Material& m,
+                                        const std::string& where) {
+  if (m.occlusionTexture.index >= 0)
+    warnIgnored(src, "occlusionTexture is ignored: the renderer computes its own occlusion",
+                "materials", where);
+  for (const auto& [name, value] : m.extensions)
+    if (!isReadMaterialExtension(name))
+      warnIgnored(src, ignoredExtensionWarning(name), "materials", where);
 }
 
 Material MaterialTable::makeMaterial(int index, std::optional<glm::mat3>& uvTransform) {
@@ -202,6 +258,7 @@ Material MaterialTable::makeMaterial(int index, std::optional<glm::mat3>& uvTran
     mat.emissive[c] =
         std::max(finiteFactor(src_, m.emissiveFactor[size_t(c)], where, "emissiveFactor"), 0.f) *
         std::max(strength, 0.0f);
+  warnIgnoredMaterialFeatures(src_, m, where);
   mat.normalScale = finiteFactor(src_, m.normalTexture.scale, where, "normalTexture.scale");
   mat.alphaMode = parseAlphaMode(src_, m.alphaMode, where);
   mat.alphaCutoff = glm::max(finiteFactor(src_, m.alphaCutoff, where, "alphaCutoff"), 0.0f);
@@ -230,16 +287,20 @@ int MaterialTable::imageFor(int texture, int texCoord, const tinygltf::Extension
                             std::optional<glm::mat3>& uvTransform) {
   if (texture < 0) return -1;
   const tinygltf::Model& model = src_.model;
-  std::string where = fmt::format("material {} {}", material, slot);
+  std::string where = fmt::format(
+      "{} {}", describe("material", material, model.materials[size_t(material)].name), slot);
   if (size_t(texture) >= model.textures.size())
     fail("{}: {} refers to texture {} ({} textures)", src_.path, where, texture,
          model.textures.size());
   int source = model.textures[size_t(texture)].source;
   if (source < 0) {
-    warn(src_.path,
-         fmt::format("{}: texture {} has no image we can read; ignored", where, texture));
+    warn(src_, {.group = "textures without a PNG or JPEG image are ignored",
+                .things = "texture slots",
+                .where = where,
+                .detail = fmt::format("texture {} has no image we can read; ignored", texture)});
     return -1;
   }
+  warnIgnoredSampler(texture, where);
   if (size_t(source) >= model.images.size())
     fail("{}: texture {} refers to image {} ({} images)", src_.path, texture, source,
          model.images.size());
@@ -254,12 +315,13 @@ int MaterialTable::imageFor(int texture, int texCoord, const tinygltf::Extension
   if (!uvTransform)
     uvTransform = transform;
   else if (!nearlyEqual(*uvTransform, transform))
-    warn(src_.path, fmt::format("{}: its KHR_texture_transform differs from the material's "
-                                "first texture; using that one",
-                                where));
+    warn(src_, {.group = "a KHR_texture_transform that differs from the material's first "
+                         "texture's is replaced by that one",
+                .things = "texture slots",
+                .where = where});
   if (texCoord != 0)
-    warn(src_.path, fmt::format("{}: uses TEXCOORD_{}; only TEXCOORD_0 is loaded, so it is used",
-                                where, texCoord));
+    warnIgnored(src_, "TEXCOORD_1 and higher are ignored: TEXCOORD_0 is used instead",
+                "texture slots", fmt::format("{} (TEXCOORD_{})", where, texCoord));
 
   auto [it, inserted] = sceneImageOfGltfImage_.emplace(source, int(scene_.images.size()));
   if (inserted) {
@@ -267,6 +329,28 @@ int MaterialTable::imageFor(int texture, int texCoord, const tinygltf::Extension
     gltfImageOfSceneImage_.push_back(source);
   }
   return it->second;
+}
+
+// The texture arrays are sampled with one sampler: linear filtering with linear mipmaps,
+// repeat wrapping (rt/gpu_scene.cpp). A glTF sampler asking for anything else is named.
+void MaterialTable::warnIgnoredSampler(int texture, const std::string& where) {
+  if (!samplerChecked_.insert(texture).second) return;
+  int sampler = src_.model.textures[size_t(texture)].sampler;
+  if (sampler < 0 || size_t(sampler) >= src_.model.samplers.size()) return;
+  const tinygltf::Sampler& s = src_.model.samplers[size_t(sampler)];
+  const char* differs = nullptr;
+  if (s.wrapS != TINYGLTF_TEXTURE_WRAP_REPEAT || s.wrapT != TINYGLTF_TEXTURE_WRAP_REPEAT)
+    differs = "wrap mode";
+  else if (s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+           s.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ||
+           s.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST ||
+           s.minFilter == TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR)
+    differs = "nearest filtering";
+  if (!differs) return;
+  warnIgnored(src_,
+              "sampler wrap and filter modes are ignored: textures repeat and filter linearly "
+              "with mipmaps",
+              "textures", fmt::format("{} (sampler {}: {})", where, sampler, differs));
 }
 
 }  // namespace bounce::gltf

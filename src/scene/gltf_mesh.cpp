@@ -39,6 +39,38 @@ std::vector<float> readAttribute(const Source& src, const tinygltf::Primitive& p
   return data;
 }
 
+// COLOR_0 as linear RGBA (glTF 2.0 §3.7.2.1): VEC3 (alpha 1) or VEC4, of floats or of
+// normalized unsigned bytes or shorts, which readFloatAccessor maps to [0, 1]. Floats outside
+// [0, 1] are clamped (the spec's range for colours), non-finite ones become 1 (no tint).
+std::vector<glm::vec4> readVertexColors(const Source& src, const tinygltf::Primitive& primitive,
+                                        size_t vertexCount, const std::string& where) {
+  int accessor = attributeAccessor(primitive, "COLOR_0");
+  if (accessor < 0) return {};
+  if (size_t(accessor) >= src.model.accessors.size())
+    fail("{}: {}: COLOR_0 refers to accessor {} ({} accessors)", src.path, where, accessor,
+         src.model.accessors.size());
+  const tinygltf::Accessor& a = src.model.accessors[size_t(accessor)];
+  bool floats = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+  bool normalizedInts = a.normalized && (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                         a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  if (!floats && !normalizedInts)
+    fail(
+        "{}: {}: COLOR_0 has componentType {}{}, expected FLOAT or normalized UNSIGNED_BYTE or "
+        "UNSIGNED_SHORT",
+        src.path, where, a.componentType, a.normalized ? " (normalized)" : "");
+  // Anything but VEC3 is read as VEC4, whose type check names the accessor's real type.
+  int type = a.type == TINYGLTF_TYPE_VEC3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+  std::vector<float> data = readAttribute(src, primitive, "COLOR_0", type, vertexCount, where);
+  size_t components = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+  std::vector<glm::vec4> colors(vertexCount, glm::vec4(1.0f));
+  for (size_t v = 0; v < vertexCount; ++v)
+    for (size_t c = 0; c < components; ++c) {
+      float x = data[v * components + c];
+      colors[v][int(c)] = std::isfinite(x) ? glm::clamp(x, 0.0f, 1.0f) : 1.0f;
+    }
+  return colors;
+}
+
 // Strips and fans become lists with the winding the spec defines (glTF 2.0 §3.7.2.1), so
 // front faces stay front faces.
 std::vector<uint32_t> triangleListIndices(const std::vector<uint32_t>& indices, int mode) {
@@ -134,7 +166,12 @@ void fillNormals(const Source& src, Geometry& g, std::vector<glm::vec3> fileNorm
     ++repaired;
   }
   if (repaired > 0)
-    warn(src.path, fmt::format("{}: replaced {} zero or non-finite normals", where, repaired));
+    warn(src, {.group = "replaced zero or non-finite normals by computed ones",
+               .things = "primitives",
+               .where = where,
+               .detail = fmt::format("replaced {} zero or non-finite normals", repaired),
+               .amount = repaired,
+               .unit = "normals"});
   g.normals = std::move(fileNormals);
 }
 
@@ -151,7 +188,12 @@ void fillUvs(const Source& src, Geometry& g, std::vector<glm::vec2> fileUvs,
       ++repaired;
     }
   if (repaired > 0)
-    warn(src.path, fmt::format("{}: replaced {} non-finite UVs by 0", where, repaired));
+    warn(src, {.group = "replaced non-finite UVs by 0",
+               .things = "primitives",
+               .where = where,
+               .detail = fmt::format("replaced {} non-finite UVs by 0", repaired),
+               .amount = repaired,
+               .unit = "UVs"});
   g.uvs = std::move(fileUvs);
 }
 
@@ -162,8 +204,9 @@ void fillTangents(const Source& src, Geometry& g, std::vector<glm::vec4> fileTan
                   const std::string& where) {
   for (glm::vec4& t : fileTangents) {
     if (!isUsableDirection(glm::vec3(t)) || !std::isfinite(t.w)) {
-      warn(src.path,
-           fmt::format("{}: TANGENT has zero or non-finite entries; tangents dropped", where));
+      warn(src, {.group = "TANGENT has zero or non-finite entries; tangents dropped",
+                 .things = "primitives",
+                 .where = where});
       return;
     }
     t = glm::vec4(glm::normalize(glm::vec3(t)), t.w < 0.0f ? -1.0f : 1.0f);
@@ -207,34 +250,56 @@ std::vector<uint32_t> readTriangleIndices(const Source& src, const tinygltf::Pri
   return triangleListIndices(indices, mode);
 }
 
-void dropZeroAreaTriangles(const Source& src, Geometry& g, const std::string& where) {
+// Drops zero-area triangles with a warning; false, after a warning, when none is left (the
+// primitive is then skipped: a valid file may hold degenerate geometry, and it renders as if
+// that primitive were not there).
+bool dropZeroAreaTriangles(const Source& src, Geometry& g, const std::string& where) {
   size_t before = g.indices.size() / 3;
   size_t removed = removeZeroAreaTriangles(g.positions, g.indices);
-  if (removed == 0) return;
-  if (removed == before) fail("{}: {}: all {} triangles have zero area", src.path, where, before);
-  warn(src.path,
-       fmt::format("{}: dropped {} of {} triangles with zero area", where, removed, before));
+  if (removed == 0) return true;
+  if (removed == before) {
+    warn(src,
+         {.group = "skipped: every triangle has zero area",
+          .things = "primitives",
+          .where = where,
+          .detail = before == 1 ? std::string("skipped: its one triangle has zero area")
+                                : fmt::format("skipped: all {} triangles have zero area", before),
+          .amount = before,
+          .unit = "triangles"});
+    return false;
+  }
+  warn(src, {.group = "dropped zero-area triangles",
+             .things = "primitives",
+             .where = where,
+             .detail = fmt::format("dropped {} of {} triangles with zero area", removed, before),
+             .amount = removed,
+             .unit = "triangles"});
+  return true;
 }
 
 }  // namespace
-
-void warn(const std::string& path, const std::string& message) {
-  fmt::print(stderr, "warning: {}: {}\n", path, message);
-}
 
 std::string describe(const char* kind, int index, const std::string& name) {
   return name.empty() ? fmt::format("{} {}", kind, index)
                       : fmt::format("{} {} ('{}')", kind, index, name);
 }
 
+std::string describePrimitive(const Source& src, int mesh, int primitive) {
+  return fmt::format("{} primitive {}", describe("mesh", mesh, src.model.meshes[size_t(mesh)].name),
+                     primitive);
+}
+
 std::optional<Geometry> loadPrimitive(const Source& src, int meshIndex, int primitiveIndex) {
   const tinygltf::Primitive& primitive =
       src.model.meshes[size_t(meshIndex)].primitives[size_t(primitiveIndex)];
-  std::string where = fmt::format("mesh {} primitive {}", meshIndex, primitiveIndex);
+  std::string where = describePrimitive(src, meshIndex, primitiveIndex);
   int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
   if (!isTriangleMode(mode)) {
-    warn(src.path,
-         fmt::format("{}: skipped: mode {} ({}) is not triangles", where, mode, modeName(mode)));
+    warn(src,
+         {.group = "skipped: points and lines are not rendered",
+          .things = "primitives",
+          .where = where,
+          .detail = fmt::format("skipped: mode {} ({}) is not triangles", mode, modeName(mode))});
     return std::nullopt;
   }
   int positionAccessor = attributeAccessor(primitive, "POSITION");
@@ -248,10 +313,10 @@ std::optional<Geometry> loadPrimitive(const Source& src, int meshIndex, int prim
   g.positions = toVectors<glm::vec3>(positions);
   g.indices = readTriangleIndices(src, primitive, mode, vertexCount, where);
   if (g.indices.empty()) {
-    warn(src.path, fmt::format("{}: skipped: no triangles", where));
+    warn(src, {.group = "skipped: no triangles", .things = "primitives", .where = where});
     return std::nullopt;
   }
-  dropZeroAreaTriangles(src, g, where);
+  if (!dropZeroAreaTriangles(src, g, where)) return std::nullopt;
   fillNormals(src, g,
               toVectors<glm::vec3>(
                   readAttribute(src, primitive, "NORMAL", TINYGLTF_TYPE_VEC3, vertexCount, where)),
@@ -264,6 +329,7 @@ std::optional<Geometry> loadPrimitive(const Source& src, int meshIndex, int prim
                toVectors<glm::vec4>(readAttribute(src, primitive, "TANGENT", TINYGLTF_TYPE_VEC4,
                                                   vertexCount, where)),
                where);
+  g.colors = readVertexColors(src, primitive, vertexCount, where);
   return g;
 }
 

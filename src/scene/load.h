@@ -4,12 +4,17 @@
 #include <string>
 #include <vector>
 
+#include "scene/load_warnings.h"
 #include "scene/scene.h"
 
 namespace bounce {
 
 // glTF 2.0 (.gltf with external or embedded buffers, or .glb). Throws bounce::Error naming the
-// file and the problem for anything malformed or unsupported. (src/scene/gltf_loader.cpp)
+// file and the problem for anything malformed or unsupported. Problems it can work around
+// (degenerate geometry, ignored features: docs/scenes.md) become warnings: collected in
+// `warnings`, or printed to stderr as a summary by the one-argument form.
+// (src/scene/gltf_loader.cpp)
+Scene loadGltf(const std::string& path, LoadWarnings& warnings);
 Scene loadGltf(const std::string& path);
 
 // Built-in procedural scenes (src/scene/procedural/). Names: cornell, sunroom, foliage,

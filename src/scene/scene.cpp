@@ -70,6 +70,8 @@ void validateScene(const Scene& scene, const std::string& source) {
       if (g.uvs.size() != n) fail("{}: {} uvs for {} positions", where, g.uvs.size(), n);
       if (!g.tangents.empty() && g.tangents.size() != n)
         fail("{}: {} tangents for {} positions", where, g.tangents.size(), n);
+      if (!g.colors.empty() && g.colors.size() != n)
+        fail("{}: {} colours for {} positions", where, g.colors.size(), n);
       if (g.indices.size() % 3 != 0)
         fail("{}: index count {} is not a multiple of 3", where, g.indices.size());
       for (uint32_t i : g.indices)

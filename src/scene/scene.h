@@ -32,13 +32,16 @@ struct Aabb {
 
 // One triangle list with one material (a glTF mesh primitive). After loading, every stream is
 // filled: `normals` and `uvs` have one entry per position (defaults are computed or zero when a
-// file lacks them); `tangents` is either empty or one per position.
+// file lacks them); `tangents` and `colors` are either empty or one per position.
 struct Geometry {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;
   std::vector<glm::vec4> tangents;  // xyz tangent, w = bitangent sign
-  std::vector<uint32_t> indices;    // three per triangle
+  // glTF COLOR_0, linear RGBA in [0, 1]: multiplies the material's base colour and alpha
+  // (glTF 2.0 §3.9.2). Empty = white.
+  std::vector<glm::vec4> colors;
+  std::vector<uint32_t> indices;  // three per triangle
   uint32_t material = 0;
   uint32_t triangleCount() const { return uint32_t(indices.size() / 3); }
 };

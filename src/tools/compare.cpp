@@ -12,6 +12,7 @@
 #include "tools/heatmap.h"
 #include "tools/image_io.h"
 #include "tools/metrics.h"
+#include "tools/output_file.h"
 
 namespace bounce {
 namespace {
@@ -133,7 +134,9 @@ std::string compareReportJson(const CompareReport& r) {
                                  {"mse", r.mse},
                                  {"psnr_db", finiteOrNull(r.psnrDb)},
                                  {"flip", flip}};
-  return report.dump(2) + "\n";
+  // Paths are bytes, not always UTF-8: an invalid sequence becomes U+FFFD rather than an
+  // exception, so the report is always valid JSON.
+  return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 float autoExposure(const ImageRGBA32F& image) {
@@ -197,11 +200,7 @@ CompareReport runCompare(const CompareOptions& options) {
       compareImages(options.testPath, options.referencePath, options.pixelsPerDegree);
   if (!options.heatmapPath.empty()) writeHeatmap(options.heatmapPath, report.flip);
   if (!options.sideBySidePath.empty()) writeSideBySide(options, report);
-  if (!options.jsonPath.empty()) {
-    std::ofstream file(options.jsonPath);
-    file << compareReportJson(report);
-    if (!file) fail("{}: cannot write the JSON report", options.jsonPath);
-  }
+  if (!options.jsonPath.empty()) writeTextFile(options.jsonPath, compareReportJson(report));
   return report;
 }
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 
 #include <stb_image.h>
@@ -199,13 +200,73 @@ ImageRGBA32F readImage(const std::string& path) {
        imageExtension(path));
 }
 
-void writeExr(const std::string& path, const ImageRGBA32F& image) {
+void writeExr(const std::string& path, const ImageRGBA32F& image, const ImageMetadata& metadata) {
   requireSaneSize(path, image.width, image.height);
-  const char* message = nullptr;
-  if (SaveEXR(image.pixels.data(), image.width, image.height, 4, /*save_as_fp16=*/0, path.c_str(),
-              &message) != TINYEXR_SUCCESS) {
-    fail("{}: cannot write EXR: {}", path, takeExrMessage(message));
+  // Channels in (A)BGR order, as EXR viewers expect them (and tinyexr's SaveEXR writes them);
+  // the explicit header is what lets string attributes travel with the pixels.
+  constexpr std::array<const char*, 4> kNames = {"A", "B", "G", "R"};
+  constexpr std::array<int, 4> kSourceChannel = {3, 2, 1, 0};
+  std::array<std::vector<float>, 4> planes;
+  std::array<unsigned char*, 4> planePointers{};
+  std::array<EXRChannelInfo, 4> channels{};
+  std::array<int, 4> pixelTypes{};
+  for (size_t c = 0; c < 4; ++c) {
+    planes[c].resize(image.pixelCount());
+    for (size_t i = 0; i < image.pixelCount(); ++i)
+      planes[c][i] = image.pixels[4 * i + size_t(kSourceChannel[c])];
+    planePointers[c] = reinterpret_cast<unsigned char*>(planes[c].data());
+    std::snprintf(channels[c].name, sizeof(channels[c].name), "%s", kNames[c]);
+    pixelTypes[c] = TINYEXR_PIXELTYPE_FLOAT;
   }
+  std::vector<EXRAttribute> attributes(metadata.size());
+  for (size_t i = 0; i < metadata.size(); ++i) {
+    std::snprintf(attributes[i].name, sizeof(attributes[i].name), "%s", metadata[i].first.c_str());
+    std::snprintf(attributes[i].type, sizeof(attributes[i].type), "string");
+    attributes[i].value =
+        reinterpret_cast<unsigned char*>(const_cast<char*>(metadata[i].second.data()));
+    attributes[i].size = int(metadata[i].second.size());
+  }
+  EXRImage exr;
+  InitEXRImage(&exr);
+  exr.images = planePointers.data();
+  exr.width = image.width;
+  exr.height = image.height;
+  exr.num_channels = 4;
+  EXRHeader header;
+  InitEXRHeader(&header);
+  header.num_channels = 4;
+  header.channels = channels.data();
+  header.pixel_types = pixelTypes.data();
+  header.requested_pixel_types = pixelTypes.data();
+  // tinyexr's own rule (SaveEXR): tiny images uncompressed.
+  header.compression_type = image.width < 16 && image.height < 16 ? TINYEXR_COMPRESSIONTYPE_NONE
+                                                                  : TINYEXR_COMPRESSIONTYPE_ZIP;
+  header.num_custom_attributes = int(attributes.size());
+  header.custom_attributes = attributes.empty() ? nullptr : attributes.data();
+  const char* message = nullptr;
+  if (SaveEXRImageToFile(&exr, &header, path.c_str(), &message) != TINYEXR_SUCCESS)
+    fail("{}: cannot write EXR: {}", path, takeExrMessage(message));
+}
+
+ImageMetadata readExrMetadata(const std::string& path) {
+  requireReadableFile(path);
+  checkExrHeader(path);
+  EXRVersion version;
+  ParseEXRVersionFromFile(&version, path.c_str());
+  EXRHeader header;
+  InitEXRHeader(&header);
+  const char* message = nullptr;
+  if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &message) != TINYEXR_SUCCESS)
+    fail("{}: invalid EXR header: {}", path, takeExrMessage(message));
+  ImageMetadata metadata;
+  for (int i = 0; i < header.num_custom_attributes; ++i) {
+    const EXRAttribute& a = header.custom_attributes[i];
+    if (std::string(a.type) == "string")
+      metadata.emplace_back(a.name,
+                            std::string(reinterpret_cast<const char*>(a.value), size_t(a.size)));
+  }
+  FreeEXRHeader(&header);
+  return metadata;
 }
 
 void writePng(const std::string& path, const ImageRGBA32F& image, float exposure) {
@@ -223,8 +284,9 @@ void writePng(const std::string& path, const ImageRGBA32F& image, float exposure
   }
 }
 
-void writeImage(const std::string& path, const ImageRGBA32F& image, float exposure) {
-  if (isHdrExtension(path)) return writeExr(path, image);
+void writeImage(const std::string& path, const ImageRGBA32F& image, float exposure,
+                const ImageMetadata& metadata) {
+  if (isHdrExtension(path)) return writeExr(path, image, metadata);
   if (imageExtension(path) == "png") return writePng(path, image, exposure);
   fail("{}: cannot write images of type '{}' (use .exr or .png)", path, imageExtension(path));
 }

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec4.hpp>
@@ -41,13 +42,21 @@ float linearToSrgb(float linear);
 // unreadable, truncated, not the format its extension says, or absurdly large.
 ImageRGBA32F readImage(const std::string& path);
 
-// 32-bit float RGBA EXR (ZIP compressed).
-void writeExr(const std::string& path, const ImageRGBA32F& image);
+// Name/value text stored with an image: EXR "string" attributes (e.g. the samples per pixel of
+// an interrupted reference render). PNG files do not carry it (stb writes no text chunks).
+using ImageMetadata = std::vector<std::pair<std::string, std::string>>;
+
+// 32-bit float RGBA EXR (ZIP compressed), with `metadata` as string attributes.
+void writeExr(const std::string& path, const ImageRGBA32F& image,
+              const ImageMetadata& metadata = {});
+// The string attributes of an EXR file's header.
+ImageMetadata readExrMetadata(const std::string& path);
 // 8-bit sRGB PNG: linear * exposure -> clamp to [0,1] -> sRGB OETF, no tone curve (the same
 // as Cycles' "Standard" view transform). RGB when every alpha is 1, RGBA otherwise.
 void writePng(const std::string& path, const ImageRGBA32F& image, float exposure = 1.0f);
-// Picks writeExr or writePng by extension (exposure applies to PNG only).
-void writeImage(const std::string& path, const ImageRGBA32F& image, float exposure = 1.0f);
+// Picks writeExr or writePng by extension (exposure applies to PNG only, metadata to EXR only).
+void writeImage(const std::string& path, const ImageRGBA32F& image, float exposure = 1.0f,
+                const ImageMetadata& metadata = {});
 
 // Lower-case extension without the dot ("exr", "png"), empty when there is none.
 std::string imageExtension(const std::string& path);
