@@ -201,6 +201,15 @@ TEST(FrameSettings, ValidateRefusesOutOfRangeFieldsByName) {
   refused("resolution 0x1080", [](HybridSettings& s) { s.width = 0; });
   refused("shadow divisor 0", [](HybridSettings& s) { s.shadows.divisor = 0; });
   refused("exposure 100 stops", [](HybridSettings& s) { s.exposureStops = 100.0f; });
+  refused("auto exposure percentiles 0.9 .. 0.5", [](HybridSettings& s) {
+    s.exposure.lowPercentile = 0.9f;
+    s.exposure.highPercentile = 0.5f;
+  });
+  refused("auto exposure key 0", [](HybridSettings& s) { s.exposure.key = 0.0f; });
+  refused("auto exposure luminance range 2^-20",
+          [](HybridSettings& s) { s.exposure.minLog2Luminance = -20.0f; });
+  refused("auto exposure darkening time -1",
+          [](HybridSettings& s) { s.exposure.darkeningSeconds = -1.0f; });
   refused("resolution divisor 17", [](HybridSettings& s) { s.restirGi.divisor = 17; });
   refused("6 temporal history samples",
           [](HybridSettings& s) { s.restirGi.temporalHistorySamples = 6; });

@@ -2,8 +2,8 @@
 // with full GI from the scene's own camera, print the per-pass GPU times of the last one, and
 // write the image if an output path (.png or .exr) is given.
 //
-//   bounce_example_minimal [scene] [out.png]      scene: cornell (default), sunroom, ..., or a
-//   .gltf
+//   bounce_example_minimal [scene] [out.png] [exposure stops]
+//   scene: cornell (default), sunroom, ..., or a .gltf
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -18,10 +18,12 @@ int main(int argc, char** argv) {
     bounce::RendererSettings settings = bounce::presetSettings(bounce::Preset::Mobile);
     settings.width = 320;  // small, so that a CPU device (lavapipe) renders it in seconds
     settings.height = 180;
-    // A scene lit by its emitters alone (cornell) is far dimmer than one under the built-in
-    // scenes' sun, for which the default exposure is made.
-    if (scene.sun().irradiance == 0.0f) settings.exposure = 1.0f;
-    if (argc > 3) settings.exposure = std::strtof(argv[3], nullptr);
+    // Automatic exposure (the default) shows a scene lit by its emitters alone (cornell) as
+    // well as one under the sun; a third argument fixes the exposure instead, in stops.
+    if (argc > 3) {
+      settings.autoExposure = false;
+      settings.exposureStops = std::strtof(argv[3], nullptr);
+    }
     bounce::Renderer renderer = bounce::Renderer::create(scene, settings);
 
     bounce::FrameStatistics statistics;

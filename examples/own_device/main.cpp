@@ -72,7 +72,6 @@ void renderCornell(const bounce::ExternalDevice& device) {
   settings.width = 128;
   settings.height = 96;
   settings.gi = bounce::GiMode::Evolve;
-  settings.exposure = 1.0f;  // lit by its ceiling light alone: far dimmer than under the sun
   bounce::Renderer renderer = bounce::Renderer::create(device, scene, settings);
   bounce::FrameStatistics statistics;
   for (int frame = 0; frame < 4; ++frame) statistics = renderer.render(scene.camera());

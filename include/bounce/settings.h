@@ -30,10 +30,17 @@ struct RendererSettings {
   uint32_t height = 540;
   Preset preset = Preset::Mobile;
   GiMode gi = GiMode::Evolve;
-  // Radiance multiplier before the tone curve (ACES filmic) of the "tonemap" image. At 0.03 a
-  // white Lambert surface under a sun of E = 100 W/m^2 (the built-in scenes' sun) maps to about
-  // 0.8 on the display. Must be positive.
-  float exposure = 0.03f;
+  // Exposure before the tone curve (ACES filmic) of the "tonemap" image. Automatic (the
+  // default): metered from each frame's luminance histogram (the mean log luminance of the
+  // pixels between the 50th and 95th percentiles mapped to middle grey, 0.18) and adapted over
+  // frames as engines do (to brighter light in about 0.3 s, to darker in about 1 s; each
+  // render() counts as 1/60 s, and the first frame and the first after resetHistory() take the
+  // metered exposure directly), so a scene shows whatever its light; `exposureStops` is then a
+  // compensation (+1: twice as bright). Fixed (autoExposure = false): radiance is multiplied by
+  // 2^exposureStops; at -5 a white Lambert surface under a sun of E = 100 W/m^2 (the built-in
+  // scenes' sun) maps to about 0.8 on the display. exposureStops in [-64, 64].
+  bool autoExposure = true;
+  float exposureStops = 0.0f;
 };
 
 // The preset's resolution and the preset itself; gi and exposure keep their defaults.

@@ -63,7 +63,8 @@ struct FrameConstants {
   float skyTurbidity;           // daylight sky
   float skyScale;               // daylight sky: radiance per kcd/m^2 of the model
   float skyAmbientStrength;     // placeholder ambient (unoccluded sky light), 0 = off
-  float exposure;               // radiance multiplier before the tone curve
+  float exposure;               // fixed exposure: 2^exposureStops (tonemap; auto exposure
+                                // writes its own, shared/auto_exposure_io.h)
   uint frameIndex;
   uvec2 resolution;                 // render resolution
   uvec2 shadowResolution;           // shadows.raw
@@ -88,6 +89,13 @@ struct HybridPassConstants {
   uint pad0;
 };
 BOUNCE_CHECK_SIZE(HybridPassConstants, 16);
+
+// Push constants of tonemap: the frame and where its exposure comes from.
+struct TonemapConstants {
+  DeviceAddress frame;          // FrameConstants
+  DeviceAddress exposureState;  // ExposureState of automatic exposure; 0: FrameConstants::exposure
+};
+BOUNCE_CHECK_SIZE(TonemapConstants, 16);
 
 // Push constants of one vbuffer draw: one geometry of one instance.
 struct VBufferDrawConstants {

@@ -129,14 +129,14 @@ HybridSettings toInternal(const RendererSettings& settings, const char* where) {
       settings.height > kMaxSide)
     fail("{}: resolution {}x{}: each side must be 1 .. {}", where, settings.width, settings.height,
          kMaxSide);
-  if (!(std::isfinite(settings.exposure) && settings.exposure > 0.0f))
-    fail("{}: exposure {}: must be positive", where, settings.exposure);
+  if (!(std::abs(settings.exposureStops) <= 64.0f))
+    fail("{}: exposureStops {}: expected -64 to 64", where, settings.exposureStops);
   HybridSettings s = bounce::presetSettings(toInternal(settings.preset, where));
   s.gi = toInternal(settings.gi, where);
   s.width = settings.width;
   s.height = settings.height;
-  s.autoExposure = false;
-  s.exposureStops = std::log2(settings.exposure);
+  s.autoExposure = settings.autoExposure;
+  s.exposureStops = settings.exposureStops;
   return s;
 }
 

@@ -12,6 +12,7 @@ AnimationPlayer::AnimationPlayer(const Scene& scene, SceneAnimation animation)
 }
 
 Camera AnimationPlayer::apply(HybridFrame& frame, float t) {
+  frame.setTime(t);
   if (!animation_.transforms.empty()) {
     evaluateTransforms(animation_, t, transforms_);
     frame.setInstanceTransforms(transforms_);

@@ -20,8 +20,9 @@ class AnimationPlayer {
   // animation has no camera path; it must outlive the player.
   AnimationPlayer(const Scene& scene, SceneAnimation animation);
 
-  // Sets the frame's instances and sun for time t, resets its history at a cut, and returns
-  // the camera to render with. Times must not decrease between calls.
+  // Sets the frame's time (HybridFrame::setTime), instances and sun for time t, resets its
+  // history at a cut, and returns the camera to render with. Times must not decrease between
+  // calls.
   Camera apply(HybridFrame& frame, float t);
   // Whether the last apply() reset history (a cut: a path key marked cut, or a jump of the
   // camera by more than kCutJumpFraction of its distance to its target in one frame).

@@ -26,6 +26,7 @@ void validate(const HybridSettings& s) {
     fail("shadow history {} frames: expected at least 1", s.shadows.maxHistory);
   if (!(std::abs(s.exposureStops) <= 64.0f))
     fail("exposure {} stops: expected -64 to 64", s.exposureStops);
+  if (s.autoExposure) validate(s.exposure);
   if (!(s.skyAmbientStrength >= 0.0f) || !std::isfinite(s.skyAmbientStrength))
     fail("sky ambient {}: must be >= 0", s.skyAmbientStrength);
   if (s.gi == GiMode::Evolve) validate(s.restirGi);

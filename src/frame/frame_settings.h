@@ -10,6 +10,7 @@
 
 #include "gi/evolve/cache/clipmap_cache_settings.h"
 #include "gi/evolve/restir/restir_gi_settings.h"
+#include "passes/auto_exposure.h"
 #include "passes/shadows_trace.h"
 #include "passes/vbuffer.h"
 
@@ -28,12 +29,15 @@ struct HybridSettings {
   uint32_t width = 1920;
   uint32_t height = 1080;
   ShadowSettings shadows;  // shadows-trace, shadows-denoise
-  // Exposure before the tone curve. Automatic exposure adapts to the frame's luminance
-  // histogram over frames (passes/auto_exposure.h) and adds `exposureStops` as compensation;
-  // fixed exposure multiplies radiance by 2^exposureStops. At -5 stops a white Lambert surface
-  // under a sun of E = 100 W/m^2 (the built-in scenes' sun) maps to about 0.8 on the display.
-  bool autoExposure = false;
-  float exposureStops = -5.0f;
+  // Exposure before the tone curve. Automatic (the default, both presets): metered from each
+  // frame's luminance histogram and adapted over frames (passes/auto_exposure.h, settings in
+  // `exposure`), with `exposureStops` as compensation (+1: twice as bright); 0 = middle grey
+  // where the scene's metered level is. Fixed (autoExposure = false, `--exposure STOPS`): radiance
+  // is multiplied by 2^exposureStops; at -5 stops a white Lambert surface under a sun of
+  // E = 100 W/m^2 (the built-in scenes' sun) maps to about 0.8 on the display. -64 to 64.
+  bool autoExposure = true;
+  float exposureStops = 0.0f;
+  AutoExposureSettings exposure;
   // Weight of a placeholder ambient (unoccluded sky irradiance on the diffuse albedo) for
   // previews while no GI mode exists. Off by default: it ignores occlusion, so closed rooms
   // under a bright sky glow with light that cannot reach them.

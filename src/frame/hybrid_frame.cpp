@@ -84,6 +84,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
   nearPlane_ = std::max(1e-4f, 1e-4f * radius);
 
   gi_ = makeDiffuseGi(context, gpuScene, scene, settings);
+  if (settings.autoExposure) autoExposure_.emplace(context, gpuScene, settings.exposure);
 
   LightTable lights = buildLightTable(scene, gpuScene.bvh());
   punctualLightCount_ = uint32_t(lights.punctualLights.size());
@@ -141,7 +142,16 @@ void HybridFrame::setInstanceTransforms(std::span<const glm::mat4> objectToWorld
   gpuScene_.setInstanceTransforms(objectToWorld);
 }
 
+// The time since the last frame (0 for the first), from setTime() or the nominal frame time.
+void HybridFrame::advanceTime() {
+  const double now = nextTime_.value_or(time_.value_or(0.0) + kNominalFrameSeconds);
+  deltaSeconds_ = time_ ? float(std::max(0.0, now - *time_)) : 0.0f;
+  time_ = now;
+  nextTime_.reset();
+}
+
 std::vector<vk::PassTiming> HybridFrame::render(const Camera& camera) {
+  advanceTime();
   constants_ = makeFrameConstants(camera);
   recordFrame();
   return submitFrame();
@@ -151,6 +161,7 @@ std::vector<vk::PassTiming> HybridFrame::renderGi(const Camera& camera,
                                                   const HostGBufferImages& host) {
   if (!gi_) fail("bring your own G-buffer: the renderer has no GI system (gi none)");
   checkHostGBuffer(host, {settings_.width, settings_.height}, "bring your own G-buffer");
+  advanceTime();
   constants_ = makeFrameConstants(camera);
   recordGiFrame(host);
   return submitFrame(true);
@@ -229,7 +240,10 @@ void HybridFrame::recordFrame() {
   indirect.reflections =
       graph_.createPersistentImage("reflections", {VK_FORMAT_R16G16B16A16_SFLOAT});
   HdrImage hdr = composite_.declare(graph_, frame, gbuffer, shadows, sky, indirect);
-  tonemap_.declare(graph_, frame, hdr);
+  std::optional<Exposure> exposure;
+  if (autoExposure_)
+    exposure = autoExposure_->declare(graph_, hdr, settings_.exposureStops, deltaSeconds_);
+  tonemap_.declare(graph_, frame, hdr, exposure);
 }
 
 // Bring your own G-buffer: the same chain up to the GI system, with the GBuffer imported from the

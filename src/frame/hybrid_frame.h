@@ -1,5 +1,6 @@
 // The hybrid frame (DESIGN.md §4; seed 000's hybrid renderer): scene-update, vbuffer, gbuffer,
-// shadows-trace, shadows-denoise, sky, the diffuse GI system, composite, tonemap; each a pass
+// shadows-trace, shadows-denoise, sky, the diffuse GI system, composite, automatic exposure
+// (exposure-histogram, exposure-adapt), tonemap; each a pass
 // unit of src/passes/ (or src/gi/) declared on the frame graph once per frame by recordFrame(),
 // a straight chain in which each pass takes the typed outputs of the ones before. Resources are
 // created by the first frame (and a resize); later frames only update the frame constants and
@@ -20,11 +21,13 @@
 #include <glm/glm.hpp>
 
 #include <memory>
+#include <optional>
 
 #include "frame/frame_settings.h"
 #include "frame/lighting_cut.h"
 #include "gi/diffuse_gi.h"
 #include "graph/frame_graph.h"
+#include "passes/auto_exposure.h"
 #include "passes/composite.h"
 #include "passes/gbuffer.h"
 #include "passes/gbuffer_import.h"
@@ -62,6 +65,11 @@ class HybridFrame {
   // or the sky's brightness changed by more than half) is a lighting cut: the GI system
   // rebuilds its light quickly (DiffuseGi::lightingCut) while the view's history stays.
   void setSunAndSky(const Sun& sun, const Sky& sky);
+  // The time of the next render() in seconds (animation time, never decreasing): what
+  // automatic exposure adapts over. A frame without it comes kNominalFrameSeconds after the
+  // last.
+  void setTime(double seconds) { nextTime_ = seconds; }
+  static constexpr double kNominalFrameSeconds = 1.0 / 60.0;
 
   // Declares, records, submits and waits for one frame seen from `camera`. Returns the GPU
   // time of each pass (debug-view copies included), in recording order.
@@ -86,6 +94,7 @@ class HybridFrame {
   // The view as captured by the last frame (linear values; see graph/debug_view_image.h).
   ImageRGBA32F debugViewImage(const std::string& name) const;
   // Forgets temporal history (a camera cut).
+  // Automatic exposure takes the next frame's metered exposure directly.
   void resetHistory() {
     graph_.resetHistory();
     if (gi_) gi_->resetHistory();
@@ -112,6 +121,7 @@ class HybridFrame {
   void recordGiFrame(const HostGBufferImages& host);
   std::vector<vk::PassTiming> submitFrame(bool afterHostWork = false);
   gpu::FrameConstants makeFrameConstants(const Camera& camera) const;
+  void advanceTime();
 
   vk::Context& context_;
   GpuScene& gpuScene_;
@@ -134,6 +144,7 @@ class HybridFrame {
   ShadowsDenoisePass shadowsDenoise_;
   SkyPass skyPass_;
   CompositePass composite_;
+  std::optional<AutoExposure> autoExposure_;  // settings.autoExposure
   TonemapPass tonemap_;
   vk::GpuTimer timer_;
   std::unique_ptr<DiffuseGi> gi_;  // nullptr for --gi none
@@ -142,6 +153,9 @@ class HybridFrame {
   gpu::FrameConstants constants_{};
   glm::mat4 previousViewProjection_{1.0f};
   bool hasPreviousFrame_ = false;
+  std::optional<double> nextTime_;  // setTime()
+  std::optional<double> time_;      // of the last frame rendered
+  float deltaSeconds_ = 0.0f;       // this frame's time since the last
 };
 
 }  // namespace bounce
