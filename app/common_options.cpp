@@ -50,13 +50,6 @@ void CommonOptions::addResolution(CLI::App& cmd, const std::string& defaultRes) 
 
 namespace {
 
-bool isGltfPath(const std::string& scene) {
-  std::string ext = std::filesystem::path(scene).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  return ext == ".gltf" || ext == ".glb";
-}
-
 SceneOverrides parseOverrides(const CommonOptions& o) {
   SceneOverrides overrides;
   if (!o.camera.empty()) overrides.camera = parseCamera(o.camera);
@@ -82,8 +75,10 @@ Scene CommonOptions::loadScene() const {
   Scene s = bounce::loadScene(scene);
   const SceneOverrides overrides = parseOverrides(*this);
   applyOverrides(s, overrides);
-  if (std::optional<std::string> note = applyDefaultLight(s, overrides, scene))
-    std::fprintf(stderr, "note: %s\n", note->c_str());
+  // Built-in scenes are lit as designed (the furnace by its walls' radiance 1).
+  if (isGltfPath(scene))
+    if (std::optional<std::string> note = applyDefaultLight(s, overrides, scene))
+      std::fprintf(stderr, "note: %s\n", note->c_str());
   return s;
 }
 

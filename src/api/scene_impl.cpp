@@ -16,12 +16,6 @@ namespace bounce::api {
 
 namespace {
 
-bool hasGltfExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".gltf" || ext == ".glb";
-}
-
 // Area-weighted vertex normals: each triangle adds its unnormalised cross product (twice its
 // area along its normal) to its corners. Vertices of degenerate triangles only get +Y.
 std::vector<glm::vec3> smoothNormals(const std::vector<glm::vec3>& positions,
@@ -53,7 +47,7 @@ Scene& Scene::operator=(Scene&& other) noexcept = default;
 
 Scene Scene::load(const std::string& nameOrPath) {
   Scene result;
-  if (hasGltfExtension(nameOrPath)) {
+  if (isGltfPath(nameOrPath)) {
     result.impl_->scene = loadGltf(nameOrPath);  // errors name the path
     // As the command line does without --sun and --sky (scene/default_light.h); setSun and
     // setSky replace it.

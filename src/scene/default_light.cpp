@@ -1,6 +1,7 @@
 #include "scene/default_light.h"
 
 #include <fmt/format.h>
+#include <algorithm>
 
 #include "scene/time_of_day.h"
 
@@ -41,8 +42,11 @@ bool hasAnyLight(const Scene& scene) {
   if (sunShines(scene.sun) || skyShines(scene.sky, scene.sun)) return true;
   for (const PunctualLight& light : scene.lights)
     if (light.intensity > 0.0f && positive(light.color)) return true;
+  constexpr float kCoreGltfMaxEmission = 1.0f;  // emissiveFactor's range without a strength
   for (const Material& material : scene.materials)
-    if (positive(material.emissive)) return true;
+    if (std::max({material.emissive.x, material.emissive.y, material.emissive.z}) >
+        kCoreGltfMaxEmission)
+      return true;
   return false;
 }
 

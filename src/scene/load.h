@@ -22,6 +22,9 @@ Scene loadGltf(const std::string& path);
 std::vector<std::string> builtinSceneNames();
 std::optional<Scene> makeBuiltinScene(const std::string& name);
 
+// Whether `nameOrPath` names a glTF file (.gltf or .glb, any case) rather than a built-in scene.
+bool isGltfPath(const std::string& nameOrPath);
+
 // A built-in name, or a path ending in .gltf/.glb. Unknown names get an error listing the
 // built-ins. (src/scene/load.cpp)
 Scene loadScene(const std::string& nameOrPath);
