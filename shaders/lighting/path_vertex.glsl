@@ -48,20 +48,37 @@ vec3 lightContribution(Surface s, vec3 wo, LightSample l) {
   vec3 contribution = f * dot(s.shadingNormal, l.direction) * l.radianceOverPdf;
   if (l.pdf > 0.0) contribution *= powerHeuristic(l.pdf, brdfPdf(s.brdf, s.shadingNormal, wo, l.direction));
   if (!any(greaterThan(contribution, vec3(0.0)))) return vec3(0.0);
+  // One traceVisibility call for both kinds of light: every call is inlined whole (the BVH
+  // traversal), and a CPU driver compiles each copy (docs/startup.md).
   vec3 origin = offsetRayOrigin(s.position, s.geometricNormal);
-  bool visible = l.distant ? traceVisibility(origin, l.direction, 0.0, NO_HIT, true)
-                           : traceVisibility(origin, l.shadowTarget - origin, 0.0, 1.0, true);
+  vec3 shadowDirection = l.distant ? l.direction : l.shadowTarget - origin;
+  float shadowEnd = l.distant ? NO_HIT : 1.0;
+  bool visible = traceVisibility(origin, shadowDirection, 0.0, shadowEnd, true);
   return visible ? contribution : vec3(0.0);
 }
 
-// Next-event estimation at a vertex: every distant light once, one local light picked by power.
-vec3 directLighting(Surface s, vec3 wo, uvec4 key, uint bounce) {
+// Next-event estimation at a vertex: every distant light once, one local light picked by power,
+// then `extra` when it is valid (ReSTIR GI's frame sun). One loop with a single
+// lightContribution call, so that its shadow ray is compiled once.
+vec3 directLightingAnd(Surface s, vec3 wo, uvec4 key, uint bounce, LightSample extra) {
   vec3 sum = vec3(0.0);
-  for (uint k = 0u; k < lightTables.distantLightCount; ++k)
-    sum += lightContribution(s, wo, sampleDistantLight(k, pathRandom(key, bounce, PURPOSE_DISTANT_LIGHT + k).xy));
-  vec4 u = pathRandom(key, bounce, PURPOSE_LOCAL_LIGHT);
-  sum += lightContribution(s, wo, sampleLocalLight(s.position, u));
+  uint distantCount = lightTables.distantLightCount;
+  uint count = distantCount + (extra.valid ? 2u : 1u);
+  for (uint k = 0u; k < count; ++k) {
+    LightSample l;
+    if (k < distantCount)
+      l = sampleDistantLight(k, pathRandom(key, bounce, PURPOSE_DISTANT_LIGHT + k).xy);
+    else if (k == distantCount)
+      l = sampleLocalLight(s.position, pathRandom(key, bounce, PURPOSE_LOCAL_LIGHT));
+    else
+      l = extra;
+    sum += lightContribution(s, wo, l);
+  }
   return sum;
+}
+
+vec3 directLighting(Surface s, vec3 wo, uvec4 key, uint bounce) {
+  return directLightingAnd(s, wo, key, bounce, invalidLightSample());
 }
 
 #endif

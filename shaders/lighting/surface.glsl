@@ -28,20 +28,26 @@ float coarseTextureLod(uint ref, uint maxSide) {
   return max(0.0, log2(float(side) / float(maxSide)));
 }
 
-// Emitted radiance of a material at uv: emissive factor (strength folded in) x emissive texture.
-vec3 materialEmission(GpuMaterial m, vec2 uv) {
+// Emitted radiance of a material given its emissive texel (read only where the factor is
+// positive): emissive factor (strength folded in) x emissive texture.
+vec3 emissionFromTexel(GpuMaterial m, vec4 emissiveTexel) {
   vec3 e = m.emissive;
-  if (m.emissiveTexture != NO_TEXTURE && any(greaterThan(e, vec3(0.0))))
-    e *= sampleSceneTexture(m.emissiveTexture, uv, 0.0).rgb;
+  if (m.emissiveTexture != NO_TEXTURE && any(greaterThan(e, vec3(0.0)))) e *= emissiveTexel.rgb;
   return e;
+}
+
+// Emitted radiance of a material at uv.
+vec3 materialEmission(GpuMaterial m, vec2 uv) {
+  bool reads = m.emissiveTexture != NO_TEXTURE && any(greaterThan(m.emissive, vec3(0.0)));
+  return emissionFromTexel(m, reads ? sampleSceneTexture(m.emissiveTexture, uv, 0.0) : vec4(1.0));
 }
 
 // The normal map's perturbation of shading normal n, in a tangent frame made from the
 // triangle's uv gradient (the glTF sample viewer's rule when a mesh has no tangents):
 // t = dP/du made orthogonal to n, b = cross(n, t), flipped when the uv layout is mirrored
 // (glTF's v runs down the image, so an unmirrored layout has b along -dP/dv).
-vec3 applyNormalMap(GpuMaterial m, vec3 n, vec3 e1, vec3 e2, vec2 duv1, vec2 duv2, vec2 uv,
-                    uint maxTextureSide) {
+vec3 applyNormalMap(GpuMaterial m, vec3 n, vec3 e1, vec3 e2, vec2 duv1, vec2 duv2,
+                    vec4 normalTexel) {
   float det = duv1.x * duv2.y - duv1.y * duv2.x;
   if (abs(det) < 1e-12) return n;
   vec3 dPdu = (e1 * duv2.y - e2 * duv1.y) / det;
@@ -51,7 +57,7 @@ vec3 applyNormalMap(GpuMaterial m, vec3 n, vec3 e1, vec3 e2, vec2 duv1, vec2 duv
   t = normalize(t);
   vec3 b = cross(n, t);
   if (dot(b, dPdv) > 0.0) b = -b;
-  vec3 tangentSpace = sampleSceneTexture(m.normalTexture, uv, coarseTextureLod(m.normalTexture, maxTextureSide)).rgb * 2.0 - 1.0;
+  vec3 tangentSpace = normalTexel.rgb * 2.0 - 1.0;
   tangentSpace.xy *= m.normalScale;
   vec3 perturbed = tangentSpace.x * t + tangentSpace.y * b + tangentSpace.z * n;
   return dot(perturbed, perturbed) > 1e-12 ? normalize(perturbed) : n;
@@ -97,11 +103,24 @@ Surface loadSurfaceAtCoarseMip(TraceHit hit, vec3 rayDirection, bool lambertOnly
   bool flip = dot(ns, ng) < 0.0;
   if (flip) ns = -ns;
   vec2 uv = interpolateUv(tri, b);
+  // The material's maps, read up front by one call (rt/scene.glsl: one copy of the sampling
+  // code to compile instead of four). Emission is one-sided: only the glTF front face emits.
+  // It is read at full resolution even here, so that it matches what NEE's light sampling
+  // (lights.glsl) sees of the same emitter.
+  bool emits = frontFacing && any(greaterThan(m.emissive, vec3(0.0)));
+  vec4 texels[4];  // normal, base colour, metallic-roughness, emission
+  sampleSceneTextures(uvec4(m.normalTexture, m.baseColorTexture, m.metallicRoughnessTexture,
+                            emits ? m.emissiveTexture : NO_TEXTURE),
+                      uv,
+                      vec4(coarseTextureLod(m.normalTexture, maxTextureSide),
+                           coarseTextureLod(m.baseColorTexture, maxTextureSide),
+                           coarseTextureLod(m.metallicRoughnessTexture, maxTextureSide), 0.0),
+                      texels);
   if (m.normalTexture != NO_TEXTURE) {
     Vec2Array uvs = Vec2Array(scene.uvs);
     vec2 uv0 = uvs.v[tri.x];
     vec3 front = flip ? -ns : ns;
-    ns = applyNormalMap(m, front, e1, e2, uvs.v[tri.y] - uv0, uvs.v[tri.z] - uv0, uv, maxTextureSide);
+    ns = applyNormalMap(m, front, e1, e2, uvs.v[tri.y] - uv0, uvs.v[tri.z] - uv0, texels[0]);
     if (flip) ns = -ns;
   }
   // A shading normal that hides the viewer would make the BRDF zero for every direction.
@@ -110,20 +129,17 @@ Surface loadSurfaceAtCoarseMip(TraceHit hit, vec3 rayDirection, bool lambertOnly
 
   vec3 baseColor = m.baseColor.rgb * interpolateVertexColor(tri, b).rgb;
   if (m.baseColorTexture != NO_TEXTURE)
-    baseColor *= sampleSceneTexture(m.baseColorTexture, uv, coarseTextureLod(m.baseColorTexture, maxTextureSide)).rgb;
+    baseColor *= texels[1].rgb;
   float metallic = m.metallic;
   float roughness = m.roughness;
   if (m.metallicRoughnessTexture != NO_TEXTURE) {
-    vec4 mr = sampleSceneTexture(m.metallicRoughnessTexture, uv,
-                                 coarseTextureLod(m.metallicRoughnessTexture, maxTextureSide));
+    vec4 mr = texels[2];
     roughness *= mr.g;
     metallic *= mr.b;
   }
   if (lambertOnly) metallic = 0.0;
   s.brdf = makeBrdfMaterial(baseColor, metallic, roughness, lambertOnly);
-  // Emission is one-sided: only the glTF front face emits. It is read at full resolution even
-  // here, so that it matches what NEE's light sampling (lights.glsl) sees of the same emitter.
-  s.emission = frontFacing ? materialEmission(m, uv) : vec3(0.0);
+  s.emission = frontFacing ? emissionFromTexel(m, texels[3]) : vec3(0.0);
   return s;
 }
 

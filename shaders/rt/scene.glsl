@@ -73,6 +73,20 @@ vec4 sampleSceneTexture(uint ref, vec2 uv, float lod) {
   }
 }
 
+// Four filtered lookups (refs[i] at lods[i]) through one sampleSceneTexture call. Every call
+// is inlined with its switch over the twelve bindings, and a CPU driver (llvmpipe) compiles the
+// sampling code of each case in each copy: a surface that read its four maps by four calls cost
+// four times the compile (docs/startup.md). The loop is kept a loop for that reason. A ref of
+// NO_TEXTURE reads nothing and gives vec4(1.0).
+void sampleSceneTextures(uvec4 refs, vec2 uv, vec4 lods, out vec4 texels[4]) {
+  [[dont_unroll]] for (uint i = 0u; i < 4u; ++i) {
+    if (refs[i] == NO_TEXTURE)
+      texels[i] = vec4(1.0);
+    else
+      texels[i] = sampleSceneTexture(refs[i], uv, lods[i]);
+  }
+}
+
 // Unfiltered mip-0 texel with repeat wrapping: what the tracer's alpha test reads, so that the
 // CPU reference (src/scene/texture_pack.h, sampleAlphaNearest) can reproduce it exactly.
 vec4 fetchSceneTexelNearest(uint ref, vec2 uv) {

@@ -41,6 +41,8 @@ using glm::normalize;
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference2 : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+// [[dont_unroll]]: loops whose unrolled copies a CPU driver would compile (docs/startup.md).
+#extension GL_EXT_control_flow_attributes : require
 #define BOUNCE_BEGIN_SHARED
 #define BOUNCE_END_SHARED
 #define BOUNCE_CHECK_SIZE(Type, bytes)

@@ -11,6 +11,7 @@
 #include "lighting/light_table.h"
 #include "passes/primary_view.h"
 #include "rt/scene_bvh.h"
+#include "vk/pipeline_log.h"
 
 namespace bounce {
 
@@ -173,6 +174,9 @@ std::vector<vk::PassTiming> HybridFrame::renderGi(const Camera& camera,
 // include/bounce/host_gbuffer.h).
 std::vector<vk::PassTiming> HybridFrame::submitFrame(bool afterHostWork) {
   graph_.allocate(context_, {settings_.width, settings_.height});  // a no-op after frame 0
+  // BOUNCE_PIPELINE_TIMES: the first frame's passes one by one, to see what each one's first
+  // dispatch costs (shader compilation on lavapipe; vk/pipeline_log.h).
+  const bool firstFramePassByPass = !hasPreviousFrame_ && vk::pipelineTimesRequested();
   context_.submitAndWait([&](VkCommandBuffer cmd) {
     if (afterHostWork) {
       VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
@@ -186,8 +190,9 @@ std::vector<vk::PassTiming> HybridFrame::submitFrame(bool afterHostWork) {
       vkCmdPipelineBarrier2(cmd, &dependency);
     }
     timer_.reset(cmd);
-    graph_.execute(cmd, &timer_);
+    if (!firstFramePassByPass) graph_.execute(cmd, &timer_);
   });
+  if (firstFramePassByPass) graph_.executePassByPass(&timer_);
   if (gi_) gi_->afterFrame();
   lightingCutPending_ = false;
   previousViewProjection_ = constants_.viewProjection;

@@ -178,6 +178,11 @@ class FrameGraph {
   // Records every pass: its barriers, a GPU timestamp scope and a debug label named after it,
   // then its callback. Ends the frame (history swaps). Fails if allocate() is needed.
   void execute(VkCommandBuffer cmd, vk::GpuTimer* timer = nullptr);
+  // The same frame as execute(), but each pass in a command buffer of its own, submitted and
+  // waited for, its host wall and process CPU time logged (vk/pipeline_log.h). What a pass
+  // costs the first time it runs is then visible: on a CPU device (lavapipe), compiling its
+  // shaders happens at its first dispatch, not at pipeline creation (docs/startup.md).
+  void executePassByPass(vk::GpuTimer* timer = nullptr);
   VkExtent2D renderResolution() const { return resolution_; }
   // After execute(): the image `name` (not a history) of the frame just recorded, with the
   // layout that frame left it in. Valid until the next frame is executed or resources are

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "graph/frame_graph.h"
 #include "vk/check.h"
+#include "vk/pipeline_log.h"
 
 namespace bounce::graph {
 
@@ -261,6 +262,19 @@ void FrameGraph::execute(VkCommandBuffer cmd, vk::GpuTimer* timer) {
   resolveResources();
   for (const PassPlan& pass : plan_.passes) recordPass(cmd, pass, timer);
   recordBarriers(cmd, plan_.finalBarriers);
+  endFrame();
+}
+
+void FrameGraph::executePassByPass(vk::GpuTimer* timer) {
+  if (!context_) fail("frame graph: executePassByPass() before allocate()");
+  if (!compiled_) compile();
+  resolveResources();
+  for (const PassPlan& pass : plan_.passes) {
+    const vk::HostCost start = vk::HostCost::now();
+    context_->submitAndWait([&](VkCommandBuffer cmd) { recordPass(cmd, pass, timer); });
+    vk::logPassRun(pass.name, vk::HostCost::now() - start);
+  }
+  context_->submitAndWait([&](VkCommandBuffer cmd) { recordBarriers(cmd, plan_.finalBarriers); });
   endFrame();
 }
 

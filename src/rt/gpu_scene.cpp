@@ -119,12 +119,17 @@ void GpuScene::uploadTextures() {
     stats_.textureBytes += a.texels.size();
     textureImages_[textureSlot(a.sizeClass, a.srgb)] = std::move(image);
   }
-  // Unused slots still need a valid image: a 1x1 white placeholder.
-  const uint8_t white[4] = {255, 255, 255, 255};
+  // Unused slots still need a valid image: a white placeholder, never sampled (no material
+  // refers to the slot). It has two mips, like every real array (64 x 64 and up, full chains):
+  // llvmpipe compiles a shader per "static" texture state, and a single-mip view is a
+  // different state (level_zero_only), so 1-mip placeholders made each scene's set of used
+  // slots a different compile, missing Mesa's shader cache for every new scene
+  // (docs/startup.md).
+  const std::vector<uint8_t> white((2 * 2 + 1) * 4, 255);
   for (uint32_t slot = 0; slot < kTextureSlots; ++slot) {
     if (textureImages_[slot].handle()) continue;
     bool srgb = slot >= gpu::TEXTURE_SIZE_CLASSES;
-    vk::Image image(context_, srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM, 1, 1, 1, 1,
+    vk::Image image(context_, srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM, 2, 2, 1, 2,
                     usage, "scene.textures.placeholder");
     vk::uploadImage(context_, image, white, 4);
     textureImages_[slot] = std::move(image);

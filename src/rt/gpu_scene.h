@@ -37,6 +37,9 @@ class GpuScene {
   const rt::SceneBvh& bvh() const { return bvh_; }
   const Aabb& bounds() const { return bounds_; }
   const PackedTextures& textures() const { return textures_; }
+  // The image bound at texture slot `slot` (0 .. 2 * TEXTURE_SIZE_CLASSES - 1, as in
+  // shaders/rt/scene.glsl): a packed array, or a placeholder where the scene has none.
+  const vk::Image& textureImage(uint32_t slot) const { return textureImages_.at(slot); }
   const GpuSceneStats& stats() const { return stats_; }
   // Accepts or rejects an alpha-tested candidate hit exactly as the GPU alpha test does.
   bool alphaAccepts(uint32_t globalGeometry, uint32_t primitive, float b1, float b2) const;
@@ -78,7 +81,7 @@ class GpuScene {
   bool uploadPending_ = false;
   bool previousDiffers_ = false;  // the device's previous instances differ from the current
   vk::Buffer refs_;
-  std::vector<vk::Image> textureImages_;  // one per binding slot (1x1 placeholder when unused)
+  std::vector<vk::Image> textureImages_;  // one per binding slot (placeholder when unused)
   VkSampler sampler_ = VK_NULL_HANDLE;
   vk::DescriptorSetLayout setLayout_;
   std::unique_ptr<vk::DescriptorPool> pool_;

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "vk/check.h"
+#include "vk/pipeline_log.h"
 #include "vk/shader_registry.h"
 
 namespace bounce::vk {
@@ -100,8 +101,11 @@ GraphicsPipeline::GraphicsPipeline(Context& context, const GraphicsPipelineDesc&
   ci.pColorBlendState = &blend;
   ci.pDynamicState = &dynamic;
   ci.layout = layout_;
+  const HostCost start = HostCost::now();
   VkResult r =
       vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
+  logIndex_ =
+      logPipelineCreated(desc.vertexShader + " + " + desc.fragmentShader, HostCost::now() - start);
   vkDestroyShaderModule(context.device(), vertex, nullptr);
   vkDestroyShaderModule(context.device(), fragment, nullptr);
   if (r != VK_SUCCESS)
@@ -122,12 +126,16 @@ GraphicsPipeline& GraphicsPipeline::operator=(GraphicsPipeline&& o) noexcept {
     context_ = std::exchange(o.context_, nullptr);
     layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
     pipeline_ = std::exchange(o.pipeline_, VK_NULL_HANDLE);
+    logIndex_ = o.logIndex_;
+    bound_ = o.bound_;
   }
   return *this;
 }
 
 void GraphicsPipeline::bind(VkCommandBuffer cmd, const std::vector<VkDescriptorSet>& sets,
                             VkExtent2D extent) const {
+  if (!bound_) markPipelineUsed(logIndex_);
+  bound_ = true;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
   if (!sets.empty())
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, uint32_t(sets.size()),

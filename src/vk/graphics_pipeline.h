@@ -49,6 +49,8 @@ class GraphicsPipeline {
   Context* context_ = nullptr;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
+  uint32_t logIndex_ = 0;       // its entry in the pipeline log (vk/pipeline_log.h)
+  mutable bool bound_ = false;  // logged as used once bound
 };
 
 }  // namespace bounce::vk

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "vk/check.h"
+#include "vk/pipeline_log.h"
 #include "vk/shader_registry.h"
 
 namespace bounce::vk {
@@ -90,8 +91,10 @@ ComputePipeline::ComputePipeline(Context& context, const std::string& shader,
   ci.stage.module = module;
   ci.stage.pName = "main";
   ci.layout = layout_;
+  const HostCost start = HostCost::now();
   VkResult r =
       vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
+  logIndex_ = logPipelineCreated(shader, HostCost::now() - start);
   vkDestroyShaderModule(context.device(), module, nullptr);
   if (r != VK_SUCCESS) fail("creating compute pipeline '{}' failed: {}", shader, resultName(r));
   context.setObjectName(uint64_t(pipeline_), VK_OBJECT_TYPE_PIPELINE, shader);
@@ -110,11 +113,15 @@ ComputePipeline& ComputePipeline::operator=(ComputePipeline&& o) noexcept {
     name_ = std::move(o.name_);
     layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
     pipeline_ = std::exchange(o.pipeline_, VK_NULL_HANDLE);
+    logIndex_ = o.logIndex_;
+    bound_ = o.bound_;
   }
   return *this;
 }
 
 void ComputePipeline::bind(VkCommandBuffer cmd, const std::vector<VkDescriptorSet>& sets) const {
+  if (!bound_) markPipelineUsed(logIndex_);
+  bound_ = true;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
   if (!sets.empty())
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, uint32_t(sets.size()),

@@ -77,6 +77,8 @@ class ComputePipeline {
   std::string name_;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
+  uint32_t logIndex_ = 0;       // its entry in the pipeline log (vk/pipeline_log.h)
+  mutable bool bound_ = false;  // logged as used once bound
 };
 
 // A full memory barrier between compute dispatches (and transfers). The frame graph derives

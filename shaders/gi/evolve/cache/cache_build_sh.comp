@@ -41,7 +41,7 @@ void computeQuadratureDirections() {
 // The mean of max(0, n . w) over the directions w of bin e.
 float binMeanCosine(uint e, vec3 n) {
   float sum = 0.0;
-  for (uint i = 0u; i < QUADRATURE_POINTS; ++i)
+  [[dont_unroll]] for (uint i = 0u; i < QUADRATURE_POINTS; ++i)
     sum += max(dot(n, quadratureDirections[e * QUADRATURE_POINTS + i]), 0.0);
   return sum / float(QUADRATURE_POINTS);
 }
@@ -57,7 +57,7 @@ void main() {
   vec3 normal = cells.v[cell].normal;
   vec3 exactOverPi = vec3(0.0);  // irradiance / pi at `normal` by the quadrature
   uint valid = 0u;
-  for (uint e = 0u; e < CLIPMAP_ENTRIES; ++e) {
+  [[dont_unroll]] for (uint e = 0u; e < CLIPMAP_ENTRIES; ++e) {
     ClipmapEntry entry = entries.v[cell * CLIPMAP_ENTRIES + e];
     if (!(entry.M > 0.0)) continue;
     vec3 integral = entry.radiance * entry.W;

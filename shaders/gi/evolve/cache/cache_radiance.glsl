@@ -25,37 +25,53 @@ bool cacheRayCountsEmission(Surface s) {
   return FloatArray(lightTables.materialLightAreaPdf).v[s.material] == 0.0;
 }
 
-// Light sample l's reflection at surface s towards wo when its shadow ray is unoccluded.
+// Light sample l's reflection at surface s towards wo when its shadow ray is unoccluded. One
+// traceVisibility call for both kinds of light: every call is inlined whole (the BVH traversal
+// with its alpha test), and a CPU driver compiles each copy (docs/startup.md).
 vec3 cacheLightContribution(Surface s, vec3 wo, LightSample l, vec3 origin, bool alphaTest) {
   if (!l.valid) return vec3(0.0);
   float cosine = dot(s.shadingNormal, l.direction);
   if (cosine <= 0.0 || dot(s.geometricNormal, l.direction) <= 0.0) return vec3(0.0);
   vec3 contribution = brdfEvaluate(s.brdf, s.shadingNormal, wo, l.direction) * cosine * l.radianceOverPdf;
   if (!any(greaterThan(contribution, vec3(0.0)))) return vec3(0.0);
-  bool visible = l.distant ? traceVisibility(origin, l.direction, 0.0, CACHE_RAY_FAR, alphaTest)
-                           : traceVisibility(origin, l.shadowTarget - origin, 0.0, 1.0, alphaTest);
+  vec3 shadowDirection = l.distant ? l.direction : l.shadowTarget - origin;
+  float shadowEnd = l.distant ? CACHE_RAY_FAR : 1.0;
+  bool visible = traceVisibility(origin, shadowDirection, 0.0, shadowEnd, alphaTest);
   return visible ? contribution : vec3(0.0);
 }
 
-// Reflected direct light at surface s towards wo, with shadow rays; u: uniform numbers.
+// The frame's sun as a light sample: a direction in its cone from u.
+LightSample cacheSunSample(FrameConstants f, vec2 u) {
+  LightSample sun = invalidLightSample();
+  sun.distant = true;
+  sun.direction = f.sunCosHalfAngle < 1.0 ? sampleCone(f.towardSun, f.sunCosHalfAngle, u)
+                                          : f.towardSun;
+  sun.radianceOverPdf = f.sunIrradiance;
+  sun.valid = true;
+  return sun;
+}
+
+// Reflected direct light at surface s towards wo, with shadow rays; u: uniform numbers. The
+// lights in order: the sun (when it shines), one local light, each KHR directional light; one
+// loop with a single cacheLightContribution call, so that its shadow ray is compiled once.
 vec3 cacheDirectLight(FrameConstants f, Surface s, vec3 wo, vec4 u, bool alphaTest) {
   vec3 origin = offsetRayOrigin(s.position, s.geometricNormal);
   vec3 sum = vec3(0.0);
-  if (any(greaterThan(f.sunIrradiance, vec3(0.0)))) {
-    LightSample sun = invalidLightSample();
-    sun.distant = true;
-    sun.direction = f.sunCosHalfAngle < 1.0 ? sampleCone(f.towardSun, f.sunCosHalfAngle, u.xy)
-                                            : f.towardSun;
-    sun.radianceOverPdf = f.sunIrradiance;
-    sun.valid = true;
-    sum += cacheLightContribution(s, wo, sun, origin, alphaTest);
-  }
   vec4 w = uniformFromHash(pcg4d(floatBitsToUint(u) ^ uvec4(0x2545F491u)));
-  sum += cacheLightContribution(s, wo, sampleLocalLight(s.position, vec4(u.zw, w.xy)), origin,
-                                alphaTest);
-  for (uint k = 0u; k < lightTables.distantLightCount; ++k) {
-    vec2 r = k == 0u ? w.zw : uniformFromHash(pcg4d(floatBitsToUint(w) ^ uvec4(k))).xy;
-    sum += cacheLightContribution(s, wo, sampleDistantLight(k, r), origin, alphaTest);
+  const uint SUN = 0u, LOCAL = 1u, FIRST_DISTANT = 2u;
+  uint first = any(greaterThan(f.sunIrradiance, vec3(0.0))) ? SUN : LOCAL;
+  for (uint light = first; light < FIRST_DISTANT + lightTables.distantLightCount; ++light) {
+    LightSample l;
+    if (light == SUN) {
+      l = cacheSunSample(f, u.xy);
+    } else if (light == LOCAL) {
+      l = sampleLocalLight(s.position, vec4(u.zw, w.xy));
+    } else {
+      uint k = light - FIRST_DISTANT;
+      vec2 r = k == 0u ? w.zw : uniformFromHash(pcg4d(floatBitsToUint(w) ^ uvec4(k))).xy;
+      l = sampleDistantLight(k, r);
+    }
+    sum += cacheLightContribution(s, wo, l, origin, alphaTest);
   }
   return sum;
 }

@@ -25,29 +25,38 @@ uint rayTouch(uint cellFlags) {
   return level >= 1u && level < CLIPMAP_TOUCH_LEVELS ? (1u << level) : 0u;
 }
 
-void traceCandidate(FrameConstants f, ClipmapCacheView cache, uint cell, ClipmapCell c, uint e,
-                    bool alphaTest, uint touch, float historyCap) {
-  uvec4 seed = uvec4(cell, f.frameIndex, e, 0x0CAC4E01u + pc.bounce);
-  vec4 u = uniformFromHash(pcg4d(seed));
-  vec3 dir = clipmapEntryDirection(e, u.xy);
+// One ray of entry e: a new candidate in the entry's bin, merged into its reservoir, or
+// (validation) the entry's kept sample traced again. Both through one cacheRayRadiance call:
+// every call is inlined whole (a closest-hit trace, the surface, shadow rays, a cache lookup),
+// and a CPU driver compiles each copy (docs/startup.md).
+void traceEntry(FrameConstants f, ClipmapCacheView cache, uint cell, ClipmapCell c, uint e,
+                bool validation, bool alphaTest, uint touch, float historyCap) {
+  ClipmapEntry entry;
+  vec3 origin = c.origin;
+  vec3 dir;
+  vec4 u;
+  uvec4 seed;
+  if (validation) {
+    entry = cache.entries.v[cell * CLIPMAP_ENTRIES + e];
+    if (!(entry.M > 0.0)) return;
+    origin = entry.origin;
+    dir = entry.direction;
+    seed = uvec4(cell, f.frameIndex, e, 0x7A11DA7Eu);
+  } else {
+    uvec4 candidateSeed = uvec4(cell, f.frameIndex, e, 0x0CAC4E01u + pc.bounce);
+    u = uniformFromHash(pcg4d(candidateSeed));
+    dir = clipmapEntryDirection(e, u.xy);
+    seed = candidateSeed ^ uvec4(0u, 0u, 0u, 0x5BD1E995u);
+  }
   float hitDistance;
-  vec3 radiance = cacheRayRadiance(f, cache, c.origin, dir, alphaTest, touch, touch != 0u,
-                                   seed ^ uvec4(0u, 0u, 0u, 0x5BD1E995u), hitDistance);
-  ClipmapEntry entry = cache.entries.v[cell * CLIPMAP_ENTRIES + e];
-  reservoirMerge(entry, radiance, dir, c.origin, hitDistance, CLIPMAP_ENTRY_PDF, historyCap,
-                 u.z);
-  cache.entries.v[cell * CLIPMAP_ENTRIES + e] = entry;
-}
-
-void traceValidation(FrameConstants f, ClipmapCacheView cache, uint cell, uint e,
-                     bool alphaTest, uint touch) {
-  ClipmapEntry entry = cache.entries.v[cell * CLIPMAP_ENTRIES + e];
-  if (!(entry.M > 0.0)) return;
-  float hitDistance;
-  vec3 radiance = cacheRayRadiance(f, cache, entry.origin, entry.direction, alphaTest, touch,
-                                   touch != 0u, uvec4(cell, f.frameIndex, e, 0x7A11DA7Eu),
+  vec3 radiance = cacheRayRadiance(f, cache, origin, dir, alphaTest, touch, touch != 0u, seed,
                                    hitDistance);
-  reservoirValidate(entry, radiance, 2.0);
+  if (validation) {
+    reservoirValidate(entry, radiance, 2.0);
+  } else {
+    entry = cache.entries.v[cell * CLIPMAP_ENTRIES + e];
+    reservoirMerge(entry, radiance, dir, origin, hitDistance, CLIPMAP_ENTRY_PDF, historyCap, u.z);
+  }
   cache.entries.v[cell * CLIPMAP_ENTRIES + e] = entry;
 }
 
@@ -88,19 +97,26 @@ void main() {
   bool alphaTest = (k.flags & CLIPMAP_FLAG_ALPHA_TEST) != 0u;
 
   bool fullRefresh = k.fullRefresh != 0u;
+  uint entry;
+  bool validation = false;
+  float historyCap = k.historyCap;
   if (newCell) {  // never traced, or a full refresh: every entry now
-    traceCandidate(f, cache, cell, c, lane, alphaTest, touch,
-                   fullRefresh ? k.fullRefreshHistoryCap : k.historyCap);
-    return;
+    entry = lane;
+    if (fullRefresh) historyCap = k.fullRefreshHistoryCap;
+  } else {
+    if (c.validEntries == 0u || fullRefresh) return;  // traced in the second range
+    uint rays = k.raysPerCell;
+    uint rounds = clipmapTraceRounds(k);  // raysPerCell divides 16 (checked on the CPU)
+    uint round = (f.frameIndex + cell) % rounds;
+    if (lane < rays) {
+      entry = round * rays + lane;
+    } else if (lane < rays + clipmapValidationRays(k)) {
+      uint validationRound = (round + rounds / 2u) % rounds;
+      entry = validationRound * rays + (lane - rays);
+      validation = true;
+    } else {
+      return;
+    }
   }
-  if (c.validEntries == 0u || fullRefresh) return;  // traced in the second range
-  uint rays = k.raysPerCell;
-  uint rounds = clipmapTraceRounds(k);  // raysPerCell divides 16 (checked on the CPU)
-  uint round = (f.frameIndex + cell) % rounds;
-  if (lane < rays) {
-    traceCandidate(f, cache, cell, c, round * rays + lane, alphaTest, touch, k.historyCap);
-  } else if (lane < rays + clipmapValidationRays(k)) {
-    uint validationRound = (round + rounds / 2u) % rounds;
-    traceValidation(f, cache, cell, validationRound * rays + (lane - rays), alphaTest, touch);
-  }
+  traceEntry(f, cache, cell, c, entry, validation, alphaTest, touch, historyCap);
 }

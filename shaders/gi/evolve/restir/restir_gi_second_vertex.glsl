@@ -51,10 +51,8 @@ LightSample sampleSecondVertexLight(FrameConstants f, vec3 x, uvec4 key, out flo
 // NEE at a later vertex: the reference's (all KHR distant lights + one local light) plus the
 // frame's sun, shadow rays traced here.
 vec3 laterVertexLighting(FrameConstants f, Surface s, vec3 wo, uvec4 key, uint bounce) {
-  vec3 sum = directLighting(s, wo, key, bounce);
   LightSample sun = sampleFrameSun(f, pathRandom(key, bounce, PURPOSE_DISTANT_LIGHT + MAX_DISTANT_LIGHTS).xy);
-  if (sun.valid) sum += lightContribution(s, wo, sun);
-  return sum;
+  return directLightingAnd(s, wo, key, bounce, sun);
 }
 
 // The path from x2 (scattering event 1; x1 is event 0) on, without x2's emission and NEE.
