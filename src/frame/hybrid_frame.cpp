@@ -66,6 +66,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
       sun_(scene.sun),
       sky_(scene.sky),
       lightingCuts_(scene.sun, scene.sky, settings.lightingCutDegrees),
+      specularAlbedo_(context),
       sceneUpdate_(context, gpuScene),
       vbuffer_(context, gpuScene, scene, settings.vbuffer),
       gbuffer_(context, gpuScene),
@@ -73,7 +74,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
       shadowsTrace_(context, gpuScene, settings.shadows),
       shadowsDenoise_(context, gpuScene),
       skyPass_(context, gpuScene),
-      composite_(context, gpuScene),
+      composite_(context, gpuScene, specularAlbedo_),
       tonemap_(context, gpuScene),
       timer_(context) {
   validate(settings);

@@ -25,6 +25,7 @@
 #include "frame/lighting_cut.h"
 #include "gi/diffuse_gi.h"
 #include "graph/frame_graph.h"
+#include "lighting/specular_albedo.h"
 #include "passes/composite.h"
 #include "passes/gbuffer.h"
 #include "passes/gbuffer_import.h"
@@ -126,6 +127,7 @@ class HybridFrame {
   vk::Buffer punctualLights_, directionalLights_;
   uint32_t punctualLightCount_ = 0, directionalLightCount_ = 0;
 
+  SpecularAlbedoTable specularAlbedo_;  // before the passes that read it
   SceneUpdatePass sceneUpdate_;
   VBufferPass vbuffer_;
   GBufferPass gbuffer_;
