@@ -52,7 +52,8 @@ struct RenderOptions {
   std::string timings;
   float exposure = 0.03f;
   float skyAmbient = HybridSettings{}.skyAmbientStrength;
-  uint32_t shadowDivisor = 0;  // 0: the preset's
+  uint32_t shadowDivisor = 0;                 // 0: the preset's
+  std::optional<uint32_t> reflectionDivisor;  // unset: the preset's
   bool lambert = false;
   // Motion and time.
   bool animate = false;
@@ -153,6 +154,7 @@ HybridSettings settingsFrom(const RenderOptions& options) {
   settings.exposureStops = std::log2(options.exposure);
   settings.skyAmbientStrength = options.skyAmbient;
   if (options.shadowDivisor != 0) settings.shadows.divisor = options.shadowDivisor;
+  if (options.reflectionDivisor) settings.reflections.divisor = *options.reflectionDivisor;
   settings.lambert = options.lambert;
   validate(settings);  // the library's ranges, before any work
   return settings;
@@ -371,6 +373,9 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
   cmd->add_option(
       "--shadow-divisor", options->shadowDivisor,
       "Trace shadows at render resolution / N (1 = full res; default: the preset's, 2)");
+  cmd->add_option("--reflection-divisor", options->reflectionDivisor,
+                  "Trace reflections at render resolution / N (1 = full res; 0 = no reflection "
+                  "rays, specular light from the diffuse GI; default: the preset's, 2)");
   cmd->add_flag("--lambert", options->lambert, "Shade every material as pure Lambert");
   cmd->add_flag("--animate", options->animate,
                 "Play the scene's animation over the frames (glTF animations; built-in scenes' "

@@ -88,8 +88,9 @@ vec3 skyAmbient(FrameConstants f, vec3 n) {
 // Light that arrives from all around, reflected by both lobes (see the top of the file).
 vec3 indirectLight(FrameConstants f, ivec2 pixel, BrdfMaterial m, vec3 n, vec3 wo, float roughness) {
   vec3 diffuseLight = imageLoad(giDiffuse, pixel).rgb + f.skyAmbientStrength * skyAmbient(f, n);
-  bool traced = roughness <= pc.reflectionMaxRoughness;
-  vec3 specularLight = traced ? imageLoad(reflections, pixel).rgb : diffuseLight;
+  // reflections.w = 0: no traced sample reached this pixel (reflections-upsample).
+  vec4 reflection = roughness <= pc.reflectionMaxRoughness ? imageLoad(reflections, pixel) : vec4(0.0);
+  vec3 specularLight = reflection.w > 0.0 ? reflection.rgb : diffuseLight;
   SpecularAlbedo albedo = specularAlbedo(pc.specularAlbedo, max(dot(n, wo), 0.0), m.alpha);
   return diffuseReflectance(albedo, m) * diffuseLight + specularReflectance(albedo, m) * specularLight;
 }

@@ -10,6 +10,7 @@
 
 #include "gi/evolve/cache/clipmap_cache_settings.h"
 #include "gi/evolve/restir/restir_gi_settings.h"
+#include "passes/reflections_trace.h"
 #include "passes/shadows_trace.h"
 #include "passes/vbuffer.h"
 
@@ -27,7 +28,8 @@ struct HybridSettings {
   // Render resolution in pixels. Presets: mobile 1170x540, desktop 1920x1080 (seed 000).
   uint32_t width = 1920;
   uint32_t height = 1080;
-  ShadowSettings shadows;  // shadows-trace, shadows-denoise
+  ShadowSettings shadows;          // shadows-trace, shadows-denoise
+  ReflectionSettings reflections;  // reflections-trace, reflections-upsample
   // Exposure before the tone curve. Automatic exposure adapts to the frame's luminance
   // histogram over frames (passes/auto_exposure.h) and adds `exposureStops` as compensation;
   // fixed exposure multiplies radiance by 2^exposureStops. At -5 stops a white Lambert surface

@@ -29,6 +29,8 @@
 #include "passes/composite.h"
 #include "passes/gbuffer.h"
 #include "passes/gbuffer_import.h"
+#include "passes/reflections_trace.h"
+#include "passes/reflections_upsample.h"
 #include "passes/scene_update.h"
 #include "passes/shadows_denoise.h"
 #include "passes/shadows_trace.h"
@@ -110,6 +112,8 @@ class HybridFrame {
 
  private:
   void recordFrame();
+  void declareReflections(const FrameContext& frame, const GBuffer& gbuffer,
+                          IndirectLight& indirect);
   void recordGiFrame(const HostGBufferImages& host);
   std::vector<vk::PassTiming> submitFrame(bool afterHostWork = false);
   gpu::FrameConstants makeFrameConstants(const Camera& camera) const;
@@ -135,6 +139,8 @@ class HybridFrame {
   ShadowsTracePass shadowsTrace_;
   ShadowsDenoisePass shadowsDenoise_;
   SkyPass skyPass_;
+  ReflectionsTracePass reflectionsTrace_;
+  ReflectionsUpsamplePass reflectionsUpsample_;
   CompositePass composite_;
   TonemapPass tonemap_;
   vk::GpuTimer timer_;
