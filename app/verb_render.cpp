@@ -60,6 +60,7 @@ struct RenderOptions {
   std::optional<float> exposureStops;  // not given: the settings' exposure (automatic or fixed)
   std::optional<float> skyAmbient;
   std::optional<int64_t> shadowDivisor;
+  std::optional<int64_t> reflectionDivisor;  // not given: the preset's
   bool lambert = false;
   // Motion and time.
   bool animate = false;
@@ -273,6 +274,10 @@ HybridSettings settingsFrom(const RenderOptions& o) {
   if (o.shadowDivisor)
     applyOption(settings, "--shadow-divisor", *o.shadowDivisor, [&](HybridSettings& s) {
       s.shadows.divisor = wholeNumber("--shadow-divisor", *o.shadowDivisor);
+    });
+  if (o.reflectionDivisor)
+    applyOption(settings, "--reflection-divisor", *o.reflectionDivisor, [&](HybridSettings& s) {
+      s.reflections.divisor = wholeNumber("--reflection-divisor", *o.reflectionDivisor);
     });
   settings.lambert = o.lambert;
   return settings;
@@ -528,6 +533,9 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
   cmd->add_option(
       "--shadow-divisor", options->shadowDivisor,
       "Trace shadows at render resolution / N (1 = full res; default: the preset's, 2)");
+  cmd->add_option("--reflection-divisor", options->reflectionDivisor,
+                  "Trace reflections at render resolution / N (1 = full res; 0 = no reflection "
+                  "rays, specular light from the diffuse GI; default: the preset's, 2)");
   cmd->add_flag("--lambert", options->lambert, "Shade every material as pure Lambert");
   cmd->add_flag("--animate", options->animate,
                 "Play the scene's animation over the frames (glTF animations; built-in scenes' "

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <numbers>
 
 namespace bounce::test {
 
@@ -59,6 +60,43 @@ glm::vec3 decodeOctahedral(glm::vec2 e) {
     n.y = folded.y;
   }
   return glm::normalize(n);
+}
+
+glm::vec3 gltfBrdf(const glm::vec3& c, float metallic, float roughness, const glm::vec3& wo,
+                   const glm::vec3& wi) {
+  constexpr float kPi = std::numbers::pi_v<float>;
+  const glm::vec3 n(0, 1, 0);
+  float nl = glm::dot(n, wi), nv = glm::dot(n, wo);
+  if (nl <= 0.0f || nv <= 0.0f) return glm::vec3(0.0f);
+  glm::vec3 h = glm::normalize(wo + wi);
+  float a2 = roughness * roughness * roughness * roughness;
+  float nh = glm::dot(n, h), vh = glm::dot(wo, h);
+  float d = a2 / (kPi * std::pow(nh * nh * (a2 - 1.0f) + 1.0f, 2.0f));
+  float v =
+      0.5f / (nl * std::sqrt(nv * nv * (1 - a2) + a2) + nv * std::sqrt(nl * nl * (1 - a2) + a2));
+  float w = std::pow(1.0f - vh, 5.0f);
+  float fd = 0.04f + 0.96f * w;
+  glm::vec3 fm = c + (1.0f - c) * w;
+  glm::vec3 dielectric = (1.0f - fd) * c / kPi + glm::vec3(fd * d * v);
+  glm::vec3 metal = fm * d * v;
+  return glm::mix(dielectric, metal, metallic);
+}
+
+glm::vec3 directionalAlbedo(const glm::vec3& c, float metallic, float roughness,
+                            const glm::vec3& wo) {
+  constexpr float kPi = std::numbers::pi_v<float>;
+  const int nTheta = 2000, nPhi = 1000;
+  glm::dvec3 sum(0.0);
+  for (int i = 0; i < nTheta; ++i) {
+    float cosTheta = (i + 0.5f) / nTheta;
+    float sinTheta = std::sqrt(1.0f - cosTheta * cosTheta);
+    for (int j = 0; j < nPhi; ++j) {
+      float phi = 2.0f * kPi * (j + 0.5f) / nPhi;
+      glm::vec3 wi(sinTheta * std::cos(phi), cosTheta, sinTheta * std::sin(phi));
+      sum += glm::dvec3(gltfBrdf(c, metallic, roughness, wo, wi) * cosTheta);
+    }
+  }
+  return glm::vec3(sum * (2.0 * std::numbers::pi / (double(nTheta) * nPhi)));
 }
 
 }  // namespace bounce::test

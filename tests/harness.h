@@ -30,4 +30,16 @@ double meanLuminance(const ImageRGBA32F& image);
 // shaders/passes/hybrid_frame.glsl).
 glm::vec3 decodeOctahedral(glm::vec2 e);
 
+// The glTF metallic-roughness BRDF (spec Appendix B), written independently of the shaders
+// (common/brdf.glsl) for the tests to check them against: f = mix(dielectric, metal, metallic),
+// dielectric = (1 - F(0.04)) c / pi + F(0.04) D V, metal = F(c) D V, Schlick F in v.h, GGX D,
+// and the height-correlated Smith V that the Khronos sample renderer uses (the spec's appendix
+// writes the separable G1 G1; see brdf.glsl). The normal is +Y.
+glm::vec3 gltfBrdf(const glm::vec3& c, float metallic, float roughness, const glm::vec3& wo,
+                   const glm::vec3& wi);
+// Directional albedo: the integral of gltfBrdf cos over the hemisphere around +Y, by the
+// midpoint rule in (cos theta, phi), fine enough for roughness >= 0.3.
+glm::vec3 directionalAlbedo(const glm::vec3& c, float metallic, float roughness,
+                            const glm::vec3& wo);
+
 }  // namespace bounce::test

@@ -65,6 +65,9 @@ DirectLightComparison compareDirectLight(const DirectLightCase& c) {
   settings.height = c.height;
   settings.shadows.divisor = c.shadowDivisor;
   settings.shadows.maxHistory = c.shadowMaxHistory;
+  // Direct light only, like the one-event reference: no reflection rays (their hits add a
+  // second scattering event).
+  settings.reflections.divisor = 0;
   HybridFrame frame(context, gpuScene, scene, settings);
   frame.requestDebugView("composite");
   for (int i = 0; i < c.frames; ++i) frame.render(camera);

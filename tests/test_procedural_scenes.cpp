@@ -14,10 +14,12 @@
 #include <set>
 #include <tuple>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "harness.h"
 #include "scene/load.h"
+#include "scene/procedural/builtin_scenes.h"
 #include "scene/procedural/furnace.h"
 #include "scene/procedural/random.h"
 #include "scene/procedural/sunroom.h"
@@ -135,12 +137,12 @@ bool contains(const Aabb& box, const glm::vec3& p, float margin = 0.0f) {
 
 // ---- every built-in scene ----------------------------------------------------------------------
 
-TEST(ProceduralScenes, ListsTheSixBuiltins) {
+TEST(ProceduralScenes, ListsTheSevenBuiltins) {
   std::vector<std::string> names = builtinSceneNames();
   std::set<std::string> unique(names.begin(), names.end());
-  EXPECT_EQ(names.size(), 6u);
+  EXPECT_EQ(names.size(), 7u);
   EXPECT_EQ(unique, (std::set<std::string>{"cornell", "sunroom", "foliage", "manylights", "furnace",
-                                           "city"}));
+                                           "city", "spheres"}));
 }
 
 TEST(ProceduralScenes, UnknownNameGivesNothing) {
@@ -552,6 +554,71 @@ TEST(SunroomScene, HasASeparateMovablePanel) {
       EXPECT_NEAR(b.extent().y, 2.0f, 0.01f) << "door-sized";
     }
   EXPECT_EQ(panels, 1u);
+}
+
+// ---- spheres -----------------------------------------------------------------------------------
+
+const Instance* findInstance(const Scene& scene, const std::string& name) {
+  for (const Instance& instance : scene.instances)
+    if (instance.name == name) return &instance;
+  return nullptr;
+}
+
+// The grid the specular tests rely on: every sphere its own instance and material, the row's
+// material (metals first) and the column's roughness, resting on the floor without touching
+// its neighbours.
+TEST(SpheresScene, RowsOfMaterialsAndColumnsOfRoughness) {
+  Scene scene = buildBuiltin("spheres");
+  for (int row = 0; row < procedural::kSpheresRows; ++row)
+    for (int column = 0; column < procedural::kSpheresColumns; ++column) {
+      SCOPED_TRACE(testing::Message() << "row " << row << " column " << column);
+      const Instance* sphere = findInstance(scene, fmt::format("sphere_{}_{}", row, column));
+      ASSERT_NE(sphere, nullptr);
+      const Mesh& mesh = scene.meshes[sphere->mesh];
+      ASSERT_EQ(mesh.geometries.size(), 1u);
+      const Material& m = scene.materials[mesh.geometries[0].material];
+      EXPECT_EQ(m.roughness, procedural::kSpheresRoughness[size_t(column)]);
+      EXPECT_EQ(m.metallic, row < procedural::kSpheresMetalRows ? 1.0f : 0.0f);
+      EXPECT_EQ(m.emissive, glm::vec3(0.0f));
+      Aabb b = instanceBounds(scene, *sphere);
+      EXPECT_NEAR(b.min.y, 0.0f, 1e-5f) << "rests on the floor";
+      EXPECT_NEAR(b.extent().x, b.extent().y, 1e-3f);
+      EXPECT_NEAR(b.extent().x, b.extent().z, 1e-3f);
+      if (column > 0) {
+        Aabb left = instanceBounds(
+            scene, *findInstance(scene, fmt::format("sphere_{}_{}", row, column - 1)));
+        EXPECT_GT(b.min.x, left.max.x) << "apart from its neighbour";
+      }
+    }
+  for (size_t c = 1; c < procedural::kSpheresRoughness.size(); ++c)
+    EXPECT_GT(procedural::kSpheresRoughness[c], procedural::kSpheresRoughness[c - 1]);
+  EXPECT_LE(procedural::kSpheresRoughness.front(), 0.02f) << "from near-mirror";
+  EXPECT_EQ(procedural::kSpheresRoughness.back(), 1.0f) << "to fully rough";
+}
+
+// Lit by the sun, the daylight sky and emissive panels; the camera sees every sphere: the ray
+// from the camera to each sphere's top half hits that sphere first.
+TEST(SpheresScene, SunSkyPanelsAndACameraThatSeesEverySphere) {
+  Scene scene = buildBuiltin("spheres");
+  EXPECT_GT(scene.sun.irradiance, 0.0f);
+  EXPECT_EQ(scene.sky.model, SkyModel::Daylight);
+  int emitters = 0;
+  for (const Material& m : scene.materials) emitters += glm::length(m.emissive) > 0.0f;
+  EXPECT_EQ(emitters, 3);
+  const std::vector<WorldTriangle> triangles = worldTriangles(scene);
+  const glm::vec3 eye = scene.camera->position;
+  for (int row = 0; row < procedural::kSpheresRows; ++row)
+    for (int column = 0; column < procedural::kSpheresColumns; ++column) {
+      const Instance* sphere = findInstance(scene, fmt::format("sphere_{}_{}", row, column));
+      ASSERT_NE(sphere, nullptr);
+      Aabb b = instanceBounds(scene, *sphere);
+      glm::vec3 target = b.center() + glm::vec3(0.0f, 0.25f * b.extent().y, 0.0f);
+      std::optional<RayHit> hit =
+          closestHit(scene, triangles, eye, glm::normalize(target - eye), false);
+      ASSERT_TRUE(hit.has_value());
+      glm::vec3 p = eye + hit->t * glm::normalize(target - eye);
+      EXPECT_TRUE(contains(b, p, 1e-3f)) << "sphere " << row << " " << column << " is hidden";
+    }
 }
 
 // ---- foliage -----------------------------------------------------------------------------------

@@ -34,6 +34,9 @@
 namespace bounce {
 namespace {
 
+using test::directionalAlbedo;
+using test::gltfBrdf;
+
 constexpr float kPi = std::numbers::pi_v<float>;
 
 // One device for the whole file: creating one per render costs time (validation layers) and
@@ -396,47 +399,6 @@ TEST(Reference, EmissionIsOneSidedAndFollowsMirroring) {
   LightTable lights = buildLightTable(scene, rt::buildSceneBvh(scene));
   ASSERT_EQ(lights.emissiveTriangles.size(), 4u);
   for (const auto& t : lights.emissiveTriangles) EXPECT_NEAR(t.frontNormal.z, 1.0f, 1e-6f);
-}
-
-// The glTF metallic-roughness BRDF (spec Appendix B), written here independently of the
-// shader: f = mix(dielectric, metal, metallic), dielectric = (1 - F(0.04)) c / pi + F(0.04) D V,
-// metal = F(c) D V, Schlick F in v.h, GGX D, and the height-correlated Smith V that the Khronos
-// sample renderer uses (the spec's appendix writes the separable G1 G1; see brdf.glsl).
-glm::vec3 gltfBrdf(const glm::vec3& c, float metallic, float roughness, const glm::vec3& wo,
-                   const glm::vec3& wi) {
-  const glm::vec3 n(0, 1, 0);
-  float nl = glm::dot(n, wi), nv = glm::dot(n, wo);
-  if (nl <= 0.0f || nv <= 0.0f) return glm::vec3(0.0f);
-  glm::vec3 h = glm::normalize(wo + wi);
-  float a2 = roughness * roughness * roughness * roughness;
-  float nh = glm::dot(n, h), vh = glm::dot(wo, h);
-  float d = a2 / (kPi * std::pow(nh * nh * (a2 - 1.0f) + 1.0f, 2.0f));
-  float v =
-      0.5f / (nl * std::sqrt(nv * nv * (1 - a2) + a2) + nv * std::sqrt(nl * nl * (1 - a2) + a2));
-  float w = std::pow(1.0f - vh, 5.0f);
-  float fd = 0.04f + 0.96f * w;
-  glm::vec3 fm = c + (1.0f - c) * w;
-  glm::vec3 dielectric = (1.0f - fd) * c / kPi + glm::vec3(fd * d * v);
-  glm::vec3 metal = fm * d * v;
-  return glm::mix(dielectric, metal, metallic);
-}
-
-// Directional albedo: the integral of f cos over the hemisphere, by the midpoint rule in
-// (cos theta, phi), fine enough for roughness >= 0.3.
-glm::vec3 directionalAlbedo(const glm::vec3& c, float metallic, float roughness,
-                            const glm::vec3& wo) {
-  const int nTheta = 2000, nPhi = 1000;
-  glm::dvec3 sum(0.0);
-  for (int i = 0; i < nTheta; ++i) {
-    float cosTheta = (i + 0.5f) / nTheta;
-    float sinTheta = std::sqrt(1.0f - cosTheta * cosTheta);
-    for (int j = 0; j < nPhi; ++j) {
-      float phi = 2.0f * kPi * (j + 0.5f) / nPhi;
-      glm::vec3 wi(sinTheta * std::cos(phi), cosTheta, sinTheta * std::sin(phi));
-      sum += glm::dvec3(gltfBrdf(c, metallic, roughness, wo, wi) * cosTheta);
-    }
-  }
-  return glm::vec3(sum * (2.0 * std::numbers::pi / (double(nTheta) * nPhi)));
 }
 
 // A plane of a glTF material seen from angle theta_o through a tiny field of view, (1) under a

@@ -141,6 +141,25 @@ vec3 sampleGgxVisibleNormal(vec3 vLocal, float alpha, vec2 u) {
   return normalize(vec3(alpha * nh.x, alpha * nh.y, max(nh.z, 0.0)));
 }
 
+// wo reflected about a GGX normal visible from wo (n.wo > 0): a direction of the specular lobe
+// with density ggxReflectionPdf. It may point below the surface (then its weight is zero).
+vec3 sampleGgxReflection(vec3 n, vec3 wo, float alpha, vec2 u) {
+  vec3 t, b;
+  orthonormalBasis(n, t, b);
+  vec3 woLocal = vec3(dot(wo, t), dot(wo, b), dot(n, wo));
+  vec3 hLocal = sampleGgxVisibleNormal(woLocal, alpha, u);
+  vec3 h = normalize(hLocal.x * t + hLocal.y * b + hLocal.z * n);
+  return reflect(-wo, h);
+}
+
+// The specular lobe's f cos / pdf for a sampleGgxReflection direction, with Fresnel left out
+// (F = 1): D Vis n.l / (G1(v) D / (4 n.v)) = G2(l, v) / G1(v) (Heitz 2018, §2). Its mean over the
+// lobe is the lobe's directional albedo without Fresnel; Fresnel multiplies it per sample.
+float ggxReflectionWeight(float nDotL, float nDotV, float alpha) {
+  if (nDotL <= 0.0 || nDotV <= 0.0) return 0.0;
+  return 4.0 * ggxVisibility(nDotL, nDotV, alpha) * nDotL * nDotV / ggxMasking(nDotV, alpha);
+}
+
 struct BrdfSample {
   vec3 wi;
   vec3 weight;  // f cos / pdf
@@ -158,12 +177,7 @@ BrdfSample brdfSample(BrdfMaterial m, vec3 n, vec3 wo, vec3 u) {
   float nDotV = dot(n, wo);
   if (nDotV <= 0.0) return s;
   if (u.z < specularLobeProbability(m, nDotV)) {
-    vec3 t, b;
-    orthonormalBasis(n, t, b);
-    vec3 woLocal = vec3(dot(wo, t), dot(wo, b), nDotV);
-    vec3 hLocal = sampleGgxVisibleNormal(woLocal, m.alpha, u.xy);
-    vec3 h = normalize(hLocal.x * t + hLocal.y * b + hLocal.z * n);
-    s.wi = reflect(-wo, h);
+    s.wi = sampleGgxReflection(n, wo, m.alpha, u.xy);
   } else {
     s.wi = sampleCosineHemisphere(n, u.xy);
   }

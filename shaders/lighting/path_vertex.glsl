@@ -40,13 +40,16 @@ vec2 pixelJitter(uvec4 pixelKey, uint sampleIndex) {
   return vec2((sampleIndex * r2Step + rotation) >> 8u) * (1.0 / 16777216.0);
 }
 
-// Reflected radiance from one light sample, MIS-weighted against BRDF sampling where the light
-// can also be hit by BRDF rays (pdf > 0), and zero when occluded.
-vec3 lightContribution(Surface s, vec3 wo, LightSample l) {
+// Reflected radiance from one light sample, zero when occluded; MIS-weighted against BRDF
+// sampling where the light can also be hit by BRDF rays (pdf > 0) and `misWithBrdf` says the
+// path goes on by BRDF sampling (a vertex that ends the path, as reflections-trace's hit,
+// gives its light samples full weight).
+vec3 lightContribution(Surface s, vec3 wo, LightSample l, bool misWithBrdf) {
   if (!l.valid || dot(l.direction, s.geometricNormal) <= 0.0) return vec3(0.0);
   vec3 f = brdfEvaluate(s.brdf, s.shadingNormal, wo, l.direction);
   vec3 contribution = f * dot(s.shadingNormal, l.direction) * l.radianceOverPdf;
-  if (l.pdf > 0.0) contribution *= powerHeuristic(l.pdf, brdfPdf(s.brdf, s.shadingNormal, wo, l.direction));
+  if (misWithBrdf && l.pdf > 0.0)
+    contribution *= powerHeuristic(l.pdf, brdfPdf(s.brdf, s.shadingNormal, wo, l.direction));
   if (!any(greaterThan(contribution, vec3(0.0)))) return vec3(0.0);
   // One traceVisibility call for both kinds of light: every call is inlined whole (the BVH
   // traversal), and a CPU driver compiles each copy (docs/startup.md).
@@ -55,6 +58,10 @@ vec3 lightContribution(Surface s, vec3 wo, LightSample l) {
   float shadowEnd = l.distant ? NO_HIT : 1.0;
   bool visible = traceVisibility(origin, shadowDirection, 0.0, shadowEnd, true);
   return visible ? contribution : vec3(0.0);
+}
+
+vec3 lightContribution(Surface s, vec3 wo, LightSample l) {
+  return lightContribution(s, wo, l, true);
 }
 
 // Next-event estimation at a vertex: every distant light once, one local light picked by power,

@@ -1,16 +1,26 @@
-// composite: the frame's radiance before exposure (DESIGN.md §4 step 7):
-//   direct sun (glTF BRDF, shaders/common/brdf.glsl) x denoised sun visibility
-//   + KHR point, spot and directional lights (unshadowed for now)
-//   + diffuse GI x albedo + reflections (input slots; zero for --gi none)
-//   + a placeholder ambient: unoccluded sky light, until a GI mode replaces it
+// composite: the frame's radiance before exposure (DESIGN.md §4 step 7), with the glTF
+// metallic-roughness BRDF of the reference (common/brdf.glsl) for every light:
+//   direct sun (full BRDF) x denoised sun visibility
+//   + KHR point, spot and directional lights (full BRDF; unshadowed for now)
+//   + indirect light split by lobe with the split-sum directional albedo
+//     (lighting/specular_albedo.glsl; docs/reflections.md):
+//       diffuse GI (irradiance / pi) x diffuseReflectance (albedo, non-metal part, less Fresnel)
+//       + specular light x specularReflectance, where the specular light is the reflection
+//         signal (demodulated: shared/specular_io.h), or the diffuse GI for surfaces rougher
+//         than CompositeConstants::reflectionMaxRoughness (and for all without reflections)
+//   + a placeholder ambient (unoccluded sky light, off by default) added to the diffuse GI
 //   + emission; the sky where no surface is seen.
+// Under uniform incident light both weights are exact, so a white furnace shows the BRDF's
+// directional albedo at every roughness and metalness.
 #version 460
 #include "common/brdf.glsl"
+#include "lighting/specular_albedo.glsl"
 #include "passes/hybrid_frame.glsl"
 #include "shared/lighting_io.h"
+#include "shared/specular_io.h"
 
 layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
-layout(push_constant, scalar) uniform Push { HybridPassConstants pc; };
+layout(push_constant, scalar) uniform Push { CompositeConstants pc; };
 
 layout(set = 1, binding = COMPOSITE_BINDING_BASE_COLOR, rgba16f) uniform readonly image2D baseColors;
 layout(set = 1, binding = COMPOSITE_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
@@ -75,6 +85,16 @@ vec3 skyAmbient(FrameConstants f, vec3 n) {
   return sum / float(count);
 }
 
+// Light that arrives from all around, reflected by both lobes (see the top of the file).
+vec3 indirectLight(FrameConstants f, ivec2 pixel, BrdfMaterial m, vec3 n, vec3 wo, float roughness) {
+  vec3 diffuseLight = imageLoad(giDiffuse, pixel).rgb + f.skyAmbientStrength * skyAmbient(f, n);
+  // reflections.w = 0: no traced sample reached this pixel (reflections-upsample).
+  vec4 reflection = roughness <= pc.reflectionMaxRoughness ? imageLoad(reflections, pixel) : vec4(0.0);
+  vec3 specularLight = reflection.w > 0.0 ? reflection.rgb : diffuseLight;
+  SpecularAlbedo albedo = specularAlbedo(pc.specularAlbedo, max(dot(n, wo), 0.0), m.alpha);
+  return diffuseReflectance(albedo, m) * diffuseLight + specularReflectance(albedo, m) * specularLight;
+}
+
 vec3 surfaceRadiance(FrameConstants f, ivec2 pixel) {
   vec4 baseMetallic = imageLoad(baseColors, pixel);
   vec4 emissiveRoughness = imageLoad(emissives, pixel);
@@ -88,10 +108,8 @@ vec3 surfaceRadiance(FrameConstants f, ivec2 pixel) {
 
   float sunVisibility = imageLoad(shadows, pixel).x;
   vec3 sun = brdfEvaluate(m, n, wo, f.towardSun) * max(dot(n, f.towardSun), 0.0) * f.sunIrradiance;
-  vec3 diffuseAlbedo = m.baseColor * (1.0 - m.metallic);
-  vec3 indirect = diffuseAlbedo * (imageLoad(giDiffuse, pixel).rgb + f.skyAmbientStrength * skyAmbient(f, n));
-  return sun * sunVisibility + localLights(f, m, position, n, wo) + indirect +
-         imageLoad(reflections, pixel).rgb + emissiveRoughness.rgb;
+  return sun * sunVisibility + localLights(f, m, position, n, wo) +
+         indirectLight(f, pixel, m, n, wo, emissiveRoughness.w) + emissiveRoughness.rgb;
 }
 
 void main() {

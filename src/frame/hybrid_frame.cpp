@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "gi/evolve/cache/clipmap_cache.h"
 #include "gi/evolve/cache_gi.h"
 #include "gi/evolve/restir/restir_gi.h"
 #include "graph/debug_view_image.h"
@@ -67,6 +68,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
       sun_(scene.sun),
       sky_(scene.sky),
       lightingCuts_(scene.sun, scene.sky, settings.lightingCutDegrees),
+      specularAlbedo_(context),
       sceneUpdate_(context, gpuScene),
       vbuffer_(context, gpuScene, scene, settings.vbuffer),
       gbuffer_(context, gpuScene),
@@ -74,7 +76,9 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
       shadowsTrace_(context, gpuScene, settings.shadows),
       shadowsDenoise_(context, gpuScene),
       skyPass_(context, gpuScene),
-      composite_(context, gpuScene),
+      reflectionsTrace_(context, gpuScene, scene, specularAlbedo_, settings.reflections),
+      reflectionsUpsample_(context, gpuScene),
+      composite_(context, gpuScene, specularAlbedo_),
       tonemap_(context, gpuScene),
       timer_(context) {
   validate(settings);
@@ -238,17 +242,39 @@ void HybridFrame::recordFrame() {
   Shadows shadows = shadowsDenoise_.declare(graph_, frame, gbuffer, rawShadows);
   SkyImage sky = skyPass_.declare(graph_, frame, gbuffer);
   IndirectLight indirect;
-  // Without a GI system, and for reflections (nothing writes them yet), composite reads zero.
+  // Without a GI system composite reads zero diffuse light.
   indirect.diffuse =
       gi_ ? gi_->declare(graph_, {frame, gbuffer, shadows}).diffuse
           : graph_.createPersistentImage("gi.diffuse", {VK_FORMAT_R16G16B16A16_SFLOAT});
-  indirect.reflections =
-      graph_.createPersistentImage("reflections", {VK_FORMAT_R16G16B16A16_SFLOAT});
+  declareReflections(frame, gbuffer, indirect);
   HdrImage hdr = composite_.declare(graph_, frame, gbuffer, shadows, sky, indirect);
   std::optional<Exposure> exposure;
   if (autoExposure_)
     exposure = autoExposure_->declare(graph_, hdr, settings_.exposureStops, deltaSeconds_);
   tonemap_.declare(graph_, frame, hdr, exposure);
+}
+
+// reflections-trace and reflections-upsample, which look the GI's radiance cache up at their
+// hits when it has one; without reflection rays (divisor 0) composite takes every surface's
+// specular light from the diffuse GI and reads a zero `reflections`.
+void HybridFrame::declareReflections(const FrameContext& frame, const GBuffer& gbuffer,
+                                     IndirectLight& indirect) {
+  if (!settings_.reflections.enabled()) {
+    indirect.reflections =
+        graph_.createPersistentImage("reflections", {VK_FORMAT_R16G16B16A16_SFLOAT});
+    return;
+  }
+  RadianceCacheLookup cache;
+  if (const ClipmapCache* clipmap = gi_ ? gi_->clipmapCache() : nullptr) {
+    cache.constants = clipmap->constantsAddress();
+    cache.declare = [clipmap](graph::PassBuilder pass) { return clipmap->declareLookup(pass); };
+  }
+  TracedReflections traced = reflectionsTrace_.declare(graph_, frame, gbuffer, cache);
+  indirect.reflections = reflectionsUpsample_
+                             .declare(graph_, frame, gbuffer, traced,
+                                      reflectionsTrace_.constants(frame, cache.constants))
+                             .radiance;
+  indirect.reflectionMaxRoughness = settings_.reflections.maxTracedRoughness;
 }
 
 // Bring your own G-buffer: the same chain up to the GI system, with the GBuffer imported from the

@@ -27,10 +27,13 @@
 #include "frame/lighting_cut.h"
 #include "gi/diffuse_gi.h"
 #include "graph/frame_graph.h"
+#include "lighting/specular_albedo.h"
 #include "passes/auto_exposure.h"
 #include "passes/composite.h"
 #include "passes/gbuffer.h"
 #include "passes/gbuffer_import.h"
+#include "passes/reflections_trace.h"
+#include "passes/reflections_upsample.h"
 #include "passes/scene_update.h"
 #include "passes/shadows_denoise.h"
 #include "passes/shadows_trace.h"
@@ -118,6 +121,8 @@ class HybridFrame {
 
  private:
   void recordFrame();
+  void declareReflections(const FrameContext& frame, const GBuffer& gbuffer,
+                          IndirectLight& indirect);
   void recordGiFrame(const HostGBufferImages& host);
   std::vector<vk::PassTiming> submitFrame(bool afterHostWork = false);
   gpu::FrameConstants makeFrameConstants(const Camera& camera) const;
@@ -136,6 +141,7 @@ class HybridFrame {
   vk::Buffer punctualLights_, directionalLights_;
   uint32_t punctualLightCount_ = 0, directionalLightCount_ = 0;
 
+  SpecularAlbedoTable specularAlbedo_;  // before the passes that read it
   SceneUpdatePass sceneUpdate_;
   VBufferPass vbuffer_;
   GBufferPass gbuffer_;
@@ -143,6 +149,8 @@ class HybridFrame {
   ShadowsTracePass shadowsTrace_;
   ShadowsDenoisePass shadowsDenoise_;
   SkyPass skyPass_;
+  ReflectionsTracePass reflectionsTrace_;
+  ReflectionsUpsamplePass reflectionsUpsample_;
   CompositePass composite_;
   std::optional<AutoExposure> autoExposure_;  // settings.autoExposure
   TonemapPass tonemap_;

@@ -22,6 +22,7 @@ HybridSettings presetSettings(Preset preset) {
       s.width = 1170;
       s.height = 540;
       s.shadows.divisor = 2;                  // half-resolution shadows
+      s.reflections.divisor = 2;              // half-resolution reflections
       s.restirGi.divisor = 4;                 // quarter-resolution diffuse GI
       s.restirGi.occluderVisibility = false;  // its rays cost too much of the mobile budget
       s.cache.raysPerCell = 1;
@@ -32,6 +33,7 @@ HybridSettings presetSettings(Preset preset) {
       s.width = 1920;
       s.height = 1080;
       s.shadows.divisor = 2;             // half-resolution shadows
+      s.reflections.divisor = 2;         // half-resolution reflections
       s.restirGi.divisor = 2;            // half-resolution diffuse GI
       s.restirGi.spatialDenoise = true;  // seed 000's "additional spatial denoising step"
       s.cache.raysPerCell = 4;

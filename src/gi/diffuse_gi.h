@@ -25,6 +25,7 @@
 
 namespace bounce {
 
+class ClipmapCache;
 class GpuScene;
 struct Scene;
 namespace vk {
@@ -68,6 +69,9 @@ class DiffuseGi {
   // A lighting cut (the sun jumped, HybridFrame::setSunAndSky): the view's history stays valid
   // but the light it holds does not; rebuild it quickly.
   virtual void lightingCut() {}
+  // The world-space radiance cache the system keeps up to date this frame, which other passes
+  // (reflections-trace) may look up after declare(); nullptr when it has none.
+  virtual const ClipmapCache* clipmapCache() const { return nullptr; }
 };
 
 }  // namespace bounce

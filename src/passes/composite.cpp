@@ -1,11 +1,16 @@
 #include "passes/composite.h"
 
+#include "lighting/specular_albedo.h"
+
 namespace bounce {
 
 using graph::Access;
 
-CompositePass::CompositePass(vk::Context& context, const GpuScene& scene)
-    : pass_(context, scene, "passes/composite", gpu::COMPOSITE_BINDING_COUNT) {}
+CompositePass::CompositePass(vk::Context& context, const GpuScene& scene,
+                             const SpecularAlbedoTable& specularAlbedo)
+    : specularAlbedo_(specularAlbedo),
+      pass_(context, scene, "passes/composite", gpu::COMPOSITE_BINDING_COUNT,
+            sizeof(gpu::CompositeConstants)) {}
 
 HdrImage CompositePass::declare(graph::FrameGraph& graph, const FrameContext& frame,
                                 const GBuffer& gbuffer, const Shadows& shadows, const SkyImage& sky,
@@ -23,8 +28,12 @@ HdrImage CompositePass::declare(graph::FrameGraph& graph, const FrameContext& fr
       .read(indirect.diffuse, Access::StorageRead, gpu::COMPOSITE_BINDING_GI_DIFFUSE)
       .read(indirect.reflections, Access::StorageRead, gpu::COMPOSITE_BINDING_REFLECTIONS)
       .write(hdr.radiance, Access::StorageWrite, gpu::COMPOSITE_BINDING_OUTPUT)
-      .record([this, frame](VkCommandBuffer cmd, const graph::PassResources& r) {
-        pass_.record(cmd, r, frame.passConstants(), frame.resolution);
+      .record([this, frame, indirect](VkCommandBuffer cmd, const graph::PassResources& r) {
+        const gpu::CompositeConstants push{frame.constantsAddress, specularAlbedo_.address(),
+                                           indirect.reflectionMaxRoughness, 0u};
+        pass_.bind(cmd, push, r);
+        vk::ComputePipeline::dispatchCovering(cmd, frame.resolution.width, frame.resolution.height,
+                                              gpu::HYBRID_GROUP_SIZE, gpu::HYBRID_GROUP_SIZE);
       });
   return hdr;
 }

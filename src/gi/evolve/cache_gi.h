@@ -21,6 +21,7 @@ class CacheGi final : public DiffuseGi {
   void lightingCut() override { cache_.beginFullRefresh(); }
 
   ClipmapCache& cache() { return cache_; }
+  const ClipmapCache* clipmapCache() const override { return &cache_; }
 
  private:
   GpuLightTables lights_;  // before cache_, which refers to them

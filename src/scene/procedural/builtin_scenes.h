@@ -1,6 +1,8 @@
 // The built-in procedural scenes, one file each; registry.cpp maps names to them. Each returns a
 // complete scene (materials, meshes, instances, camera, sun, sky); the registry validates it.
 #pragma once
+#include <array>
+
 #include "scene/scene.h"
 
 namespace bounce::procedural {
@@ -10,6 +12,16 @@ Scene makeSunroomScene();     // sunroom.cpp: a closed room lit through one wind
 Scene makeFoliageScene();     // foliage.cpp: trees and bushes with alpha-tested leaf cards
 Scene makeManyLightsScene();  // manylights.cpp: a room with 64 coloured point lights
 Scene makeCityScene();        // city.cpp: > 1M triangles of city blocks for BVH stress
+Scene makeSpheresScene();     // spheres.cpp: rows of metal and dielectric spheres, rough to smooth
+
+// The spheres scene's grid: rows front to back are white metal, gold (the kSpheresMetalRows
+// metal rows first), white dielectric, red dielectric; column c has roughness
+// kSpheresRoughness[c]. Instance "sphere_<row>_<column>".
+inline constexpr int kSpheresRows = 4;
+inline constexpr int kSpheresMetalRows = 2;
+inline constexpr int kSpheresColumns = 7;
+inline constexpr std::array<float, kSpheresColumns> kSpheresRoughness = {0.02f, 0.1f,  0.2f, 0.35f,
+                                                                         0.5f,  0.75f, 1.0f};
 // The furnace is declared in furnace.h, since tests vary its albedo and emission.
 
 }  // namespace bounce::procedural

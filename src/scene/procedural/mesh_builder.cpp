@@ -212,6 +212,42 @@ void addFrustum(Geometry& g, const glm::vec3& base, const glm::vec3& top, float 
   if (!apex) addDisc(g, top, u, v, w, radiusTop, segments, true);
 }
 
+void addSphere(Geometry& g, const glm::vec3& center, float radius, int segments, int rings) {
+  if (radius <= 0.0f || segments < 3 || rings < 2) return;
+  // Rows of vertices from the north pole (ring 0) to the south pole (ring `rings`); the seam
+  // column is duplicated so uvs can wrap, and the pole rows hold one vertex per face.
+  auto vertex = [&](int ring, float column) {
+    float theta = kPi * float(ring) / float(rings);
+    float phi = 2.0f * kPi * column / float(segments);
+    glm::vec3 n{std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi)};
+    return appendVertex(g, center + radius * n, n,
+                        {column / float(segments), float(ring) / float(rings)});
+  };
+  std::vector<uint32_t> rows((rings + 1) * (segments + 1));
+  for (int ring = 0; ring <= rings; ++ring)
+    for (int column = 0; column <= segments; ++column) {
+      bool pole = ring == 0 || ring == rings;
+      rows[size_t(ring * (segments + 1) + column)] =
+          pole && column == segments ? 0u : vertex(ring, float(column) + (pole ? 0.5f : 0.0f));
+    }
+  auto at = [&](int ring, int column) { return rows[size_t(ring * (segments + 1) + column)]; };
+  // phi grows counter-clockwise seen from +Y and theta downwards, so (ring, column),
+  // (ring + 1, column), (ring + 1, column + 1) turns counter-clockwise seen from outside.
+  for (int ring = 0; ring < rings; ++ring)
+    for (int column = 0; column < segments; ++column) {
+      uint32_t a = at(ring, column), b = at(ring + 1, column);
+      uint32_t c = at(ring + 1, column + 1), d = at(ring, column + 1);
+      if (ring == 0) {
+        appendTriangle(g, a, b, c);
+      } else if (ring == rings - 1) {
+        appendTriangle(g, a, at(rings, column), d);
+      } else {
+        appendTriangle(g, a, b, c);
+        appendTriangle(g, a, c, d);
+      }
+    }
+}
+
 // ---- whole geometries --------------------------------------------------------------------------
 
 void appendTransformed(Geometry& target, const Geometry& source, const glm::mat4& transform) {

@@ -103,6 +103,10 @@ inline void addCone(Geometry& g, const glm::vec3& base, const glm::vec3& apex, f
                     int segments, bool cap = true) {
   addFrustum(g, base, apex, radius, 0.0f, segments, cap);
 }
+// A UV sphere with smooth (exactly radial) normals: `segments` around the vertical axis,
+// `rings` from pole to pole. Each pole is a fan of triangles with one vertex per face, so uvs
+// wrap without zero-area triangles. u runs around (0..1), v from the north pole down (0..1).
+void addSphere(Geometry& g, const glm::vec3& center, float radius, int segments, int rings);
 
 // ---- whole geometries --------------------------------------------------------------------------
 

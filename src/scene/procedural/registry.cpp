@@ -18,13 +18,14 @@ Scene makeDefaultFurnace() {
   return makeFurnaceScene(0.5f, glm::vec3(1.0f));
 }
 
-constexpr std::array<BuiltinScene, 6> kBuiltinScenes = {{
+constexpr std::array<BuiltinScene, 7> kBuiltinScenes = {{
     {"cornell", procedural::makeCornellScene},
     {"sunroom", procedural::makeSunroomScene},
     {"foliage", procedural::makeFoliageScene},
     {"manylights", procedural::makeManyLightsScene},
     {"furnace", makeDefaultFurnace},
     {"city", procedural::makeCityScene},
+    {"spheres", procedural::makeSpheresScene},
 }};
 
 }  // namespace

@@ -13,19 +13,8 @@
 #ifndef BOUNCE_GI_EVOLVE_RESTIR_GI_SECOND_VERTEX_GLSL
 #define BOUNCE_GI_EVOLVE_RESTIR_GI_SECOND_VERTEX_GLSL
 #include "gi/evolve/restir/restir_gi_common.glsl"
+#include "lighting/frame_sun.glsl"
 #include "lighting/path_vertex.glsl"
-
-// The sun of this frame: a direction uniformly in its cone, weighted like the reference's
-// distant lights (shared/lighting_io.h: E 2 / (1 + cos half-angle)).
-LightSample sampleFrameSun(FrameConstants f, vec2 u) {
-  LightSample l = invalidLightSample();
-  if (!any(greaterThan(f.sunIrradiance, vec3(0.0)))) return l;
-  l.distant = true;
-  l.direction = f.sunCosHalfAngle < 1.0 ? sampleCone(f.towardSun, f.sunCosHalfAngle, u) : f.towardSun;
-  l.radianceOverPdf = f.sunIrradiance * (2.0 / (1.0 + f.sunCosHalfAngle));
-  l.valid = true;
-  return l;
-}
 
 // One NEE sample at x2: a light category (the sun, each KHR directional light, the local
 // lights) picked uniformly, then a light sample within it. `localPick` returns the probability

@@ -53,6 +53,8 @@ class RestirGi final : public DiffuseGi {
   std::vector<GiStatistic> statistics() const override;
   void resetHistory() override;
   void lightingCut() override;
+  // With RestirGiSecondVertex::Cache; nullptr otherwise.
+  const ClipmapCache* clipmapCache() const override { return cache_.get(); }
 
  private:
   gpu::RestirGiConstants makeConstants() const;

@@ -1,0 +1,134 @@
+// reflections-trace (DESIGN.md §4 step 6; seed 000: "one ray from the 1st to the 2nd vertex,
+// the clipmap cache sampled at the hit"): one reflection ray per pixel of the traced image
+// (render resolution / divisor), from the full-res GBuffer pixel nearest its centre.
+//   - direction: a GGX visible normal reflected (common/brdf.glsl, the reference's sampler);
+//     below mirrorRoughness the one mirror direction; above maxTracedRoughness no ray at all
+//     (composite then takes the diffuse light as specular light);
+//   - a miss sees the sky; a hit x2 gives its emission, one light sample of the sun and one of
+//     each other kind (KHR directional lights, one local light by power) with shadow rays, and
+//     the clipmap cache's irradiance / pi (as gi-trace-diffuse-rays reads it) reflected by x2's
+//     split-sum albedo for light from the 3rd vertex on, materials at the GI's coarse mip;
+//   - the stored signal is demodulated (shared/specular_io.h): L G2/G1(v) / E[G2/G1(v)].
+#version 460
+#include "common/random.glsl"
+#include "gi/evolve/cache/cache_lookup.glsl"
+#include "lighting/frame_sun.glsl"
+#include "lighting/light_tables.glsl"
+#include "lighting/path_vertex.glsl"
+#include "lighting/specular_albedo.glsl"
+#include "passes/hybrid_frame.glsl"
+#include "shared/specular_io.h"
+
+layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
+layout(push_constant, scalar) uniform Push { ReflectionPassConstants pc; };
+
+layout(set = 1, binding = REFLECTIONS_TRACE_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
+layout(set = 1, binding = REFLECTIONS_TRACE_BINDING_DEPTH, r32f) uniform readonly image2D depths;
+layout(set = 1, binding = REFLECTIONS_TRACE_BINDING_EMISSIVE, rgba16f) uniform readonly image2D emissives;
+layout(set = 1, binding = REFLECTIONS_TRACE_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
+layout(set = 1, binding = REFLECTIONS_TRACE_BINDING_TRACED, rgba16f) uniform writeonly image2D tracedOut;
+
+const uint RANDOM_REFLECTION_DIRECTION = 0x52460001u;
+const uint RANDOM_REFLECTION_HIT = 0x52460002u;
+const uint RANDOM_REFLECTION_CACHE = 0x52460003u;
+
+// The full-res pixel a traced pixel stands for (reflections-upsample uses the same rule).
+ivec2 fullResPixel(FrameConstants f, ivec2 tracedPixel) {
+  ivec2 p = tracedPixel * int(pc.divisor) + int(pc.divisor / 2u);
+  return min(p, ivec2(f.resolution) - 1);
+}
+
+// Direct light at the hit x2 towards x1: the sun, every KHR directional light and one local
+// light, each one sample with a shadow ray at full weight (the path ends here: no BRDF ray
+// competes; light the samples miss, such as the large emitters the tables leave to rays, comes
+// from the cache).
+vec3 hitDirectLight(FrameConstants f, Surface s, vec3 wo, uvec4 key) {
+  // One loop with a single lightContribution call: each call inlines a BVH traversal, and a CPU
+  // driver compiles every copy (docs/startup.md).
+  vec3 sum = vec3(0.0);
+  uint distantCount = lightTables.distantLightCount;
+  for (uint k = 0u; k < distantCount + 2u; ++k) {
+    LightSample l;
+    if (k < distantCount)
+      l = sampleDistantLight(k, pathRandom(key, 1u, PURPOSE_DISTANT_LIGHT + k).xy);
+    else if (k == distantCount)
+      l = sampleLocalLight(s.position, pathRandom(key, 1u, PURPOSE_LOCAL_LIGHT));
+    else
+      l = sampleFrameSun(f, pathRandom(key, 1u, PURPOSE_DISTANT_LIGHT + MAX_DISTANT_LIGHTS).xy);
+    sum += lightContribution(s, wo, l, false);
+  }
+  return sum;
+}
+
+// Light from the 3rd vertex on, reflected at x2 (seed 000, "Clipmap for 3rd+ vertices"): the
+// cache's irradiance / pi, reflected by both lobes of x2 with the split-sum albedo, as composite
+// reflects the diffuse light on rough surfaces. The diffuse lobe alone (what the GI's cache
+// bounce uses) would make every metal seen in a reflection black but for its direct highlights:
+// on `spheres` the metal rows came out 6 % and 10 % darker than the reference that way.
+vec3 hitCacheLight(Surface s, vec3 wo, uint seed) {
+  if (pc.cache == 0ul) return vec3(0.0);
+  SpecularAlbedo albedo = specularAlbedo(pc.specularAlbedo, max(dot(s.shadingNormal, wo), 0.0), s.brdf.alpha);
+  vec3 reflectance = diffuseReflectance(albedo, s.brdf) + specularReflectance(albedo, s.brdf);
+  return reflectance * cacheLookupIrradiance(clipmapCacheView(pc.cache), s.position, s.geometricNormal, seed);
+}
+
+// Radiance arriving at x1 along `dir`; `hitDistance` is set to the hit's distance (or the miss
+// distance).
+vec3 incomingRadiance(FrameConstants f, vec3 origin, vec3 dir, uvec4 key, out float hitDistance) {
+  TraceHit hit = traceClosest(origin, dir, 0.0, NO_HIT, true);
+  if (!traceHitFound(hit)) {
+    hitDistance = REFLECTION_MISS_DISTANCE;
+    return skyRadianceToward(f, dir);
+  }
+  bool lambert = (f.flags & FRAME_FLAG_LAMBERT) != 0u;
+  Surface s = loadSurfaceAtCoarseMip(hit, dir, lambert, pc.materialTextureSide);
+  hitDistance = distance(origin, s.position);
+  return s.emission + hitDirectLight(f, s, -dir, key) + hitCacheLight(s, -dir, key.x ^ RANDOM_REFLECTION_CACHE);
+}
+
+// The demodulated reflection signal at a full-res pixel; w: hit distance or REFLECTION_NO_SAMPLE.
+vec4 reflectionSample(FrameConstants f, ivec2 pixel, ivec2 tracedPixel) {
+  if ((imageLoad(flags, pixel).x & GBUFFER_FLAG_SURFACE) == 0u) return vec4(0.0, 0.0, 0.0, REFLECTION_NO_SAMPLE);
+  float roughness = imageLoad(emissives, pixel).w;
+  bool lambert = (f.flags & FRAME_FLAG_LAMBERT) != 0u;
+  if (lambert || roughness > pc.maxTracedRoughness) return vec4(0.0, 0.0, 0.0, REFLECTION_NO_SAMPLE);
+  vec4 encodedNormals = imageLoad(normals, pixel);
+  vec3 n = decodeOctahedral(encodedNormals.xy);
+  vec3 ng = decodeOctahedral(encodedNormals.zw);
+  vec3 wo = -pixelRayDirection(f, vec2(pixel) + 0.5);
+  float nDotV = dot(n, wo);
+  if (nDotV <= 0.0) return vec4(0.0);
+  float alpha = makeBrdfMaterial(vec3(1.0), 0.0, roughness, false).alpha;
+
+  vec3 dir;
+  float weight;
+  if (roughness < pc.mirrorRoughness) {
+    // A near-mirror: the lobe is narrower than the pixel's footprint; its one direction.
+    dir = reflect(-wo, n);
+    weight = 1.0;
+  } else {
+    dir = sampleGgxReflection(n, wo, alpha, random2(uvec2(tracedPixel), f.frameIndex, RANDOM_REFLECTION_DIRECTION));
+    SpecularAlbedo albedo = specularAlbedo(pc.specularAlbedo, nDotV, alpha);
+    float meanWeight = albedo.scale + albedo.bias;
+    weight = meanWeight > 0.0 ? ggxReflectionWeight(dot(n, dir), nDotV, alpha) / meanWeight : 0.0;
+  }
+  // A direction below the geometric surface would leak through it: a sample of zero light.
+  if (weight <= 0.0 || dot(dir, ng) <= 0.0) return vec4(0.0);
+
+  vec3 position = positionFromDepth(f, vec2(pixel) + 0.5, imageLoad(depths, pixel).x);
+  uvec4 key = pcg4d(uvec4(tracedPixel, f.frameIndex, RANDOM_REFLECTION_HIT));
+  float hitDistance;
+  vec3 radiance = incomingRadiance(f, offsetRayOrigin(position, ng), dir, key, hitDistance);
+  return vec4(radiance * weight, hitDistance);
+}
+
+void main() {
+  FrameConstants f = FrameBlock(pc.frame).v;
+  ivec2 tracedPixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(tracedPixel), pc.tracedResolution))) return;
+  lightTables = LightTablesBlock(pc.lights).v;
+  vec4 value = reflectionSample(f, fullResPixel(f, tracedPixel), tracedPixel);
+  // Nothing non-finite leaves the pass (later passes keep history of it).
+  if (any(isnan(value)) || any(isinf(value))) value = vec4(0.0, 0.0, 0.0, REFLECTION_NO_SAMPLE);
+  imageStore(tracedOut, tracedPixel, vec4(min(value.rgb, vec3(65000.0)), value.w));
+}

@@ -1,0 +1,368 @@
+// Specular shading in the hybrid frame (docs/reflections.md):
+//   - the split-sum table holds the directional albedo of the glTF BRDF, checked against an
+//     independent CPU integration of the specification's formulas (harness.h);
+//   - the specular furnace: spheres of every roughness of the `spheres` scene, a metal of
+//     F0 = 1 and a white dielectric, alone under a uniform white sky; each sphere's composite
+//     must match the reference path tracer's render of the same view within 2 %, i.e. show the
+//     BRDF's directional albedo, whatever carries the specular light;
+//   - the same spheres with every material Lambert show their albedo exactly as before;
+//   - `spheres` (desktop preset, ReSTIR GI, traced reflections) against the reference of the
+//     same view: the metal rows' mean radiance.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <set>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "frame/hybrid_frame.h"
+#include "frame/presets.h"
+#include "harness.h"
+#include "lighting/light_table.h"
+#include "lighting/specular_albedo.h"
+#include "reference/path_tracer.h"
+#include "rt/gpu_scene.h"
+#include "scene/load.h"
+#include "scene/procedural/builtin_scenes.h"
+#include "scene/procedural/mesh_builder.h"
+#include "shared/specular_albedo_io.h"
+#include "tools/image_io.h"
+#include "tools/metrics.h"
+#include "vk/context.h"
+
+namespace bounce {
+namespace {
+
+using procedural::kSpheresColumns;
+using procedural::kSpheresRoughness;
+
+// ---- the split-sum table -----------------------------------------------------------------------
+
+std::vector<glm::vec4> downloadTable(vk::Context& context, const SpecularAlbedoTable& table) {
+  std::vector<glm::vec4> entries(gpu::SPECULAR_ALBEDO_SIZE * gpu::SPECULAR_ALBEDO_SIZE);
+  vk::downloadBuffer(context, table.buffer(), std::as_writable_bytes(std::span(entries)));
+  return entries;
+}
+
+// Entries at a spread of (n.v, roughness), roughness >= 0.3 where the CPU midpoint rule is
+// exact enough: the metal of F0 = 1 reflects scale + bias, the metal of F0 = 0 bias, and a white
+// dielectric its diffuse lobe less Fresnel plus its F0 = 0.04 specular lobe. The table's
+// sampling error is ~0.1 %; a wrong weight (G2 instead of G2 / G1, a missing Fresnel, the
+// diffuse Fresnel in n.v instead of v.h) moves these by several percent.
+TEST(SpecularAlbedo, TableHoldsTheBrdfsDirectionalAlbedo) {
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  SpecularAlbedoTable table(context);
+  std::vector<glm::vec4> entries = downloadTable(context, table);
+  const uint32_t n = gpu::SPECULAR_ALBEDO_SIZE;
+  for (uint32_t i : {2u, 12u, 30u})
+    for (uint32_t j : {10u, 20u, 31u}) {
+      float nDotV = float(i) / float(n - 1);
+      float roughness = float(j) / float(n - 1);
+      SCOPED_TRACE(testing::Message() << "n.v " << nDotV << " roughness " << roughness);
+      glm::vec3 wo(std::sqrt(1.0f - nDotV * nDotV), nDotV, 0.0f);
+      glm::vec4 e = entries[j * n + i];
+      float metal = test::directionalAlbedo(glm::vec3(1.0f), 1.0f, roughness, wo).x;
+      float black = test::directionalAlbedo(glm::vec3(0.0f), 1.0f, roughness, wo).x;
+      float dielectric = test::directionalAlbedo(glm::vec3(1.0f), 0.0f, roughness, wo).x;
+      float tableDielectric = (1.0f - 0.04f - 0.96f * e.z) + 0.04f * e.x + e.y;
+      std::printf(
+          "n.v %.3f roughness %.3f: metal %.4f (table %.4f), F0 0 %.4f (%.4f), "
+          "dielectric %.4f (%.4f)\n",
+          nDotV, roughness, metal, e.x + e.y, black, e.y, dielectric, tableDielectric);
+      EXPECT_NEAR((e.x + e.y) / metal, 1.0, 0.005);
+      EXPECT_NEAR(e.y, black, 0.005 * metal);
+      EXPECT_NEAR(tableDielectric / dielectric, 1.0, 0.005);
+    }
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+}
+
+// ---- the specular furnace ----------------------------------------------------------------------
+
+// Sphere centres lie this far apart, so that a sphere sees its neighbours in under 0.01 % of
+// its reflections (a mirror ball maps solid angle to image area uniformly, so a neighbour of
+// solid angle w covers w / 4 pi of the disc): the frame's reflection rays find no light at a
+// metal hit (the cache at the hit has only a diffuse lobe, and here there is no cache), where
+// the reference sees the sky in it, so neighbours 4 m apart cost the metals 2-4 %.
+constexpr float kFurnaceSpacing = 100.0f;
+constexpr float kFurnaceRadius = 0.5f;
+constexpr int kFurnaceRows = 2;        // metal F0 = 1, white dielectric
+constexpr uint32_t kFurnaceSize = 64;  // pixels a side; the sphere covers about 45 across
+
+glm::vec3 furnaceSphereCentre(int row, int column) {
+  return {float(column) * kFurnaceSpacing, float(row) * kFurnaceSpacing, 0.0f};
+}
+
+// One row per material, one column per roughness of `spheres`. Instance k = row * columns +
+// column.
+Scene specularFurnaceScene() {
+  Scene scene;
+  scene.name = "specular-furnace";
+  for (int row = 0; row < kFurnaceRows; ++row)
+    for (int column = 0; column < kSpheresColumns; ++column) {
+      Material m =
+          procedural::lambertMaterial(fmt::format("sphere_{}_{}", row, column), glm::vec3(1.0f));
+      m.metallic = row == 0 ? 1.0f : 0.0f;
+      m.roughness = kSpheresRoughness[size_t(column)];
+      Geometry g;
+      g.material = procedural::addMaterial(scene, m);
+      procedural::addSphere(g, furnaceSphereCentre(row, column), kFurnaceRadius, 64, 32);
+      Mesh mesh;
+      mesh.name = m.name;
+      mesh.geometries.push_back(std::move(g));
+      procedural::addMeshInstance(scene, std::move(mesh));
+    }
+  scene.sun.irradiance = 0.0f;
+  scene.sky.model = SkyModel::Constant;
+  scene.sky.radiance = glm::vec3(1.0f);
+  validateScene(scene, "specular furnace");
+  return scene;
+}
+
+// 4 m in front of a sphere, looking at it.
+Camera furnaceCamera(int row, int column) {
+  glm::vec3 centre = furnaceSphereCentre(row, column);
+  return Camera{centre + glm::vec3(0.0f, 0.0f, 4.0f), centre, {0.0f, 1.0f, 0.0f}, 20.0f};
+}
+
+struct SphereMeans {
+  int row = 0, column = 0;
+  double hybrid = 0.0, reference = 0.0;
+  int pixels = 0;
+};
+
+// Mean luminance of one sphere over the pixels whose 3 x 3 neighbourhood shows it (the
+// silhouette, where n.v -> 0 and a pixel mixes sphere and sky, is left out of both images).
+SphereMeans sphereMeans(const std::vector<glm::uvec4>& ids, uint32_t instance,
+                        const ImageRGBA32F& hybrid, const ImageRGBA32F& reference) {
+  SphereMeans s;
+  const int w = hybrid.width, h = hybrid.height;
+  for (int y = 1; y + 1 < h; ++y)
+    for (int x = 1; x + 1 < w; ++x) {
+      bool interior = true;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          interior &= ids[size_t((y + dy) * w + x + dx)].x == instance;
+      if (!interior) continue;
+      s.hybrid += luminance(glm::vec3(hybrid.at(x, y)));
+      s.reference += luminance(glm::vec3(reference.at(x, y)));
+      ++s.pixels;
+    }
+  s.hybrid /= std::max(s.pixels, 1);
+  s.reference /= std::max(s.pixels, 1);
+  return s;
+}
+
+// Renders each sphere with the hybrid frame (the mean of `frames` frames' composites: the traced
+// reflections are one noisy sample per pixel and frame, with no reuse or denoising yet) and with
+// the reference (pixel centres, as the frame shades them), and returns each sphere's means.
+std::vector<SphereMeans> runSpecularFurnace(HybridSettings settings, int frames,
+                                            const std::string& tag) {
+  Scene scene = specularFurnaceScene();
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  settings.width = kFurnaceSize;
+  settings.height = kFurnaceSize;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("composite");
+  frame.requestDebugView("vbuffer.ids");
+  ReferencePathTracer tracer(context, gpuScene, scene);
+  ReferenceOptions options;
+  options.width = kFurnaceSize;
+  options.height = kFurnaceSize;
+  options.samplesPerPixel = 64;
+  options.pixelCentre = true;
+  options.lambert = settings.lambert;
+
+  std::vector<SphereMeans> spheres;
+  for (int row = 0; row < kFurnaceRows; ++row)
+    for (int column = 0; column < kSpheresColumns; ++column) {
+      Camera camera = furnaceCamera(row, column);
+      frame.resetHistory();
+      ImageRGBA32F hybrid(kFurnaceSize, kFurnaceSize, glm::vec4(0.0f));
+      for (int i = 0; i < frames; ++i) {
+        frame.render(camera);
+        ImageRGBA32F composite = frame.debugViewImage("composite");
+        for (size_t k = 0; k < hybrid.pixels.size(); ++k)
+          hybrid.pixels[k] += composite.pixels[k] / float(frames);
+      }
+      const graph::DebugView& view = frame.graph().readDebugView("vbuffer.ids");
+      std::vector<glm::uvec4> ids(view.bytes.size() / sizeof(glm::uvec4));
+      std::memcpy(ids.data(), view.bytes.data(), ids.size() * sizeof(glm::uvec4));
+      ImageRGBA32F reference = tracer.render(camera, options).image;
+      if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES")) {  // for looking at the pair
+        std::string stem = fmt::format("{}/specular-furnace-{}-{}-{}", dir, tag, row, column);
+        writePng(stem + "-hybrid.png", hybrid, 1.0f);
+        writePng(stem + "-reference.png", reference, 1.0f);
+      }
+      EXPECT_EQ(countNonFinitePixels(hybrid), 0u);
+      SphereMeans s = sphereMeans(ids, uint32_t(row * kSpheresColumns + column), hybrid, reference);
+      s.row = row;
+      s.column = column;
+      std::printf("%s: %s roughness %.2f: composite %.4f reference %.4f (ratio %.4f, %d pixels)\n",
+                  tag.c_str(), row == 0 ? "metal F0=1" : "dielectric",
+                  kSpheresRoughness[size_t(column)], s.hybrid, s.reference, s.hybrid / s.reference,
+                  s.pixels);
+      spheres.push_back(s);
+    }
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+  return spheres;
+}
+
+// The frame's settings for the furnace: no GI system, the placeholder ambient (unoccluded sky
+// light) as the diffuse light instead, which is exact for a lone convex sphere under a uniform
+// sky (1 everywhere). This isolates composite's weighting from the GI's noise: ReSTIR GI's
+// gi.diffuse after 4 frames here is 1 only within ~8 % per sphere (blotches), the reference's
+// noise on a sphere's mean (64 samples x ~160 pixels) is below 0.3 %.
+HybridSettings furnaceSettings() {
+  HybridSettings settings = presetSettings(Preset::Desktop);
+  settings.gi = GiMode::None;
+  settings.skyAmbientStrength = 1.0f;
+  return settings;
+}
+
+// With the diffuse light as every pixel's specular light (no reflection rays), composite shows
+// the split-sum albedo diffuseReflectance + specularReflectance: the BRDF's directional albedo.
+TEST(SpecularFurnace, DiffuseLightAsSpecularLightShowsTheDirectionalAlbedo) {
+  HybridSettings settings = furnaceSettings();
+  settings.reflections.divisor = 0;
+  for (const SphereMeans& s : runSpecularFurnace(settings, 2, "diffuse-light")) {
+    SCOPED_TRACE(testing::Message()
+                 << "row " << s.row << " roughness " << kSpheresRoughness[size_t(s.column)]);
+    ASSERT_GT(s.pixels, 100);
+    EXPECT_NEAR(s.hybrid / s.reference, 1.0, 0.02);
+  }
+}
+
+// The specular light of every sphere up to ReflectionSettings::maxTracedRoughness through the
+// traced signal (half resolution, desktop preset): each ray sees the sky, so the demodulated
+// signal is G2/G1 over its mean, whose average over the lobe is 1 only if the sampler, its
+// weight and the table agree; 8 frames of ~40 half-res samples per sphere keep the noise of a
+// sphere's mean under 0.5 % even where rays reach below the horizon. Spheres rougher than the
+// cut-off take the diffuse light, as above.
+TEST(SpecularFurnace, TracedReflectionsShowTheDirectionalAlbedo) {
+  HybridSettings settings = furnaceSettings();
+  ASSERT_EQ(settings.reflections.divisor, 2u);
+  for (const SphereMeans& s : runSpecularFurnace(settings, 8, "traced")) {
+    SCOPED_TRACE(testing::Message()
+                 << "row " << s.row << " roughness " << kSpheresRoughness[size_t(s.column)]);
+    ASSERT_GT(s.pixels, 100);
+    EXPECT_NEAR(s.hybrid / s.reference, 1.0, 0.02);
+  }
+}
+
+// With every material Lambert (--lambert) the spheres reflect their white albedo: radiance 1.
+TEST(SpecularFurnace, LambertSpheresShowTheirAlbedo) {
+  HybridSettings settings = furnaceSettings();
+  settings.lambert = true;
+  for (const SphereMeans& s : runSpecularFurnace(settings, 2, "lambert")) {
+    ASSERT_GT(s.pixels, 100);
+    EXPECT_NEAR(s.hybrid, 1.0, 0.01);
+    EXPECT_NEAR(s.reference, 1.0, 0.01);
+  }
+}
+
+// ---- the spheres scene against the reference ---------------------------------------------------
+
+constexpr uint32_t kSpheresWidth = 192, kSpheresHeight = 108;
+
+struct SpheresRender {
+  ImageRGBA32F composite;  // the mean of frames 9-16
+  std::vector<glm::uvec4> ids;
+};
+
+// `spheres` through the hybrid frame, desktop preset with ReSTIR GI, reflections traced at
+// 1 / reflectionDivisor (0: none).
+SpheresRender renderSpheres(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                            uint32_t reflectionDivisor) {
+  constexpr int kFrames = 16, kAveraged = 8;
+  HybridSettings settings = presetSettings(Preset::Desktop);
+  settings.width = kSpheresWidth;
+  settings.height = kSpheresHeight;
+  settings.gi = GiMode::Evolve;
+  settings.reflections.divisor = reflectionDivisor;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("composite");
+  frame.requestDebugView("vbuffer.ids");
+  SpheresRender out{ImageRGBA32F(kSpheresWidth, kSpheresHeight, glm::vec4(0.0f)), {}};
+  for (int i = 0; i < kFrames; ++i) {
+    frame.render(*scene.camera);
+    if (i < kFrames - kAveraged) continue;
+    ImageRGBA32F composite = frame.debugViewImage("composite");
+    for (size_t k = 0; k < out.composite.pixels.size(); ++k)
+      out.composite.pixels[k] += composite.pixels[k] / float(kAveraged);
+  }
+  const graph::DebugView& view = frame.graph().readDebugView("vbuffer.ids");
+  out.ids.resize(view.bytes.size() / sizeof(glm::uvec4));
+  std::memcpy(out.ids.data(), view.bytes.data(), out.ids.size() * sizeof(glm::uvec4));
+  EXPECT_EQ(countNonFinitePixels(out.composite), 0u);
+  return out;
+}
+
+// Mean luminance of a row's spheres, composite over reference.
+double rowMeanRatio(const Scene& scene, const SpheresRender& hybrid, const ImageRGBA32F& reference,
+                    int row) {
+  std::set<uint32_t> instances;
+  for (uint32_t i = 0; i < scene.instances.size(); ++i)
+    if (scene.instances[i].name.rfind(fmt::format("sphere_{}_", row), 0) == 0) instances.insert(i);
+  EXPECT_EQ(instances.size(), size_t(kSpheresColumns));
+  double sumHybrid = 0.0, sumReference = 0.0;
+  for (int y = 0; y < reference.height; ++y)
+    for (int x = 0; x < reference.width; ++x) {
+      if (!instances.count(hybrid.ids[size_t(y * reference.width + x)].x)) continue;
+      sumHybrid += luminance(glm::vec3(hybrid.composite.at(x, y)));
+      sumReference += luminance(glm::vec3(reference.at(x, y)));
+    }
+  return sumHybrid / sumReference;
+}
+
+// `spheres` at 192 x 108, desktop preset (half-res reflections and GI), the mean of frames 9-16
+// against 32 reference samples through pixel centres, with and without reflection rays.
+// Without reuse or a denoiser the traced reflections are one sample per half-res pixel and
+// frame, so pixels stay noisy; but they must show what the fallback (the diffuse GI as every
+// surface's specular light) cannot: the mirrors' images of floor, sky, panels and neighbours.
+// Measured on lavapipe (docs/reflections.md): relMSE 0.42-0.60 traced against 1.89 without;
+// the metal rows' means 0.91-0.94 of the reference with and without reflections alike, so that
+// shortfall lies outside the reflection signal (see the doc) and is printed, not asserted, until
+// it is understood (issue 19 wants 5 %). What is asserted per metal row is the bug this work
+// fixed: metals lit by their direct highlights alone (black) would be far below half.
+TEST(SpecularSpheres, TracedReflectionsBringTheMetalsTowardsTheReference) {
+  Scene scene = *makeBuiltinScene("spheres");
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  SpheresRender traced = renderSpheres(context, gpuScene, scene, 2);
+  SpheresRender fallback = renderSpheres(context, gpuScene, scene, 0);
+
+  ReferencePathTracer tracer(context, gpuScene, scene);
+  ReferenceOptions options;
+  options.width = kSpheresWidth;
+  options.height = kSpheresHeight;
+  options.samplesPerPixel = 32;
+  options.pixelCentre = true;
+  ImageRGBA32F reference = tracer.render(*scene.camera, options).image;
+  if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES")) {
+    writeImage(std::string(dir) + "/spheres-hybrid.exr", traced.composite);
+    writeImage(std::string(dir) + "/spheres-reference.exr", reference);
+    writePng(std::string(dir) + "/spheres-hybrid.png", traced.composite, 1.0f / 32.0f);
+    writePng(std::string(dir) + "/spheres-no-reflections.png", fallback.composite, 1.0f / 32.0f);
+    writePng(std::string(dir) + "/spheres-reference.png", reference, 1.0f / 32.0f);
+  }
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+  const double tracedError = relativeMeanSquaredError(traced.composite, reference);
+  const double fallbackError = relativeMeanSquaredError(fallback.composite, reference);
+  std::printf("spheres %ux%u: relMSE %.4f traced, %.4f without reflection rays; mean %.4f\n",
+              kSpheresWidth, kSpheresHeight, tracedError, fallbackError,
+              test::meanLuminance(traced.composite) / test::meanLuminance(reference));
+  EXPECT_LT(tracedError, 0.5 * fallbackError);
+  for (int row = 0; row < procedural::kSpheresRows; ++row) {
+    double ratio = rowMeanRatio(scene, traced, reference, row);
+    std::printf("spheres row %d (%s): mean composite/reference %.4f traced, %.4f without\n", row,
+                row < procedural::kSpheresMetalRows ? "metal" : "dielectric", ratio,
+                rowMeanRatio(scene, fallback, reference, row));
+    if (row < procedural::kSpheresMetalRows) EXPECT_GT(ratio, 0.5) << "metal row " << row;
+  }
+}
+
+}  // namespace
+}  // namespace bounce
