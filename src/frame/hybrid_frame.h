@@ -23,6 +23,7 @@
 #include <memory>
 #include <optional>
 
+#include "di/restir_di.h"
 #include "frame/frame_settings.h"
 #include "frame/lighting_cut.h"
 #include "gi/diffuse_gi.h"
@@ -156,6 +157,7 @@ class HybridFrame {
   TonemapPass tonemap_;
   vk::GpuTimer timer_;
   std::unique_ptr<DiffuseGi> gi_;  // nullptr for --gi none
+  std::optional<RestirDi> di_;     // DiSettings::enabled()
   graph::FrameGraph graph_;        // after what it imports: destroyed first
 
   gpu::FrameConstants constants_{};
