@@ -45,6 +45,8 @@ struct RenderOptions {
   // clear message) instead of a conversion error; std::nullopt: not given, the preset's value.
   int64_t frames = 8;
   std::string gi = "evolve";  // seed 000's full diffuse GI
+  std::string di = "restir";  // ReSTIR DI (DiSettings)
+  bool diUnbiased = false;
   std::string vbuffer = "raster";
   std::optional<int64_t> giDivisor;
   std::string restirSecondVertex;
@@ -155,6 +157,12 @@ void checkOutputs(const RenderOptions& o) {
 void checkArguments(const RenderOptions& o) {
   o.common.checkArguments();
   requireOneOf("--gi", o.gi, splitNames(giModeNames()));
+  requireOneOf("--di", o.di, splitNames(diModeNames()));
+  if (o.diUnbiased && o.di != "restir")
+    fail(
+        "--di {} and --di-unbiased cannot be used together: the bias correction is in spatial "
+        "reuse, which only --di restir runs",
+        o.di);
   requireOneOf("--vbuffer", o.vbuffer, {"raster", "trace"});
   if (!o.preset.empty()) requireOneOf("--preset", o.preset, splitNames(presetNames()));
   if (!o.restirSecondVertex.empty())
@@ -255,6 +263,8 @@ HybridSettings settingsFrom(const RenderOptions& o) {
     });
   settings.gi = *giModeFromName(o.gi);
   settings.vbuffer = *vbufferModeFromName(o.vbuffer);
+  settings.di.mode = *diModeFromName(o.di);
+  settings.di.unbiased = o.diUnbiased;
   validate(settings);  // the preset's values, for the chosen GI
   applyRestirOptions(o, settings);
   if (o.materialTextureSide)
@@ -481,6 +491,15 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
       ->capture_default_str();
   cmd->add_option("--gi", options->gi, std::string("Diffuse GI mode: ") + giModeNames())
       ->capture_default_str();
+  cmd->add_option("--di", options->di,
+                  std::string("Direct light of every light but the sun (docs/di.md): ") +
+                      diModeNames() +
+                      " (restir: resampling with temporal and spatial reuse; uniform: the same "
+                      "candidates without reuse; off: KHR lights unshadowed, as before)")
+      ->capture_default_str();
+  cmd->add_flag("--di-unbiased", options->diUnbiased,
+                "ReSTIR DI's ray-traced bias correction in spatial reuse (a shadow ray per "
+                "neighbour)");
   cmd->add_option("--gi-divisor", options->giDivisor,
                   "ReSTIR GI resolution = render resolution / N (1 to 16; default: the "
                   "preset's, 4 mobile, 2 desktop)");

@@ -119,6 +119,12 @@ LightSample sampleDistantLight(uint k, vec2 u) {
   return l;
 }
 
+// Whether light sampling picks points on emitters of `material` (materialLightAreaPdf > 0); the
+// large emitters the real-time tables leave to rays are not (src/lighting/gpu_light_tables.h).
+bool lightTablesSampleMaterial(uint material) {
+  return FloatArray(lightTables.materialLightAreaPdf).v[material] > 0.0;
+}
+
 // Density with which sampleLocalLight would have produced the direction of a ray from
 // `origin` that hit the front of an emissive triangle of `material` at `hitPoint`, whose
 // geometric normal is n.

@@ -1,7 +1,9 @@
 // composite: the frame's radiance before exposure (DESIGN.md §4 step 7), with the glTF
 // metallic-roughness BRDF of the reference (common/brdf.glsl) for every light:
 //   direct sun (full BRDF) x denoised sun visibility
-//   + KHR point, spot and directional lights (full BRDF; unshadowed for now)
+//   + every other light: ReSTIR DI's di.radiance (KHR point, spot and directional lights and
+//     emissive triangles, shadowed; FRAME_FLAG_DI_LIGHTS), or with --di off the KHR lights
+//     unshadowed (full BRDF)
 //   + indirect light split by lobe with the split-sum directional albedo
 //     (lighting/specular_albedo.glsl; docs/reflections.md):
 //       diffuse GI (irradiance / pi) x diffuseReflectance (albedo, non-metal part, less Fresnel)
@@ -31,6 +33,7 @@ layout(set = 1, binding = COMPOSITE_BINDING_SHADOWS, rg16f) uniform readonly ima
 layout(set = 1, binding = COMPOSITE_BINDING_SKY, rgba16f) uniform readonly image2D sky;
 layout(set = 1, binding = COMPOSITE_BINDING_GI_DIFFUSE, rgba16f) uniform readonly image2D giDiffuse;
 layout(set = 1, binding = COMPOSITE_BINDING_REFLECTIONS, rgba16f) uniform readonly image2D reflections;
+layout(set = 1, binding = COMPOSITE_BINDING_DIRECT, rgba16f) uniform readonly image2D directLight;
 layout(set = 1, binding = COMPOSITE_BINDING_OUTPUT, rgba16f) uniform writeonly image2D hdrOut;
 
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer PunctualLights {
@@ -108,7 +111,9 @@ vec3 surfaceRadiance(FrameConstants f, ivec2 pixel) {
 
   float sunVisibility = imageLoad(shadows, pixel).x;
   vec3 sun = brdfEvaluate(m, n, wo, f.towardSun) * max(dot(n, f.towardSun), 0.0) * f.sunIrradiance;
-  return sun * sunVisibility + localLights(f, m, position, n, wo) +
+  bool restirDi = (f.flags & FRAME_FLAG_DI_LIGHTS) != 0u;
+  vec3 lights = restirDi ? imageLoad(directLight, pixel).rgb : localLights(f, m, position, n, wo);
+  return sun * sunVisibility + lights +
          indirectLight(f, pixel, m, n, wo, emissiveRoughness.w) + emissiveRoughness.rgb;
 }
 

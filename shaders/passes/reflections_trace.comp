@@ -83,7 +83,10 @@ vec3 incomingRadiance(FrameConstants f, vec3 origin, vec3 dir, uvec4 key, out fl
   bool lambert = (f.flags & FRAME_FLAG_LAMBERT) != 0u;
   Surface s = loadSurfaceAtCoarseMip(hit, dir, lambert, pc.materialTextureSide);
   hitDistance = distance(origin, s.position);
-  return s.emission + hitDirectLight(f, s, -dir, key) + hitCacheLight(s, -dir, key.x ^ RANDOM_REFLECTION_CACHE);
+  // ReSTIR DI lights x1 from the emitters the light tables sample, specular lobe included
+  // (FRAME_FLAG_DI_LIGHTS): their emission seen in a reflection would count twice.
+  bool diLit = (f.flags & FRAME_FLAG_DI_LIGHTS) != 0u && lightTablesSampleMaterial(s.material);
+  return (diLit ? vec3(0.0) : s.emission) + hitDirectLight(f, s, -dir, key) + hitCacheLight(s, -dir, key.x ^ RANDOM_REFLECTION_CACHE);
 }
 
 // The demodulated reflection signal at a full-res pixel; w: hit distance or REFLECTION_NO_SAMPLE.

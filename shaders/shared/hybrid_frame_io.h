@@ -19,10 +19,11 @@
 //   shadows.raw        R16F         sun visibility, one cone sample per pixel (1/divisor res)
 //   shadows.visibility RG16F        denoised sun visibility (x), frames accumulated (y) (history)
 //   sky.radiance       RGBA16F      sky radiance where no surface is seen, 0 elsewhere
-//   gi.diffuse         RGBA16F      diffuse irradiance / pi from a GI mode (zero for --gi none)
-//   reflections        RGBA16F      specular radiance from a reflection pass (zero for now)
-//   composite.hdr      RGBA16F      scene-referred radiance (before exposure)
-//   tonemap.display    RGBA16F      display-referred linear colour in [0, 1]
+//   di.radiance        RGBA16F      direct light of the light tables' lights (ReSTIR DI,
+//   docs/di.md) gi.diffuse         RGBA16F      diffuse irradiance / pi from a GI mode (zero for
+//   --gi none) reflections        RGBA16F      specular radiance from a reflection pass (zero for
+//   now) composite.hdr      RGBA16F      scene-referred radiance (before exposure) tonemap.display
+//   RGBA16F      display-referred linear colour in [0, 1]
 //
 // Bring your own G-buffer (`gbuffer-import`, include/bounce/host_gbuffer.h): the host's images,
 // imported, storage images in GENERAL layout at render resolution:
@@ -45,6 +46,10 @@ BOUNCE_CONST uint GBUFFER_FLAG_BACK_FACING = 2u;   // the viewer sees the triang
 BOUNCE_CONST uint GBUFFER_FLAG_ALPHA_TESTED = 4u;  // the material is MASK or BLEND
 
 BOUNCE_CONST uint FRAME_FLAG_LAMBERT = 1u;  // every material pure Lambert (--lambert)
+// ReSTIR DI lights the primary vertex from every light of the light tables (src/di/restir_di.h):
+// composite adds di.radiance instead of its unshadowed loop over the KHR lights, and rays that
+// leave the primary vertex (GI, reflections) count no emission of emitters the tables sample.
+BOUNCE_CONST uint FRAME_FLAG_DI_LIGHTS = 2u;
 
 BOUNCE_CONST uint FRAME_SKY_CONSTANT = 0u;
 BOUNCE_CONST uint FRAME_SKY_DAYLIGHT = 1u;  // Preetham et al. 1999, shaders/common/sky.glsl
@@ -164,8 +169,9 @@ BOUNCE_CONST uint COMPOSITE_BINDING_SHADOWS = 5u;
 BOUNCE_CONST uint COMPOSITE_BINDING_SKY = 6u;
 BOUNCE_CONST uint COMPOSITE_BINDING_GI_DIFFUSE = 7u;
 BOUNCE_CONST uint COMPOSITE_BINDING_REFLECTIONS = 8u;
-BOUNCE_CONST uint COMPOSITE_BINDING_OUTPUT = 9u;
-BOUNCE_CONST uint COMPOSITE_BINDING_COUNT = 10u;
+BOUNCE_CONST uint COMPOSITE_BINDING_DIRECT = 9u;  // di.radiance (zero without ReSTIR DI)
+BOUNCE_CONST uint COMPOSITE_BINDING_OUTPUT = 10u;
+BOUNCE_CONST uint COMPOSITE_BINDING_COUNT = 11u;
 
 BOUNCE_CONST uint TONEMAP_BINDING_HDR = 0u;
 BOUNCE_CONST uint TONEMAP_BINDING_DISPLAY = 1u;

@@ -30,6 +30,7 @@ void validate(const HybridSettings& s) {
   if (s.autoExposure) validate(s.exposure);
   if (!(s.skyAmbientStrength >= 0.0f) || !std::isfinite(s.skyAmbientStrength))
     fail("sky ambient {}: must be >= 0", s.skyAmbientStrength);
+  if (s.di.enabled()) validate(s.di);
   if (s.gi == GiMode::Evolve) validate(s.restirGi);
   if (s.gi == GiMode::Cache ||
       (s.gi == GiMode::Evolve && s.restirGi.secondVertex == RestirGiSecondVertex::Cache))

@@ -8,6 +8,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "di/di_settings.h"
 #include "gi/evolve/cache/clipmap_cache_settings.h"
 #include "gi/evolve/restir/restir_gi_settings.h"
 #include "passes/auto_exposure.h"
@@ -56,6 +57,9 @@ struct HybridSettings {
   // frame at 60 fps; a jump is a scripted change of the time of day. 0 = every change is a cut;
   // a negative value: never.
   float lightingCutDegrees = 5.0f;
+  // ReSTIR DI: every light but the sun, shadowed, at the primary vertex (--di; restir in both
+  // presets and by default). Off: composite's unshadowed loop over the KHR lights.
+  DiSettings di;
   RestirGiSettings restirGi;   // --gi evolve
   ClipmapCacheSettings cache;  // --gi cache (and the cache ReSTIR GI reads)
 

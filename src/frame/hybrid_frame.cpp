@@ -89,6 +89,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
   nearPlane_ = std::max(1e-4f, 1e-4f * radius);
 
   gi_ = makeDiffuseGi(context, gpuScene, scene, settings);
+  if (settings.di.enabled()) di_.emplace(context, gpuScene, scene, settings.di);
   if (settings.autoExposure) autoExposure_.emplace(context, gpuScene, settings.exposure);
 
   LightTable lights = buildLightTable(scene, gpuScene.bvh());
@@ -158,6 +159,9 @@ void HybridFrame::advanceTime() {
 std::vector<vk::PassTiming> HybridFrame::render(const Camera& camera) {
   advanceTime();
   constants_ = makeFrameConstants(camera);
+  // Only a whole frame runs DI: renderGi's host lights its own frame, so there the GI keeps the
+  // emission of every emitter.
+  if (di_) constants_.flags |= gpu::FRAME_FLAG_DI_LIGHTS;
   recordFrame();
   return submitFrame();
 }
@@ -240,6 +244,10 @@ void HybridFrame::recordFrame() {
   GBuffer gbuffer = gbuffer_.declare(graph_, frame, vbuffer);
   RawShadows rawShadows = shadowsTrace_.declare(graph_, frame, gbuffer);
   Shadows shadows = shadowsDenoise_.declare(graph_, frame, gbuffer, rawShadows);
+  DirectLightImage direct;
+  direct.radiance =
+      di_ ? di_->declare(graph_, frame, gbuffer).radiance
+          : graph_.createPersistentImage("di.radiance", {VK_FORMAT_R16G16B16A16_SFLOAT});
   SkyImage sky = skyPass_.declare(graph_, frame, gbuffer);
   IndirectLight indirect;
   // Without a GI system composite reads zero diffuse light.
@@ -247,7 +255,7 @@ void HybridFrame::recordFrame() {
       gi_ ? gi_->declare(graph_, {frame, gbuffer, shadows}).diffuse
           : graph_.createPersistentImage("gi.diffuse", {VK_FORMAT_R16G16B16A16_SFLOAT});
   declareReflections(frame, gbuffer, indirect);
-  HdrImage hdr = composite_.declare(graph_, frame, gbuffer, shadows, sky, indirect);
+  HdrImage hdr = composite_.declare(graph_, frame, gbuffer, shadows, direct, sky, indirect);
   std::optional<Exposure> exposure;
   if (autoExposure_)
     exposure = autoExposure_->declare(graph_, hdr, settings_.exposureStops, deltaSeconds_);

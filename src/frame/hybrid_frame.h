@@ -1,10 +1,9 @@
 // The hybrid frame (DESIGN.md §4; seed 000's hybrid renderer): scene-update, vbuffer, gbuffer,
-// shadows-trace, shadows-denoise, sky, the diffuse GI system, composite, automatic exposure
-// (exposure-histogram, exposure-adapt), tonemap; each a pass
-// unit of src/passes/ (or src/gi/) declared on the frame graph once per frame by recordFrame(),
-// a straight chain in which each pass takes the typed outputs of the ones before. Resources are
-// created by the first frame (and a resize); later frames only update the frame constants and
-// record.
+// shadows-trace, shadows-denoise, ReSTIR DI (di-*), sky, the diffuse GI system, composite,
+// automatic exposure (exposure-histogram, exposure-adapt), tonemap; each a pass unit of src/passes/
+// (or src/gi/) declared on the frame graph once per frame by recordFrame(), a straight chain in
+// which each pass takes the typed outputs of the ones before. Resources are created by the first
+// frame (and a resize); later frames only update the frame constants and record.
 //
 //   HybridFrame frame(context, gpuScene, scene, settings);
 //   frame.requestDebugView("composite");      // any pass or resource by name
@@ -23,6 +22,7 @@
 #include <memory>
 #include <optional>
 
+#include "di/restir_di.h"
 #include "frame/frame_settings.h"
 #include "frame/lighting_cut.h"
 #include "gi/diffuse_gi.h"
@@ -156,6 +156,7 @@ class HybridFrame {
   TonemapPass tonemap_;
   vk::GpuTimer timer_;
   std::unique_ptr<DiffuseGi> gi_;  // nullptr for --gi none
+  std::optional<RestirDi> di_;     // DiSettings::enabled()
   graph::FrameGraph graph_;        // after what it imports: destroyed first
 
   gpu::FrameConstants constants_{};

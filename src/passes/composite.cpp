@@ -13,7 +13,8 @@ CompositePass::CompositePass(vk::Context& context, const GpuScene& scene,
             sizeof(gpu::CompositeConstants)) {}
 
 HdrImage CompositePass::declare(graph::FrameGraph& graph, const FrameContext& frame,
-                                const GBuffer& gbuffer, const Shadows& shadows, const SkyImage& sky,
+                                const GBuffer& gbuffer, const Shadows& shadows,
+                                const DirectLightImage& direct, const SkyImage& sky,
                                 const IndirectLight& indirect) {
   HdrImage hdr{graph.createImage("composite.hdr", {VK_FORMAT_R16G16B16A16_SFLOAT})};
   graph.addPass("composite", graph::QueueKind::Compute)
@@ -27,6 +28,7 @@ HdrImage CompositePass::declare(graph::FrameGraph& graph, const FrameContext& fr
       .read(sky.radiance, Access::StorageRead, gpu::COMPOSITE_BINDING_SKY)
       .read(indirect.diffuse, Access::StorageRead, gpu::COMPOSITE_BINDING_GI_DIFFUSE)
       .read(indirect.reflections, Access::StorageRead, gpu::COMPOSITE_BINDING_REFLECTIONS)
+      .read(direct.radiance, Access::StorageRead, gpu::COMPOSITE_BINDING_DIRECT)
       .write(hdr.radiance, Access::StorageWrite, gpu::COMPOSITE_BINDING_OUTPUT)
       .record([this, frame, indirect](VkCommandBuffer cmd, const graph::PassResources& r) {
         const gpu::CompositeConstants push{frame.constantsAddress, specularAlbedo_.address(),

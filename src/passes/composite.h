@@ -25,6 +25,13 @@ struct IndirectLight {
   float reflectionMaxRoughness = -1.0f;
 };
 
+// The direct light of the lights other than the sun.
+struct DirectLightImage {
+  // di.radiance (src/di/restir_di.h) where FRAME_FLAG_DI_LIGHTS is set; otherwise a zero image
+  // that composite ignores, lighting the KHR lights itself, unshadowed.
+  graph::ImageHandle radiance;
+};
+
 struct HdrImage {
   graph::ImageHandle radiance;  // composite.hdr: rgba16f, W/(m^2 sr)
 };
@@ -35,7 +42,8 @@ class CompositePass {
   CompositePass(vk::Context& context, const GpuScene& scene,
                 const SpecularAlbedoTable& specularAlbedo);
   HdrImage declare(graph::FrameGraph& graph, const FrameContext& frame, const GBuffer& gbuffer,
-                   const Shadows& shadows, const SkyImage& sky, const IndirectLight& indirect);
+                   const Shadows& shadows, const DirectLightImage& direct, const SkyImage& sky,
+                   const IndirectLight& indirect);
 
  private:
   const SpecularAlbedoTable& specularAlbedo_;

@@ -1,7 +1,8 @@
 // gi-trace-diffuse-rays: traces each GI pixel's ray from x1 (closest hit, alpha test on). A miss
-// sees the sky (x2 is then a direction). A hit x2 gets its emission, the set-up of one NEE
-// shadow ray (traced by gi-trace-diffuse-nee-rays) and, by RestirGiSettings::secondVertex, a
-// continued path (restir_gi_second_vertex.glsl).
+// sees the sky (x2 is then a direction). A hit x2 gets its emission (none from the emitters
+// ReSTIR DI samples, FRAME_FLAG_DI_LIGHTS), the set-up of one NEE shadow ray (traced by
+// gi-trace-diffuse-nee-rays) and, by RestirGiSettings::secondVertex, a continued path
+// (restir_gi_second_vertex.glsl).
 #version 460
 #include "gi/evolve/restir/restir_gi_second_vertex.glsl"
 #include "gi/evolve/cache/cache_radiance.glsl"
@@ -64,7 +65,10 @@ void main() {
   bool lambert = (f.flags & FRAME_FLAG_LAMBERT) != 0u;
   Surface s = loadSurfaceAtCoarseMip(hit, dir, lambert, gi.materialTextureSide);
   vec3 wo = -dir;
-  vec3 radiance = s.emission;
+  // ReSTIR DI lights x1 from the emitters the light tables sample (FRAME_FLAG_DI_LIGHTS): a GI
+  // ray that hits one adds no emission, or direct light would count twice.
+  bool diLit = (f.flags & FRAME_FLAG_DI_LIGHTS) != 0u && lightTablesSampleMaterial(s.material);
+  vec3 radiance = diLit ? vec3(0.0) : s.emission;
   vec4 neeRay = vec4(0.0);
   vec3 neeRadiance = vec3(0.0);
   uvec4 key = pcg4d(uvec4(g, f.frameIndex, RANDOM_GI_PATH));

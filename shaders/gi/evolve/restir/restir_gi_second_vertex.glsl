@@ -1,6 +1,7 @@
 // The radiance leaving the 2nd vertex x2 towards x1, by RestirGiSettings::secondVertex:
-//   emission (always; x1 has no light sampling for emissive triangles, so the GI ray is the
-//   only way to reach them, with weight 1)
+//   emission (with --di off always: x1 then has no light sampling for emissive triangles, so the
+//   GI ray is the only way to reach them, with weight 1; with ReSTIR DI none from the emitters
+//   it samples, which DI lights at x1; gi_trace_diffuse_rays.comp)
 //   + one next-event estimation sample at x2, whose shadow ray gi-trace-diffuse-nee-rays traces
 //   + PATH: a path traced on from x2 exactly like the reference tracer's (BRDF sampling, NEE at
 //     every vertex with MIS against BRDF hits on emitters, Russian roulette; the vertices are

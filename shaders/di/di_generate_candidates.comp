@@ -1,0 +1,51 @@
+// di-generate-candidates: each pixel's initial reservoir by resampled importance sampling
+// (Talbot 2005; Bitterli et al. 2020, Alg. 3) over DiConstants::lightCandidates light candidates
+// drawn by power (the alias table; distant lights uniformly): candidate i gets the weight
+// p_hat(y_i) / (M p(y_i)), the kept one y has W = (sum of weights) / p_hat(y) and M = 1.
+// Then one shadow ray for y (RTXDI's initial visibility): an occluded y keeps M but W = 0, so
+// that reuse does not spread a light this pixel cannot see.
+#version 460
+#include "di/di_common.glsl"
+
+layout(local_size_x = DI_GROUP_SIZE, local_size_y = DI_GROUP_SIZE) in;
+
+layout(set = 1, binding = DI_CANDIDATES_BINDING_RESERVOIR, rgba32ui) uniform writeonly uimage2D reservoirOut;
+
+DiReservoir resampleCandidates(FrameConstants f, DiConstants di, DiSurface s, ivec2 pixel, out float target) {
+  uvec4 key = diRandomKey(f, di, pixel, RANDOM_DI_CANDIDATES);
+  DiReservoir r = emptyDiReservoir();
+  float weightSum = 0.0;
+  target = 0.0;
+  float count = float(di.lightCandidates);
+  [[dont_unroll]] for (uint i = 0u; i < di.lightCandidates; ++i) {
+    vec4 a = diRandom(key);
+    vec4 b = diRandom(key);
+    vec2 u;
+    uint light = sampleDiLight(a, b.xy, u);
+    float pdf = diSelectionPdf(light);
+    float pHat = light != DI_NO_LIGHT && pdf > 0.0 ? diTarget(evaluateDiLight(s, light, u)) : 0.0;
+    float w = pHat > 0.0 ? pHat / (count * pdf) : 0.0;
+    if (diStream(r, weightSum, light, u, w, 0.0, b.z)) target = pHat;
+  }
+  r.M = 1.0;
+  r.W = diContributionWeight(weightSum, target, 1.0);
+  return r;
+}
+
+void main() {
+  FrameConstants f = FrameBlock(pc.frame).v;
+  DiConstants di = DiBlock(pc.di).v;
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
+  lightTables = LightTablesBlock(di.lights).v;
+  DiSurface s = loadDiSurface(f, pixel);
+  DiReservoir r = emptyDiReservoir();
+  if (s.valid) {
+    float target;
+    r = resampleCandidates(f, di, s, pixel, target);
+    if ((di.flags & DI_FLAG_CANDIDATE_VISIBILITY) != 0u && r.W > 0.0 &&
+        !diVisible(s, evaluateDiLight(s, r.light, r.u)))
+      r.W = 0.0;
+  }
+  imageStore(reservoirOut, pixel, packDiReservoir(r));
+}

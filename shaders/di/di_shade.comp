@@ -1,0 +1,39 @@
+// di-shade: the direct light of every sampled light at each pixel (DESIGN.md §4 step 3): the
+// chain's last reservoir's sample y, its unshadowed integrand with the full glTF BRDF (diffuse
+// and specular lobes, common/brdf.glsl) times its contribution weight W, times one final shadow
+// ray (RTXDI's final visibility). Writes di.radiance, which composite adds, and
+// di.reservoir-info for the debug views.
+#version 460
+#include "di/di_common.glsl"
+
+layout(local_size_x = DI_GROUP_SIZE, local_size_y = DI_GROUP_SIZE) in;
+
+layout(set = 1, binding = DI_SHADE_BINDING_RESERVOIR, rgba32ui) uniform readonly uimage2D reservoirs;
+layout(set = 1, binding = DI_SHADE_BINDING_RADIANCE, rgba16f) uniform writeonly image2D radianceOut;
+// (chosen light index, or -1; M; W; visibility 0/1, or -1 where nothing was traced)
+layout(set = 1, binding = DI_SHADE_BINDING_INFO, rgba32f) uniform writeonly image2D infoOut;
+
+void main() {
+  FrameConstants f = FrameBlock(pc.frame).v;
+  DiConstants di = DiBlock(pc.di).v;
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
+  lightTables = LightTablesBlock(di.lights).v;
+  DiSurface s = loadDiSurface(f, pixel);
+  DiReservoir r = unpackDiReservoir(imageLoad(reservoirs, pixel));
+  vec3 radiance = vec3(0.0);
+  float visibility = -1.0;
+  if (s.valid && r.W > 0.0) {
+    DiLight l = evaluateDiLight(s, r.light, r.u);
+    if (any(greaterThan(l.contribution, vec3(0.0)))) {
+      bool visible = diVisible(s, l);
+      visibility = visible ? 1.0 : 0.0;
+      radiance = visible ? l.contribution * r.W : vec3(0.0);
+    }
+  }
+  // Nothing non-finite leaves the pass (composite and later temporal passes read it).
+  if (any(isnan(radiance)) || any(isinf(radiance))) radiance = vec3(0.0);
+  imageStore(radianceOut, pixel, vec4(min(radiance, vec3(65000.0)), 1.0));
+  float light = r.light == DI_NO_LIGHT ? -1.0 : float(r.light & ~DI_LIGHT_DISTANT);
+  imageStore(infoOut, pixel, vec4(light, r.M, r.W, visibility));
+}

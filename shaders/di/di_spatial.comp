@@ -1,0 +1,79 @@
+// di-spatial: the temporal reservoir merged with those of DiConstants::spatialSamples neighbours
+// (disocclusionSamples where the temporal reservoir's M is below disocclusionM: a pixel without
+// history), uniform in a disc of spatialRadius pixels, that show a similar surface (RTXDI's
+// defaults: 1 neighbour, 32 px). Each input is weighted p_hat(y) W M at this pixel. Bias
+// correction (Bitterli et al. 2020, Alg. 6): the kept sample y is normalised by Z, the confidence
+// of the inputs that could have produced it: those whose own target at their own pixel is
+// positive for y (RTXDI's "basic" correction), and with DI_FLAG_UNBIASED also not occluded
+// there, by one shadow ray per neighbour (the "ray-traced" correction, unbiased: a neighbour's
+// reservoir cannot hold a light that it cannot see, because of the candidates' visibility ray).
+// This pixel's own reservoir always counts (where y is hidden from it, di-shade's ray gives 0).
+// Not fed back: the next frame's history is di-temporal's output.
+#version 460
+#include "di/di_common.glsl"
+
+layout(local_size_x = DI_GROUP_SIZE, local_size_y = DI_GROUP_SIZE) in;
+
+layout(set = 1, binding = DI_SPATIAL_BINDING_INPUT, rgba32ui) uniform readonly uimage2D reservoirs;
+layout(set = 1, binding = DI_SPATIAL_BINDING_OUTPUT, rgba32ui) uniform writeonly uimage2D reservoirOut;
+
+const uint MAX_DI_SPATIAL_SAMPLES = 8u;
+
+// A pixel uniformly in the disc around `pixel` (never the pixel itself).
+ivec2 neighbourPixel(ivec2 pixel, float radius, vec2 u) {
+  float r = radius * sqrt(u.x);
+  float phi = 2.0 * PI * u.y;
+  ivec2 offset = ivec2(round(r * vec2(cos(phi), sin(phi))));
+  if (offset == ivec2(0)) offset = ivec2(1, 0);
+  return pixel + offset;
+}
+
+// Z of the kept sample: the M of every input whose target at its own pixel is positive for it.
+float normalisation(FrameConstants f, DiConstants di, DiReservoir r, float ownM, ivec2 neighbours[MAX_DI_SPATIAL_SAMPLES],
+                    float neighbourM[MAX_DI_SPATIAL_SAMPLES], uint count) {
+  float Z = ownM;
+  bool traced = (di.flags & DI_FLAG_UNBIASED) != 0u;
+  [[dont_unroll]] for (uint i = 0u; i < count; ++i) {
+    if (!(neighbourM[i] > 0.0)) continue;
+    DiSurface q = loadDiSurface(f, neighbours[i]);
+    DiLight l = evaluateDiLight(q, r.light, r.u);
+    if (diTarget(l) > 0.0 && (!traced || diVisible(q, l))) Z += neighbourM[i];
+  }
+  return Z;
+}
+
+void main() {
+  FrameConstants f = FrameBlock(pc.frame).v;
+  DiConstants di = DiBlock(pc.di).v;
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
+  lightTables = LightTablesBlock(di.lights).v;
+  DiSurface s = loadDiSurface(f, pixel);
+  DiReservoir own = unpackDiReservoir(imageLoad(reservoirs, pixel));
+  DiReservoir r = emptyDiReservoir();
+  if (s.valid) {
+    uvec4 key = diRandomKey(f, di, pixel, RANDOM_DI_SPATIAL);
+    float weightSum = 0.0, target = 0.0;
+    float ownTarget = diTarget(evaluateDiLight(s, own.light, own.u));
+    if (diStream(r, weightSum, own.light, own.u, ownTarget * own.W * own.M, own.M, diRandom(key).x))
+      target = ownTarget;
+    uint count = own.M < di.disocclusionM ? di.disocclusionSamples : di.spatialSamples;
+    count = min(count, MAX_DI_SPATIAL_SAMPLES);
+    ivec2 neighbours[MAX_DI_SPATIAL_SAMPLES];
+    float neighbourM[MAX_DI_SPATIAL_SAMPLES];
+    [[dont_unroll]] for (uint i = 0u; i < count; ++i) {
+      vec4 u = diRandom(key);
+      neighbours[i] = neighbourPixel(pixel, di.spatialRadius, u.xy);
+      neighbourM[i] = 0.0;
+      DiSurface q = loadDiSurface(f, neighbours[i]);
+      if (!q.valid || !diSimilarSurface(di, s.depth, s.normal, q.depth, q.normal)) continue;
+      DiReservoir n = unpackDiReservoir(imageLoad(reservoirs, neighbours[i]));
+      neighbourM[i] = n.M;
+      float t = diTarget(evaluateDiLight(s, n.light, n.u));
+      if (diStream(r, weightSum, n.light, n.u, t * n.W * n.M, n.M, u.z)) target = t;
+    }
+    float Z = r.light == DI_NO_LIGHT ? 0.0 : normalisation(f, di, r, own.M, neighbours, neighbourM, count);
+    r.W = diContributionWeight(weightSum, target, Z);
+  }
+  imageStore(reservoirOut, pixel, packDiReservoir(r));
+}

@@ -1,0 +1,98 @@
+// ReSTIR DI (Bitterli et al. 2020, "Spatiotemporal reservoir resampling for real-time ray tracing
+// with dynamic direct lighting"; defaults after RTXDI, research/gi10_lux_denoisers.md §2.3(a)):
+// the constants block, push constants, reservoir encoding and the bindings of the four passes
+// (src/di/restir_di.cpp chains them on the frame graph). Every image is at render resolution.
+//
+// The lights are those of the scene's light tables (shared/lighting_io.h, the GI's NEE tables):
+// local lights (emissive triangles and KHR point/spot lights, alias table) and the KHR
+// directional lights; the sun is not among them (its own soft-shadow pass lights it), nor are
+// the large emitters the tables leave to rays (src/lighting/gpu_light_tables.h).
+//
+// A sample is (light, u): `light` indexes the local lights (alias-table entry) or, with
+// DI_LIGHT_DISTANT set, the distant lights; u in [0, 1)^2 is the light's own primary sample:
+// the point uniformTriangleBarycentrics(u) on a triangle, the direction sampleCone(u) in a
+// directional light's cone, unused for a point or spot light. Every light's measure is thus
+// uniform over u, the same for every pixel, so reuse between pixels needs no Jacobian, and the
+// integrand of a sample (DiLight.contribution, di_common.glsl) is f cos L G x |dy/du|.
+// The target function is p_hat = luminance(contribution) without visibility (RTXDI's choice:
+// visibility enters through the initial and final visibility rays).
+//
+// Reservoir (one RGBA32UI texel, 16 bytes): x light (DI_NO_LIGHT: none), y u as two unorm16,
+// z W (float bits; the unbiased contribution weight, 1/pdf in u-space x selection), w M (float
+// bits; the confidence, candidates' reservoirs have M = 1).
+#ifndef BOUNCE_SHARED_RESTIR_DI_IO_H
+#define BOUNCE_SHARED_RESTIR_DI_IO_H
+#include "shared/compat.h"
+
+BOUNCE_BEGIN_SHARED
+
+BOUNCE_CONST uint DI_NO_LIGHT = 0xFFFFFFFFu;
+BOUNCE_CONST uint DI_LIGHT_DISTANT = 0x80000000u;  // bit of a distant light's index
+
+BOUNCE_CONST uint DI_FLAG_TEMPORAL = 1u;  // di-temporal merges the reprojected history
+BOUNCE_CONST uint DI_FLAG_SPATIAL = 2u;   // di-spatial merges neighbours
+BOUNCE_CONST uint DI_FLAG_UNBIASED = 4u;  // di-spatial traces the neighbours' visibility (1/Z)
+BOUNCE_CONST uint DI_FLAG_CANDIDATE_VISIBILITY = 8u;  // the chosen candidate's shadow ray
+
+// Constants of the whole chain, uploaded once (RestirDi's constructor; DiSettings documents
+// each field's unit and trade-off).
+struct DiConstants {
+  DeviceAddress lights;      // LightTables (shared/lighting_io.h): the GI's tables, sun left out
+  uint flags;                // DI_FLAG_*
+  uint lightCandidates;      // light candidates per pixel per frame
+  float temporalMaxM;        // M cap of the history reservoir
+  float depthTolerance;      // reuse: |depth - depth'| / depth at most this
+  float normalTolerance;     // reuse: n . n' at least this
+  uint spatialSamples;       // di-spatial: neighbours per pixel
+  uint disocclusionSamples;  // ... where the temporal reservoir's M is below disocclusionM
+  float disocclusionM;
+  float spatialRadius;  // pixels
+  uint seed;            // mixed into every random number of the chain
+};
+BOUNCE_CHECK_SIZE(DiConstants, 48);
+
+// Push constants of every DI pass.
+struct DiPassConstants {
+  DeviceAddress frame;  // FrameConstants
+  DeviceAddress di;     // DiConstants
+  uint historyValid;    // di-temporal: 0 in the first frame, after a reset or a lighting cut
+  uint pad0;
+};
+BOUNCE_CHECK_SIZE(DiPassConstants, 24);
+
+BOUNCE_CONST uint DI_GROUP_SIZE = 8u;
+
+// Set 1 bindings (storage images), per pass. The GBuffer inputs come first in each.
+BOUNCE_CONST uint DI_BINDING_BASE_COLOR = 0u;
+BOUNCE_CONST uint DI_BINDING_NORMALS = 1u;
+BOUNCE_CONST uint DI_BINDING_DEPTH = 2u;
+BOUNCE_CONST uint DI_BINDING_EMISSIVE = 3u;  // roughness in w
+BOUNCE_CONST uint DI_BINDING_FLAGS = 4u;
+BOUNCE_CONST uint DI_GBUFFER_BINDING_COUNT = 5u;
+
+// di-generate-candidates
+BOUNCE_CONST uint DI_CANDIDATES_BINDING_RESERVOIR = 5u;  // out: di.candidate
+BOUNCE_CONST uint DI_CANDIDATES_BINDING_COUNT = 6u;
+
+// di-temporal
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_CANDIDATE = 5u;         // di.candidate
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_VELOCITY = 6u;          // gbuffer.velocity
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_PREVIOUS = 7u;          // di.reservoir (previous)
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_PREVIOUS_SURFACE = 8u;  // di.reservoir-surface (previous)
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_CURRENT = 9u;           // di.reservoir (current)
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_CURRENT_SURFACE = 10u;  // di.reservoir-surface (current)
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_COUNT = 11u;
+
+// di-spatial
+BOUNCE_CONST uint DI_SPATIAL_BINDING_INPUT = 5u;   // di.reservoir (current)
+BOUNCE_CONST uint DI_SPATIAL_BINDING_OUTPUT = 6u;  // di.spatial
+BOUNCE_CONST uint DI_SPATIAL_BINDING_COUNT = 7u;
+
+// di-shade
+BOUNCE_CONST uint DI_SHADE_BINDING_RESERVOIR = 5u;  // the chain's last reservoir
+BOUNCE_CONST uint DI_SHADE_BINDING_RADIANCE = 6u;   // out: di.radiance
+BOUNCE_CONST uint DI_SHADE_BINDING_INFO = 7u;       // out: di.reservoir-info
+BOUNCE_CONST uint DI_SHADE_BINDING_COUNT = 8u;
+
+BOUNCE_END_SHARED
+#endif

@@ -1,0 +1,46 @@
+// What the passes of the ReSTIR DI chain share: the pass shape, this frame's facts and the
+// GBuffer inputs every pass binds (shared/restir_di_io.h).
+#pragma once
+#include <string>
+
+#include "passes/frame_context.h"
+#include "passes/gbuffer.h"
+#include "passes/image_pass.h"
+#include "shared/restir_di_io.h"
+
+namespace bounce {
+
+// One compute pass of the chain: scene at set 0, storage images at set 1 (DI_BINDING_* and the
+// pass's own), gpu::DiPassConstants in push constants, one thread per pixel.
+class DiPass : public ComputePass {
+ public:
+  DiPass(vk::Context& context, const GpuScene& scene, const std::string& shader,
+         uint32_t imageCount)
+      : ComputePass(context, scene, shader, imageCount, sizeof(gpu::DiPassConstants)) {}
+
+  void record(VkCommandBuffer cmd, const graph::PassResources& resources,
+              const gpu::DiPassConstants& constants, VkExtent2D extent) {
+    bind(cmd, constants, resources);
+    vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, gpu::DI_GROUP_SIZE,
+                                          gpu::DI_GROUP_SIZE);
+  }
+};
+
+// This frame's facts every pass reads; copied into the record callbacks.
+struct DiFrame {
+  FrameContext frame;
+  GBuffer gbuffer;
+  VkDeviceAddress constants = 0;  // gpu::DiConstants
+
+  gpu::DiPassConstants passConstants(bool historyValid = false) const {
+    return {frame.constantsAddress, constants, historyValid ? 1u : 0u, 0u};
+  }
+};
+
+// A reservoir image (restir_di_io.h: light, u, W, M in one RGBA32UI texel).
+constexpr VkFormat kDiReservoirFormat = VK_FORMAT_R32G32B32A32_UINT;
+
+// Declares the frame constants and the GBuffer images at DI_BINDING_* on `pass`.
+graph::PassBuilder& readDiGBuffer(graph::PassBuilder& pass, const DiFrame& f);
+
+}  // namespace bounce

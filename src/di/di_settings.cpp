@@ -1,0 +1,42 @@
+#include "di/di_settings.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace bounce {
+
+std::optional<DiMode> diModeFromName(const std::string& name) {
+  if (name == "off") return DiMode::Off;
+  if (name == "uniform") return DiMode::Uniform;
+  if (name == "restir") return DiMode::Restir;
+  return std::nullopt;
+}
+
+const char* diModeNames() {
+  return "restir, uniform, off";
+}
+
+void validate(const DiSettings& s) {
+  if (s.lightCandidates < 1 || s.lightCandidates > 64)
+    fail("DI light candidates {}: expected 1 to 64", s.lightCandidates);
+  if (!(s.temporalMaxM >= 1.0f && s.temporalMaxM <= 1000.0f))
+    fail("DI temporal M cap {}: expected 1 to 1000", s.temporalMaxM);
+  if (!(s.depthTolerance > 0.0f) || !std::isfinite(s.depthTolerance))
+    fail("DI depth tolerance {}: must be > 0", s.depthTolerance);
+  if (!(s.normalTolerance >= -1.0f && s.normalTolerance <= 1.0f))
+    fail("DI normal tolerance {}: expected a cosine in [-1, 1]", s.normalTolerance);
+  if (s.spatialSamples > 8) fail("DI spatial samples {}: expected 0 to 8", s.spatialSamples);
+  if (s.disocclusionSamples > 8)
+    fail("DI disocclusion samples {}: expected 0 to 8", s.disocclusionSamples);
+  if (!(s.disocclusionM >= 0.0f) || !std::isfinite(s.disocclusionM))
+    fail("DI disocclusion M {}: must be >= 0", s.disocclusionM);
+  if (!(s.spatialRadius >= 1.0f && s.spatialRadius <= 256.0f))
+    fail("DI spatial radius {} pixels: expected 1 to 256", s.spatialRadius);
+  if (s.unbiased && !s.candidateVisibility)
+    fail(
+        "DI unbiased configuration without candidate visibility: the ray-traced correction "
+        "needs the candidates' shadow ray");
+}
+
+}  // namespace bounce

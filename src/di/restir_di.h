@@ -1,0 +1,48 @@
+// ReSTIR DI (seed 002's "ReSTIR Direct"; DESIGN.md §4 step 3; docs/di.md): every light of the
+// scene's light tables (KHR point, spot and directional lights, emissive triangles) sampled and
+// shadowed at the primary vertex by resampling, a straight chain of four passes:
+//
+//   di-generate-candidates  RIS over DiSettings::lightCandidates candidates + 1 shadow ray
+//   di-temporal             + last frame's reservoir at the reprojected pixel (M <= 20)
+//   di-spatial              + 1-3 neighbours within 32 px, bias correction
+//   di-shade                the final sample with the full BRDF and a shadow ray: di.radiance
+//
+// DiMode::Uniform declares only the first and the last (no reuse). The sun is not among the
+// lights: its dedicated soft-shadow pass (shadows-trace, shadows-denoise) shades it with one
+// cone sample per pixel and a denoiser, which one light does not need resampling for.
+//
+// The GI and reflection rays of the frame skip the emission of every emitter DI samples
+// (FRAME_FLAG_DI_LIGHTS: the light tables' materials with materialLightAreaPdf > 0), so that
+// direct and indirect light add up without double counting; large emitters, which the tables
+// leave to rays, stay the GI's.
+#pragma once
+#include <optional>
+
+#include "di/di_generate_candidates.h"
+#include "di/di_settings.h"
+#include "di/di_shade.h"
+#include "di/di_spatial.h"
+#include "di/di_temporal.h"
+#include "lighting/gpu_light_tables.h"
+
+namespace bounce {
+
+class RestirDi {
+ public:
+  // `settings` must be enabled() and valid.
+  RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& scene,
+           const DiSettings& settings);
+
+  DirectLight declare(graph::FrameGraph& graph, const FrameContext& frame, const GBuffer& gbuffer);
+
+ private:
+  DiSettings settings_;
+  GpuLightTables lights_;
+  vk::Buffer constants_;  // gpu::DiConstants
+  DiGenerateCandidatesPass candidates_;
+  std::optional<DiTemporalPass> temporal_;  // DiMode::Restir only
+  std::optional<DiSpatialPass> spatial_;    // DiMode::Restir with spatial samples
+  DiShadePass shade_;
+};
+
+}  // namespace bounce
