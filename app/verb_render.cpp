@@ -63,6 +63,7 @@ struct RenderOptions {
   std::optional<float> skyAmbient;
   std::optional<int64_t> shadowDivisor;
   std::optional<int64_t> reflectionDivisor;  // not given: the preset's
+  std::string reflectionReuse;               // on|off; empty: the preset's
   bool lambert = false;
   // Motion and time.
   bool animate = false;
@@ -164,6 +165,8 @@ void checkArguments(const RenderOptions& o) {
         "reuse, which only --di restir runs",
         o.di);
   requireOneOf("--vbuffer", o.vbuffer, {"raster", "trace"});
+  if (!o.reflectionReuse.empty())
+    requireOneOf("--reflection-reuse", o.reflectionReuse, {"on", "off"});
   if (!o.preset.empty()) requireOneOf("--preset", o.preset, splitNames(presetNames()));
   if (!o.restirSecondVertex.empty())
     requireOneOf("--restir-second-vertex", o.restirSecondVertex, {"nee", "path", "cache"});
@@ -289,6 +292,7 @@ HybridSettings settingsFrom(const RenderOptions& o) {
     applyOption(settings, "--reflection-divisor", *o.reflectionDivisor, [&](HybridSettings& s) {
       s.reflections.divisor = wholeNumber("--reflection-divisor", *o.reflectionDivisor);
     });
+  if (!o.reflectionReuse.empty()) settings.reflections.reuse = o.reflectionReuse == "on";
   settings.lambert = o.lambert;
   return settings;
 }
@@ -555,6 +559,10 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
   cmd->add_option("--reflection-divisor", options->reflectionDivisor,
                   "Trace reflections at render resolution / N (1 = full res; 0 = no reflection "
                   "rays, specular light from the diffuse GI; default: the preset's, 2)");
+  cmd->add_option("--reflection-reuse", options->reflectionReuse,
+                  "ReSTIR-style reuse of glossy reflection samples across frames and neighbours "
+                  "(reflections-temporal, -spatial, -resolve): on (the default) or off (the "
+                  "traced signal as it is)");
   cmd->add_flag("--lambert", options->lambert, "Shade every material as pure Lambert");
   cmd->add_flag("--animate", options->animate,
                 "Play the scene's animation over the frames (glTF animations; built-in scenes' "

@@ -44,8 +44,10 @@ struct ReflectionPassConstants {
   float mirrorRoughness;         // below: the single mirror direction is traced
   float maxTracedRoughness;      // above: no ray (composite takes the diffuse light instead)
   uint materialTextureSide;      // textures at the hit read at mips at most this wide; 0 = full
+  uint seed;                     // mixed into the random numbers (ReflectionSettings::seed)
+  uint pad0;
 };
-BOUNCE_CHECK_SIZE(ReflectionPassConstants, 56);
+BOUNCE_CHECK_SIZE(ReflectionPassConstants, 64);
 
 BOUNCE_CONST float REFLECTION_NO_SAMPLE = -1.0f;     // reflections.traced w: no ray here
 BOUNCE_CONST float REFLECTION_MISS_DISTANCE = 1e4f;  // reflections.traced w: the ray left
@@ -55,7 +57,10 @@ BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_DEPTH = 1u;
 BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_EMISSIVE = 2u;
 BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_FLAGS = 3u;
 BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_TRACED = 4u;
-BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_COUNT = 5u;
+// 5-8: reflections.candidate.{sample,radiance,origin,normals}, the traced sample as a reservoir
+// of one candidate (shared/reflections_reuse_io.h), for the reuse passes
+BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_CANDIDATE = 5u;
+BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_COUNT = 9u;
 
 BOUNCE_CONST uint REFLECTIONS_UPSAMPLE_BINDING_TRACED = 0u;
 BOUNCE_CONST uint REFLECTIONS_UPSAMPLE_BINDING_NORMALS = 1u;

@@ -91,6 +91,8 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
   gi_ = makeDiffuseGi(context, gpuScene, scene, settings);
   if (settings.di.enabled()) di_.emplace(context, gpuScene, scene, settings.di);
   if (settings.autoExposure) autoExposure_.emplace(context, gpuScene, settings.exposure);
+  if (settings.reflections.reuseEnabled())
+    reflectionsReuse_.emplace(context, gpuScene, specularAlbedo_, settings.reflections);
 
   LightTable lights = buildLightTable(scene, gpuScene.bvh());
   punctualLightCount_ = uint32_t(lights.punctualLights.size());
@@ -262,9 +264,10 @@ void HybridFrame::recordFrame() {
   tonemap_.declare(graph_, frame, hdr, exposure);
 }
 
-// reflections-trace and reflections-upsample, which look the GI's radiance cache up at their
-// hits when it has one; without reflection rays (divisor 0) composite takes every surface's
-// specular light from the diffuse GI and reads a zero `reflections`.
+// reflections-trace, the reuse passes (reflections-temporal, -spatial, -resolve; unless
+// ReflectionSettings::reuse is off) and reflections-upsample; the trace looks the GI's
+// radiance cache up at its hits when it has one; without reflection rays (divisor 0) composite
+// takes every surface's specular light from the diffuse GI and reads a zero `reflections`.
 void HybridFrame::declareReflections(const FrameContext& frame, const GBuffer& gbuffer,
                                      IndirectLight& indirect) {
   if (!settings_.reflections.enabled()) {
@@ -278,6 +281,8 @@ void HybridFrame::declareReflections(const FrameContext& frame, const GBuffer& g
     cache.declare = [clipmap](graph::PassBuilder pass) { return clipmap->declareLookup(pass); };
   }
   TracedReflections traced = reflectionsTrace_.declare(graph_, frame, gbuffer, cache);
+  // ReSTIR-style reuse of the glossy samples: the resolved signal replaces the traced one.
+  if (reflectionsReuse_) traced = reflectionsReuse_->declare(graph_, frame, gbuffer, traced);
   indirect.reflections = reflectionsUpsample_
                              .declare(graph_, frame, gbuffer, traced,
                                       reflectionsTrace_.constants(frame, cache.constants))

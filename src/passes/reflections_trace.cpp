@@ -4,6 +4,8 @@
 
 #include "core/error.h"
 #include "lighting/specular_albedo.h"
+#include "shared/reflections_reuse_io.h"
+#include "shared/restir_gi_io.h"
 
 namespace bounce {
 
@@ -19,6 +21,18 @@ void validate(const ReflectionSettings& s) {
   if (s.materialTextureSide > 16384)
     fail("reflection material texture side {}: expected 0 (full resolution) to 16384",
          s.materialTextureSide);
+  if (!(s.reuseMinRoughness >= s.mirrorRoughness && s.reuseMinRoughness <= s.maxTracedRoughness))
+    fail(
+        "reflection reuse min roughness {}: expected the mirror roughness ({}) to the max traced "
+        "roughness ({})",
+        s.reuseMinRoughness, s.mirrorRoughness, s.maxTracedRoughness);
+  if (!(s.temporalMaxM >= 0.0f && s.temporalMaxM <= 1000.0f))
+    fail("reflection temporal max M {}: expected 0 (no temporal reuse) to 1000", s.temporalMaxM);
+  if (s.spatialSamples > gpu::REFLECTION_REUSE_MAX_SPATIAL_SAMPLES)
+    fail("reflection spatial samples {}: expected 0 (no spatial reuse) to {}", s.spatialSamples,
+         gpu::REFLECTION_REUSE_MAX_SPATIAL_SAMPLES);
+  if (!(s.spatialRadius >= 0.0f && s.spatialRadius <= 64.0f))
+    fail("reflection spatial radius {}: expected 0 to 64 traced pixels", s.spatialRadius);
 }
 
 ReflectionsTracePass::ReflectionsTracePass(vk::Context& context, const GpuScene& gpuScene,
@@ -44,6 +58,7 @@ gpu::ReflectionPassConstants ReflectionsTracePass::constants(const FrameContext&
   c.mirrorRoughness = settings_.mirrorRoughness;
   c.maxTracedRoughness = settings_.maxTracedRoughness;
   c.materialTextureSide = settings_.materialTextureSide;
+  c.seed = settings_.seed;
   return c;
 }
 
@@ -51,9 +66,15 @@ TracedReflections ReflectionsTracePass::declare(graph::FrameGraph& graph, const 
                                                 const GBuffer& gbuffer,
                                                 const RadianceCacheLookup& cache) {
   TracedReflections out;
-  out.traced = graph.createImage(
-      "reflections.traced",
-      {VK_FORMAT_R16G16B16A16_SFLOAT, graph::ImageSize::dividedRes(settings_.divisor)});
+  const graph::ImageSize size = graph::ImageSize::dividedRes(settings_.divisor);
+  out.traced = graph.createImage("reflections.traced", {VK_FORMAT_R16G16B16A16_SFLOAT, size});
+  const char* names[4] = {"sample", "radiance", "origin", "normals"};
+  for (uint32_t i = 0; i < 4; ++i)
+    out.candidate[i] =
+        graph.createImage(std::string("reflections.candidate.") + names[i],
+                          {i == gpu::GI_RESERVOIR_NORMALS ? VK_FORMAT_R16G16B16A16_SFLOAT
+                                                          : VK_FORMAT_R32G32B32A32_SFLOAT,
+                           size});
   const gpu::ReflectionPassConstants push = constants(frame, cache.constants);
   const VkExtent2D extent = settings_.resolution(frame.resolution);
   graph::PassBuilder added = graph.addPass("reflections-trace", graph::QueueKind::Compute);
@@ -65,12 +86,15 @@ TracedReflections ReflectionsTracePass::declare(graph::FrameGraph& graph, const 
       .read(gbuffer.depth.current, Access::StorageRead, gpu::REFLECTIONS_TRACE_BINDING_DEPTH)
       .read(gbuffer.emissive, Access::StorageRead, gpu::REFLECTIONS_TRACE_BINDING_EMISSIVE)
       .read(gbuffer.flags, Access::StorageRead, gpu::REFLECTIONS_TRACE_BINDING_FLAGS)
-      .write(out.traced, Access::StorageWrite, gpu::REFLECTIONS_TRACE_BINDING_TRACED)
-      .record([this, push, extent](VkCommandBuffer cmd, const graph::PassResources& r) {
-        pass_.bind(cmd, push, r);
-        vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height,
-                                              gpu::HYBRID_GROUP_SIZE, gpu::HYBRID_GROUP_SIZE);
-      });
+      .write(out.traced, Access::StorageWrite, gpu::REFLECTIONS_TRACE_BINDING_TRACED);
+  for (uint32_t i = 0; i < 4; ++i)
+    pass.write(out.candidate[i], Access::StorageWrite,
+               gpu::REFLECTIONS_TRACE_BINDING_CANDIDATE + i);
+  pass.record([this, push, extent](VkCommandBuffer cmd, const graph::PassResources& r) {
+    pass_.bind(cmd, push, r);
+    vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, gpu::HYBRID_GROUP_SIZE,
+                                          gpu::HYBRID_GROUP_SIZE);
+  });
   return out;
 }
 

@@ -1,5 +1,7 @@
 // What every ReSTIR GI pass shares (shared/restir_gi_io.h): the constants, the primary vertex
 // of a GI pixel, the reservoir encoding, the target function and the reconnection Jacobian.
+// The reflection reuse passes (passes/reflections_reuse.glsl) share the reservoir encoding, the
+// reconnection Jacobian, the streaming (with their own target) and the surface tests.
 #ifndef BOUNCE_GI_EVOLVE_RESTIR_GI_COMMON_GLSL
 #define BOUNCE_GI_EVOLVE_RESTIR_GI_COMMON_GLSL
 #include "common/brdf.glsl"
@@ -138,9 +140,14 @@ vec3 reservoirEstimate(PrimaryVertex x1, Reservoir r) {
 // Reuse between primary vertices: `origin` (with shading normal `originNormal`) counts as the
 // same surface as x1 when it lies within planeTolerance x view depth of x1's tangent plane and
 // the normals agree to normalTolerance (RestirGiSettings).
-bool sameSurface(RestirGiConstants gi, PrimaryVertex x1, vec3 origin, vec3 originNormal) {
+bool sameSurfaceWithin(PrimaryVertex x1, vec3 origin, vec3 originNormal, float planeTolerance,
+                       float normalTolerance) {
   float planeDistance = abs(dot(x1.geometricNormal, origin - x1.position)) / max(x1.depth, 1e-6);
-  return planeDistance <= gi.planeTolerance && dot(x1.shadingNormal, originNormal) >= gi.normalTolerance;
+  return planeDistance <= planeTolerance && dot(x1.shadingNormal, originNormal) >= normalTolerance;
+}
+
+bool sameSurface(RestirGiConstants gi, PrimaryVertex x1, vec3 origin, vec3 originNormal) {
+  return sameSurfaceWithin(x1, origin, originNormal, gi.planeTolerance, gi.normalTolerance);
 }
 
 // Last frame's GI pixel under full-res pixel `pixel` (gbuffer.velocity), or (-1, -1) when it
@@ -173,19 +180,20 @@ struct ReservoirStream {
   float M;
 };
 
-ReservoirStream beginStream(PrimaryVertex x1, Reservoir canonical) {
+// The stream's arithmetic for any target function: `target` is p_hat at the receiving vertex
+// of the reservoir's sample (after the shift). The reflection reuse passes
+// (passes/reflections_reuse.glsl) stream with the GGX target through these.
+ReservoirStream beginStreamWithTarget(Reservoir canonical, float target) {
   ReservoirStream s;
   s.chosen = canonical;
-  s.chosenTarget = targetFunction(x1, canonical);
-  s.weightSum = s.chosenTarget * canonical.W * canonical.M;
+  s.chosenTarget = target;
+  s.weightSum = target * canonical.W * canonical.M;
   s.M = canonical.M;
   return s;
 }
 
-// Adds r (already M-capped by the caller); u: a uniform random number.
-void streamReservoir(inout ReservoirStream s, PrimaryVertex x1, Reservoir r, float jacobian,
-                     float maxJacobian, float u) {
-  float target = targetFunction(x1, r);
+void streamReservoirWithTarget(inout ReservoirStream s, Reservoir r, float target, float jacobian,
+                               float maxJacobian, float u) {
   float w = jacobian <= maxJacobian ? target * r.W * r.M * jacobian : 0.0;
   s.M += r.M;
   if (!(w > 0.0)) return;
@@ -194,6 +202,16 @@ void streamReservoir(inout ReservoirStream s, PrimaryVertex x1, Reservoir r, flo
     s.chosen = r;
     s.chosenTarget = target;
   }
+}
+
+ReservoirStream beginStream(PrimaryVertex x1, Reservoir canonical) {
+  return beginStreamWithTarget(canonical, targetFunction(x1, canonical));
+}
+
+// Adds r (already M-capped by the caller); u: a uniform random number.
+void streamReservoir(inout ReservoirStream s, PrimaryVertex x1, Reservoir r, float jacobian,
+                     float maxJacobian, float u) {
+  streamReservoirWithTarget(s, r, targetFunction(x1, r), jacobian, maxJacobian, u);
 }
 
 // The stream's reservoir, re-homed at x1, its W normalised by the confidence of the
