@@ -61,6 +61,7 @@ struct RenderOptions {
   std::optional<float> skyAmbient;
   std::optional<int64_t> shadowDivisor;
   std::optional<int64_t> reflectionDivisor;  // not given: the preset's
+  std::string reflectionDenoise;             // "on", "off"; empty: the settings' (on)
   bool lambert = false;
   // Motion and time.
   bool animate = false;
@@ -121,6 +122,10 @@ void refuseConflicts(const RenderOptions& o) {
             "--gi {} and {} cannot be used together: {} sets ReSTIR GI, which only --gi evolve "
             "runs",
             o.gi, option, option);
+  if (o.reflectionDivisor == 0 && o.reflectionDenoise == "on")
+    fail(
+        "--reflection-divisor 0 and --reflection-denoise on cannot be used together: without "
+        "reflection rays there is nothing to denoise");
   if (o.gi == "none" && given.has("--gi-texture-side"))
     fail(
         "--gi none and --gi-texture-side cannot be used together: without GI no ray reads "
@@ -159,6 +164,8 @@ void checkArguments(const RenderOptions& o) {
   if (!o.preset.empty()) requireOneOf("--preset", o.preset, splitNames(presetNames()));
   if (!o.restirSecondVertex.empty())
     requireOneOf("--restir-second-vertex", o.restirSecondVertex, {"nee", "path", "cache"});
+  if (!o.reflectionDenoise.empty())
+    requireOneOf("--reflection-denoise", o.reflectionDenoise, {"on", "off"});
   if (o.frames < 1 || o.frames > kMaxFrames)
     fail("--frames {}: expected 1 to {} frames", o.frames, kMaxFrames);
   if (!(o.fps > 0.0f) || !std::isfinite(o.fps)) fail("--fps {}: must be positive", o.fps);
@@ -279,6 +286,8 @@ HybridSettings settingsFrom(const RenderOptions& o) {
     applyOption(settings, "--reflection-divisor", *o.reflectionDivisor, [&](HybridSettings& s) {
       s.reflections.divisor = wholeNumber("--reflection-divisor", *o.reflectionDivisor);
     });
+  if (!o.reflectionDenoise.empty())
+    settings.reflectionDenoise.enabled = o.reflectionDenoise == "on";
   settings.lambert = o.lambert;
   return settings;
 }
@@ -536,6 +545,9 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
   cmd->add_option("--reflection-divisor", options->reflectionDivisor,
                   "Trace reflections at render resolution / N (1 = full res; 0 = no reflection "
                   "rays, specular light from the diffuse GI; default: the preset's, 2)");
+  cmd->add_option("--reflection-denoise", options->reflectionDenoise,
+                  "on (the default): reflections-denoise-temporal and -spatial filter the traced "
+                  "reflections; off: reflections-upsample reads the one noisy sample per pixel");
   cmd->add_flag("--lambert", options->lambert, "Shade every material as pure Lambert");
   cmd->add_flag("--animate", options->animate,
                 "Play the scene's animation over the frames (glTF animations; built-in scenes' "

@@ -32,6 +32,7 @@
 #include "passes/composite.h"
 #include "passes/gbuffer.h"
 #include "passes/gbuffer_import.h"
+#include "passes/reflections_denoise.h"
 #include "passes/reflections_trace.h"
 #include "passes/reflections_upsample.h"
 #include "passes/scene_update.h"
@@ -150,6 +151,7 @@ class HybridFrame {
   ShadowsDenoisePass shadowsDenoise_;
   SkyPass skyPass_;
   ReflectionsTracePass reflectionsTrace_;
+  ReflectionsDenoisePass reflectionsDenoise_;
   ReflectionsUpsamplePass reflectionsUpsample_;
   CompositePass composite_;
   std::optional<AutoExposure> autoExposure_;  // settings.autoExposure
