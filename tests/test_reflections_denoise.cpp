@@ -62,11 +62,21 @@ float hitDistanceAt(const ImageRGBA32F& image, int k) {
   return image.pixels[4 * size_t(k) + 3];
 }
 
+// `spheres`, its chequered floor made a glossy dielectric of `floorRoughness` (< 0: as it is,
+// rough, so not traced).
+Scene spheresScene(float floorRoughness) {
+  Scene scene = *makeBuiltinScene("spheres");
+  if (floorRoughness >= 0.0f)
+    for (Material& m : scene.materials)
+      if (m.name.rfind("floor_", 0) == 0) m.roughness = floorRoughness;
+  return scene;
+}
+
 // The spheres scene through the hybrid frame, with the views the tests read.
 class SpheresDenoise {
  public:
-  explicit SpheresDenoise(HybridSettings settings = denoiseSettings())
-      : scene_(*makeBuiltinScene("spheres")),
+  explicit SpheresDenoise(HybridSettings settings = denoiseSettings(), float floorRoughness = -1.0f)
+      : scene_(spheresScene(floorRoughness)),
         context_(vk::contextOptionsFromEnvironment()),
         gpuScene_(context_, scene_),
         frame_(context_, gpuScene_, scene_, settings) {
@@ -221,6 +231,115 @@ TEST(ReflectionsDenoise, ReducesGlossyVarianceWithoutBias) {
   std::printf("glossy mean: denoised %.5g, raw %.5g (ratio %.4f), standard error %.3g\n",
               denoisedMean, rawMean, denoisedMean / rawMean, standardError);
   EXPECT_NEAR(denoisedMean, rawMean, 3.0 * standardError);
+}
+
+// The error of a denoised frame against the converged signal `mean` (per-pixel raw means over
+// `referenceFrames` frames, whose own variance is taken out: those frames are independent of the
+// ones measured, so E[(d - mean)^2] = E[(d - true)^2] + variance / referenceFrames), relative to
+// each pixel's squared mean, averaged over `pixels`.
+double relativeError(const ImageRGBA32F& denoised, const RawStatistics& reference,
+                     const std::vector<int>& pixels) {
+  double sum = 0.0;
+  for (int k : pixels) {
+    double m = reference.mean(k);
+    double d = luminanceAt(denoised, k) - m;
+    sum += (d * d - reference.variance(k) / reference.frames) / (m * m + 1e-2);
+  }
+  return sum / double(pixels.size());
+}
+
+Camera lerpCamera(const Camera& a, const Camera& b, float t) {
+  Camera c = b;
+  c.position = glm::mix(a.position, b.position, t);
+  c.target = glm::mix(a.target, b.target, t);
+  return c;
+}
+
+// Issue 19: after motion stops, no ghost trail: the per-frame error comes back within 1.5x of
+// the static error within 8 frames. The converged signal is the raw mean of 128 static frames;
+// the static error is that of the 8 frames after them (history long converged); then the camera
+// jumps 1.2 m to the left and 0.6 m down (a cut: history reset), settles for 32 frames and
+// trucks back to the scene's camera over 16 frames (7.5 cm per frame: reflections and
+// surfaces slide across the glossy spheres and floor), and stops.
+//
+// DISABLED: it fails (measured on lavapipe: static error 0.90, after the pan 18.1 at frame 1
+// falling to 9.3 at frame 8, ratio 10). The error is a ghost on the glossy floor: pixels that
+// reflect the spheres' dark undersides (reference 0) keep ~4 from history that slid in during
+// the pan (the floor's roughness 0.3 takes 60 % of its history from the surface reprojection),
+// at full history length: the ghost test does not cut it, because the smeared history's own
+// variance (second moment - mean^2), which the test takes as the noise level, is inflated by
+// the very mix of bright and dark that makes it a ghost. docs/reflections.md, "What is missing".
+TEST(ReflectionsDenoise, DISABLED_NoGhostAfterACameraPanStops) {
+  SpheresDenoise run(denoiseSettings(), 0.3f);
+  const Camera still = run.camera();
+  RawStatistics reference;
+  for (int i = 0; i < 128; ++i) {
+    run.render(still);
+    reference.add(run.view("reflections.traced"));
+  }
+  std::vector<int> pixels;
+  for (int k = 0; k < kTracedPixels; ++k)
+    if (reference.alwaysSampled[k]) pixels.push_back(k);
+  ASSERT_GT(pixels.size(), 300u);
+  double staticError = 0.0;
+  for (int i = 0; i < 8; ++i) {
+    run.render(still);
+    staticError += relativeError(run.view("reflections.denoised"), reference, pixels) / 8.0;
+  }
+
+  Camera start = still;
+  start.position += glm::vec3(-1.2f, -0.6f, 0.0f);
+  start.target += glm::vec3(-1.2f, -0.6f, 0.0f);
+  run.frame().resetHistory();
+  for (int i = 0; i < 32; ++i) run.render(start);
+  for (int i = 1; i <= 16; ++i) run.render(lerpCamera(start, still, float(i) / 16.0f));
+  std::vector<double> after;
+  for (int i = 0; i < 8; ++i) {
+    run.render(still);
+    after.push_back(relativeError(run.view("reflections.denoised"), reference, pixels));
+    std::printf("frame %d after the pan: relative error %.4f (static %.4f, ratio %.2f)\n", i + 1,
+                after.back(), staticError, after.back() / staticError);
+  }
+  if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES"))
+    writeImage(std::string(dir) + "/reflections-denoise-after-pan.exr",
+               run.view("reflections.denoised"));
+  EXPECT_EQ(run.validationErrors(), 0u);
+  EXPECT_GT(staticError, 0.0);
+  EXPECT_LE(after.back(), 1.5 * staticError);
+}
+
+// NaN and Inf never enter history: with every 5th traced sample poisoned
+// (ReflectionDenoiseSettings::poisonInput, by turns a NaN or Inf in the signal or the hit
+// distance), history, output and composite stay finite, and the poisoned samples were indeed
+// seen and dropped: after 12 frames from a reset, a pixel whose history could hold all 12 holds
+// at most 10 (each pixel is poisoned every 5th frame).
+TEST(ReflectionsDenoise, NonFiniteSamplesNeverEnterHistory) {
+  HybridSettings settings = denoiseSettings();
+  settings.reflectionDenoise.poisonInput = true;
+  SpheresDenoise run(settings);
+  run.frame().requestDebugView("composite");
+  run.frame().requestDebugView("reflections");
+  for (int i = 0; i < 12; ++i) run.render(run.camera());
+  for (const char* view : {"reflections.temporal", "reflections.temporal-moments",
+                           "reflections.denoised", "reflections", "composite"})
+    EXPECT_EQ(countNonFinitePixels(run.view(view)), 0u) << view;
+  ImageRGBA32F moments = run.view("reflections.temporal-moments");
+  std::vector<float> roughness;
+  std::vector<bool> sphere;
+  run.surfaces(roughness, sphere);
+  int longHistories = 0, poisonedSeen = 0;
+  for (int k = 0; k < kTracedPixels; ++k) {
+    if (roughness[k] < 0.0f || roughness[k] > settings.reflections.maxTracedRoughness ||
+        historyFrames(settings.reflectionDenoise, roughness[k]) < 12.0f)
+      continue;
+    ++longHistories;
+    if (moments.pixels[4 * size_t(k) + 1] <= 10.0f) ++poisonedSeen;
+  }
+  std::printf("pixels with room for 12 frames: %d; holding at most 10: %d\n", longHistories,
+              poisonedSeen);
+  EXPECT_GT(longHistories, 100);
+  EXPECT_EQ(poisonedSeen, longHistories);
+  EXPECT_EQ(run.validationErrors(), 0u);
 }
 
 }  // namespace

@@ -35,6 +35,15 @@ vec4 encodeSurface(DenoiseSurface s) {
                        : vec4(0.0, 0.0, -1.0, 0.0);
 }
 
+// The cosine of the largest normal difference between two pixels whose reflections may be
+// mixed: a normal turned by t turns the reflected direction by 2 t, which a lobe of GGX alpha
+// (half-angle about 2 atan(alpha)) hides while t <= atan(alpha). So mirrorNormalTolerance plus
+// atan(alpha), at most normalTolerance (ReflectionDenoiseSettings).
+float normalToleranceCosine(float roughness) {
+  float alpha = roughness * roughness;
+  return cos(min(pc.mirrorNormalTolerance + atan(alpha), pc.normalTolerance));
+}
+
 // Another pixel's surface (its history or its neighbour) counts as this one's when this pixel's
 // point lies on its tangent plane (within planeTolerance of view depth) and its normal and
 // roughness are close (ReflectionDenoiseSettings).
@@ -42,7 +51,7 @@ bool sameSurface(DenoiseSurface here, vec4 other) {
   if (!hasSurface(here) || other.z < 0.0) return false;
   vec3 n = decodeOctahedral(other.xy);
   float planeDistance = abs(dot(n, here.position) - other.w);
-  return planeDistance <= pc.planeTolerance * here.viewDepth && dot(n, here.normal) >= pc.normalTolerance &&
+  return planeDistance <= pc.planeTolerance * here.viewDepth && dot(n, here.normal) >= normalToleranceCosine(here.roughness) &&
          abs(other.z - here.roughness) <= pc.roughnessTolerance;
 }
 
@@ -63,13 +72,12 @@ float pixelAngle(FrameConstants f) { return 2.0 * length(f.camera.up) / float(f.
 // The spatial filter's radius in traced pixels: the reflection lobe's footprint on screen. A
 // GGX lobe of alpha = roughness^2 spreads reflected directions over a half-angle of about
 // 2 atan(alpha) (twice the normals' spread); at hit distance h, seen through a surface at
-// distance d, that blur spans an angle of half-angle x h / (d + h) from the camera (a miss,
-// h -> infinity: the whole half-angle). A mirror's footprint is 0.
-float lobeFootprintRadius(FrameConstants f, float roughness, float viewDistance, float hitDistance) {
+// distance d, that blur spans an angle of half-angle x parallax from the camera, parallax =
+// h / (d + h) (a miss: 1, the whole half-angle). A mirror's footprint is 0.
+float lobeFootprintRadius(FrameConstants f, float roughness, float parallax) {
   float alpha = roughness * roughness;
   float halfAngle = 2.0 * atan(alpha);
-  float h = max(hitDistance, 0.0);
-  float angle = halfAngle * h / max(viewDistance + h, 1e-6);
+  float angle = halfAngle * clamp(parallax, 0.0, 1.0);
   float radius = pc.spatialFootprintScale * angle / (pixelAngle(f) * float(pc.divisor));
   return min(radius, pc.spatialMaxRadius);
 }

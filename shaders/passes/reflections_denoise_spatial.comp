@@ -19,7 +19,7 @@ layout(push_constant, scalar) uniform Push { ReflectionDenoiseConstants pc; };
 #include "passes/reflections_denoise.glsl"
 
 layout(set = 1, binding = REFLECTIONS_DENOISE_SPATIAL_BINDING_TEMPORAL, rgba16f) uniform readonly image2D temporal;
-layout(set = 1, binding = REFLECTIONS_DENOISE_SPATIAL_BINDING_MOMENTS, rg32f) uniform readonly image2D moments;
+layout(set = 1, binding = REFLECTIONS_DENOISE_SPATIAL_BINDING_MOMENTS, rgba32f) uniform readonly image2D moments;
 layout(set = 1, binding = REFLECTIONS_DENOISE_SPATIAL_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
 layout(set = 1, binding = REFLECTIONS_DENOISE_SPATIAL_BINDING_DEPTH, r32f) uniform readonly image2D depths;
 layout(set = 1, binding = REFLECTIONS_DENOISE_SPATIAL_BINDING_OUTPUT, rgba16f) uniform writeonly image2D denoisedOut;
@@ -41,13 +41,19 @@ DenoiseSurface surfaceAt(FrameConstants f, ivec2 q) {
   return s;
 }
 
+// A pixel's filter radius: its lobe's footprint.
+float filterRadius(FrameConstants f, float roughness, vec4 pixelMoments) {
+  return lobeFootprintRadius(f, roughness, pixelMoments.z);
+}
+
 vec4 filtered(FrameConstants f, ivec2 tracedPixel) {
   vec4 centre = imageLoad(temporal, tracedPixel);
   if (centre.w == REFLECTION_NO_SAMPLE) return centre;
   DenoiseSurface here = surfaceAt(f, tracedPixel);
-  float radius = lobeFootprintRadius(f, here.roughness, distance(here.position, f.camera.position), centre.w);
+  vec4 centreMoments = imageLoad(moments, tracedPixel);
+  float centreFrames = max(centreMoments.y, 1.0);
+  float radius = filterRadius(f, here.roughness, centreMoments);
   if (radius < 0.5) return centre;
-  float centreFrames = max(imageLoad(moments, tracedPixel).y, 1.0);
   vec3 sum = centre.rgb * centreFrames;
   float weightSum = centreFrames;
   // A fixed angle per pixel (not per frame): the output is not fed back, so a per-frame angle
@@ -61,8 +67,12 @@ vec4 filtered(FrameConstants f, ivec2 tracedPixel) {
     if (q == tracedPixel || !insideTraced(q)) continue;
     vec4 value = imageLoad(temporal, q);
     if (value.w == REFLECTION_NO_SAMPLE || !sameSurface(here, imageLoad(surfaces, q))) continue;
-    float frames = imageLoad(moments, q).y;
+    vec4 tapMoments = imageLoad(moments, q);
     vec2 d = vec2(q - tracedPixel);
+    // The support is symmetric: a tap counts only within its own radius too, so that a sharp
+    // reflection (a near hit: small footprint) is neither blurred nor blurred into a wide one.
+    if (length(d) > filterRadius(f, imageLoad(surfaces, q).z, tapMoments) + 0.5) continue;
+    float frames = tapMoments.y;
     float w = exp(-dot(d, d) / (2.0 * sigma * sigma)) * frames;
     if (!(w > 0.0)) continue;
     sum += w * value.rgb;

@@ -34,10 +34,10 @@ layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_EMISSIVE, rgba16f
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_VELOCITY, rg16f) uniform readonly image2D velocities;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS, rgba16f) uniform readonly image2D previous;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_MOMENTS, rg32f) uniform readonly image2D previousMoments;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_MOMENTS, rgba32f) uniform readonly image2D previousMoments;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_SURFACE, rgba32f) uniform readonly image2D previousSurface;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT, rgba16f) uniform writeonly image2D current;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_MOMENTS, rg32f) uniform writeonly image2D currentMoments;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_MOMENTS, rgba32f) uniform writeonly image2D currentMoments;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_SURFACE, rgba32f) uniform writeonly image2D currentSurface;
 
 // The surface a traced pixel stands for (its full-res GBuffer pixel).
@@ -82,28 +82,28 @@ struct History {
   vec3 signal;
   float hitDistance;
   float secondMoment;  // of luminance
+  float parallax;      // hit distance / (surface distance + hit distance); a miss: 1
   float frames;
   float weight;  // 0: no history
 };
 
-History noHistory() { return History(vec3(0.0), 0.0, 0.0, 0.0, 0.0); }
+History noHistory() { return History(vec3(0.0), 0.0, 0.0, 0.0, 0.0, 0.0); }
 
 // Last frame's history at traced pixel q if it belongs to `here`'s surface (weight 1), else
 // none.
 History historyAt(DenoiseSurface here, ivec2 q) {
   if (!insideTraced(q) || !sameSurface(here, imageLoad(previousSurface, q))) return noHistory();
   vec4 value = imageLoad(previous, q);
-  vec2 moments = imageLoad(previousMoments, q).xy;
-  if (!isFiniteVec(value) || !isFiniteValue(moments.x) || !isFiniteValue(moments.y) || moments.y <= 0.0 ||
-      value.w < 0.0)
-    return noHistory();
-  return History(max(value.rgb, vec3(0.0)), value.w, max(moments.x, 0.0), moments.y, 1.0);
+  vec4 moments = imageLoad(previousMoments, q);
+  if (!isFiniteVec(value) || !isFiniteVec(moments) || moments.y <= 0.0 || value.w < 0.0) return noHistory();
+  return History(max(value.rgb, vec3(0.0)), value.w, max(moments.x, 0.0), clamp(moments.z, 0.0, 1.0), moments.y, 1.0);
 }
 
 void addHistory(inout History sum, History h, float weight) {
   sum.signal += weight * h.signal;
   sum.hitDistance += weight * h.hitDistance;
   sum.secondMoment += weight * h.secondMoment;
+  sum.parallax += weight * h.parallax;
   sum.frames += weight * h.frames;
   sum.weight += weight;
 }
@@ -111,7 +111,7 @@ void addHistory(inout History sum, History h, float weight) {
 History normalized(History sum) {
   if (sum.weight <= 1e-4) return noHistory();
   float w = sum.weight;
-  return History(sum.signal / w, sum.hitDistance / w, sum.secondMoment / w, sum.frames / w, 1.0);
+  return History(sum.signal / w, sum.hitDistance / w, sum.secondMoment / w, sum.parallax / w, sum.frames / w, 1.0);
 }
 
 // Continuous traced-pixel coordinates of a full-res screen position (pixel centres at + 0.5):
@@ -152,6 +152,37 @@ struct Reprojection {
   bool hasVirtual;
 };
 
+// The surface's curvature 1 / radius (positive convex, as a ball seen from outside; negative
+// concave), the mean of dot(n' - n, x' - x) / |x' - x|^2 over the four neighbours on a similar
+// surface: exactly 1 / R on a sphere of radius R, 0 on a plane.
+float surfaceCurvature(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here) {
+  float sum = 0.0, count = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    ivec2 q = tracedPixel + ivec2(k == 0 ? 1 : (k == 1 ? -1 : 0), k == 2 ? 1 : (k == 3 ? -1 : 0));
+    if (!insideTraced(q)) continue;
+    DenoiseSurface s = loadSurface(f, q);
+    vec3 dx = s.position - here.position;
+    float d2 = dot(dx, dx);
+    if (!hasSurface(s) || abs(s.roughness - here.roughness) > pc.roughnessTolerance || dot(s.normal, here.normal) < 0.5 ||
+        d2 > pow(0.1 * here.viewDepth, 2.0) || d2 <= 0.0)
+      continue;
+    sum += dot(s.normal - here.normal, dx) / d2;
+    count += 1.0;
+  }
+  return count > 0.0 ? sum / count : 0.0;
+}
+
+// How far behind the surface the reflection's virtual image lies. A plane mirror images a point
+// at hit distance h at h behind it; a curved one (focal length R / 2) by the mirror equation
+// 1 / s_o + 1 / s_i = 2 / R at h / (1 + 2 h / R) for a ball (curvature 1 / R > 0: at most R / 2
+// behind the surface, however far the hit) and further for a concave mirror, whose image of a
+// point beyond its focus is real and in front: there the surface's motion is the better guess
+// (NRD ReBLUR's "thin lens" correction of virtual motion does the same).
+float virtualImageDistance(float hitDistance, float curvature) {
+  float denominator = 1.0 + 2.0 * curvature * hitDistance;
+  return denominator > 0.05 ? hitDistance / denominator : 0.0;
+}
+
 Reprojection reproject(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here, float hitDistance) {
   ivec2 p = fullResPixel(f, tracedPixel);
   Reprojection r;
@@ -162,7 +193,8 @@ Reprojection reproject(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here,
   if (hitDistance < 0.0 || !previousScreenPosition(f, here.position, cameraOnly)) return r;
   vec3 toSurface = here.position - f.camera.position;
   float surfaceDistance = length(toSurface);
-  vec3 virtualPoint = f.camera.position + toSurface / max(surfaceDistance, 1e-9) * (surfaceDistance + hitDistance);
+  float behind = virtualImageDistance(hitDistance, surfaceCurvature(f, tracedPixel, here));
+  vec3 virtualPoint = f.camera.position + toSurface / max(surfaceDistance, 1e-9) * (surfaceDistance + behind);
   vec2 virtualScreen;
   if (!previousScreenPosition(f, virtualPoint, virtualScreen)) return r;
   r.virtualPoint = virtualScreen + (r.surface - cameraOnly);
@@ -188,53 +220,45 @@ History reprojectedHistory(DenoiseSurface here, Reprojection r) {
   return normalized(sum);
 }
 
-// The ghost test: do the 8 neighbours' fresh samples (on this surface) agree with the 8
-// neighbours of last frame's history around `screen` (on this surface)? Under a static signal
-// the difference of the two means has variance sigma^2 (1 / nFresh + 1 / (nHistory frames)),
-// sigma^2 the per-sample variance, taken as the larger of the fresh samples' spread and the
-// histories' own (second moment - mean^2; robust to rare fireflies, which a spread of 8 samples
-// misses). A difference beyond ghostSigma of those, and beyond 1 % (fp16 round-off), cuts.
-bool neighbourhoodChanged(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here, vec2 screen) {
+// The ghost test: has what the neighbourhood reflects changed? Each of the 8 neighbours q with
+// a fresh sample is paired with last frame's history at the same offset around `screen` (where
+// this pixel was), when that history belongs to q's surface; the mean of fresh - history over
+// the pairs is zero for a static signal, with variance sum(v (1 + 1 / N)) / n^2, v each
+// history's per-sample variance (second moment - mean^2: it has seen the rare fireflies that 8
+// fresh samples miss) and N its length. Pairing the same pixels cancels what varies across the
+// neighbourhood (a curved mirror's reflection), which a comparison with this pixel's own value
+// would take for change. A mean difference beyond ghostSigma of its standard error, and beyond
+// 1 % of the signal (fp16 round-off), cuts.
+bool neighbourhoodChanged(FrameConstants f, ivec2 tracedPixel, vec2 screen) {
   if (pc.ghostSigma <= 0.0) return false;
   ivec2 centre = ivec2(floor(tracedCoordinates(screen) + 0.5));
-  float freshSum = 0.0, freshSquares = 0.0, nFresh = 0.0;
-  float historySum = 0.0, historyVariance = 0.0, historyFrames = 0.0, nHistory = 0.0;
+  float difference = 0.0, variance = 0.0, level = 0.0, n = 0.0;
   for (int k = 0; k < 9; ++k) {
     ivec2 d = ivec2(k % 3 - 1, k / 3 - 1);
-    if (d == ivec2(0)) continue;
     ivec2 q = tracedPixel + d;
     vec4 value;
-    if (insideTraced(q) && freshSample(f, q, value) && sameSurface(here, encodeSurface(loadSurface(f, q)))) {
-      float l = brdfLuminance(value.rgb);
-      freshSum += l;
-      freshSquares += l * l;
-      nFresh += 1.0;
-    }
-    History h = historyAt(here, centre + d);
-    if (h.weight > 0.0) {
-      float l = brdfLuminance(h.signal);
-      historySum += l;
-      historyVariance += max(h.secondMoment - l * l, 0.0);
-      historyFrames += h.frames;
-      nHistory += 1.0;
-    }
+    if (d == ivec2(0) || !insideTraced(q) || !freshSample(f, q, value)) continue;
+    History h = historyAt(loadSurface(f, q), centre + d);
+    if (h.weight <= 0.0) continue;
+    float fresh = brdfLuminance(value.rgb), history = brdfLuminance(h.signal);
+    difference += fresh - history;
+    variance += max(h.secondMoment - history * history, 0.0) * (1.0 + 1.0 / max(h.frames, 1.0));
+    level += max(fresh, history);
+    n += 1.0;
   }
-  if (nFresh < 3.0 || nHistory < 3.0) return false;
-  float freshMean = freshSum / nFresh, historyMean = historySum / nHistory;
-  float freshVariance = max(freshSquares / nFresh - freshMean * freshMean, 0.0) * nFresh / (nFresh - 1.0);
-  float variance = max(freshVariance, historyVariance / nHistory);
-  float standardError = sqrt(variance * (1.0 / nFresh + 1.0 / max(historyFrames, 1.0)));
-  float difference = abs(freshMean - historyMean);
-  return difference > pc.ghostSigma * standardError && difference > 0.01 * max(freshMean, historyMean);
+  if (n < 3.0) return false;
+  difference = abs(difference) / n;
+  float standardError = sqrt(variance) / n;
+  return difference > pc.ghostSigma * standardError && difference > 0.01 * level / n;
 }
 
 struct Accumulated {
   vec4 value;    // reflections.temporal
-  vec2 moments;  // reflections.temporal-moments
+  vec4 moments;  // reflections.temporal-moments
 };
 
 Accumulated accumulate(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here) {
-  Accumulated a = Accumulated(vec4(0.0, 0.0, 0.0, REFLECTION_NO_SAMPLE), vec2(0.0));
+  Accumulated a = Accumulated(vec4(0.0, 0.0, 0.0, REFLECTION_NO_SAMPLE), vec4(0.0));
   if (!hasSurface(here) || !traceable(f, here.roughness)) return a;
   vec4 fresh;
   bool hasFresh = freshSample(f, tracedPixel, fresh);
@@ -243,7 +267,7 @@ Accumulated accumulate(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here)
     Reprojection r = reproject(f, tracedPixel, here, hasFresh ? fresh.w : -1.0);
     h = reprojectedHistory(here, r);
     bool virtualFirst = r.hasVirtual && virtualShare(here.roughness) >= 0.5;
-    if (h.weight > 0.0 && neighbourhoodChanged(f, tracedPixel, here, virtualFirst ? r.virtualPoint : r.surface))
+    if (h.weight > 0.0 && neighbourhoodChanged(f, tracedPixel, virtualFirst ? r.virtualPoint : r.surface))
       h.frames = min(h.frames, pc.responsiveFrames - 1.0);
   }
   float maxFrames = maxHistoryFrames(here.roughness);
@@ -251,14 +275,19 @@ Accumulated accumulate(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here)
     // No sample this frame: the history as it stands, if any.
     if (h.weight <= 0.0 || h.frames <= 0.0) return a;
     a.value = vec4(h.signal, h.hitDistance);
-    a.moments = vec2(h.secondMoment, min(h.frames, maxFrames));
+    a.moments = vec4(h.secondMoment, min(h.frames, maxFrames), h.parallax, 0.0);
     return a;
   }
   float frames = h.weight > 0.0 ? min(h.frames + 1.0, maxFrames) : 1.0;
   float blend = 1.0 / frames;
   float l = brdfLuminance(fresh.rgb);
   a.value = vec4(mix(h.signal, fresh.rgb, blend), mix(h.hitDistance, min(fresh.w, REFLECTION_MISS_DISTANCE), blend));
-  a.moments = vec2(mix(h.secondMoment, l * l, blend), frames);
+  // The parallax, not the hit distance, is what the spatial filter's footprint needs, and it
+  // averages sensibly: a pixel whose rays mostly hit something near and sometimes miss gets a
+  // small mean parallax, where its mean hit distance would be dominated by the misses.
+  float surfaceDistance = distance(here.position, f.camera.position);
+  float parallax = fresh.w >= REFLECTION_MISS_DISTANCE ? 1.0 : fresh.w / max(surfaceDistance + fresh.w, 1e-6);
+  a.moments = vec4(mix(h.secondMoment, l * l, blend), frames, mix(h.parallax, parallax, blend), 0.0);
   return a;
 }
 
@@ -269,11 +298,11 @@ void main() {
   DenoiseSurface here = loadSurface(f, tracedPixel);
   Accumulated a = accumulate(f, tracedPixel, here);
   // The last guard: whatever went wrong above, history stays finite.
-  if (!isFiniteVec(a.value) || !isFiniteValue(a.moments.x) || !isFiniteValue(a.moments.y)) {
+  if (!isFiniteVec(a.value) || !isFiniteVec(a.moments)) {
     a.value = vec4(0.0, 0.0, 0.0, REFLECTION_NO_SAMPLE);
-    a.moments = vec2(0.0);
+    a.moments = vec4(0.0);
   }
   imageStore(current, tracedPixel, vec4(min(a.value.rgb, vec3(65000.0)), a.value.w));
-  imageStore(currentMoments, tracedPixel, vec4(a.moments, 0.0, 0.0));
+  imageStore(currentMoments, tracedPixel, a.moments);
   imageStore(currentSurface, tracedPixel, encodeSurface(here));
 }

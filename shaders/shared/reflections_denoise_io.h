@@ -7,9 +7,11 @@
 //   reflections.temporal          RGBA16F  (history) the signal's running mean in rgb, the running
 //                                          mean of hit distance in w; REFLECTION_NO_SAMPLE in w
 //                                          where the pixel holds nothing
-//   reflections.temporal-moments  RG32F    (history) x: running mean of the signal's squared
+//   reflections.temporal-moments  RGBA32F  (history) x: running mean of the signal's squared
 //                                          luminance (its per-sample variance is x - mean^2),
-//                                          y: history length in frames (0: none)
+//                                          y: history length in frames (0: none), z: running
+//                                          mean of the parallax hit / (surface distance + hit)
+//                                          (a miss: 1), what the spatial footprint needs
 //   reflections.temporal-surface  RGBA32F  (history) the surface the history belongs to: xy the
 //                                          octahedral shading normal, z perceptual roughness
 //                                          (negative: no surface), w plane offset dot(n, x) in
@@ -36,14 +38,14 @@ struct ReflectionDenoiseConstants {
   float glossyHistoryRoughness;
   float virtualRoughnessLimit;
   float planeTolerance;
-  float normalTolerance;  // cosine
+  float normalTolerance;        // radians, for the widest lobes
+  float mirrorNormalTolerance;  // radians, for a mirror
   float roughnessTolerance;
   float ghostSigma;
   float responsiveFrames;
   float spatialMaxRadius;  // traced pixels
   float spatialFootprintScale;
   uint flags;  // REFLECTION_DENOISE_FLAG_*
-  uint pad0;
 };
 BOUNCE_CHECK_SIZE(ReflectionDenoiseConstants, 80);
 

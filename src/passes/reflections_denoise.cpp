@@ -26,6 +26,12 @@ void validate(const ReflectionDenoiseSettings& s) {
   if (!(s.normalToleranceDegrees > 0.0f && s.normalToleranceDegrees <= 180.0f))
     fail("reflection denoise normal tolerance {} degrees: expected above 0, at most 180",
          s.normalToleranceDegrees);
+  if (!(s.mirrorNormalToleranceDegrees > 0.0f &&
+        s.mirrorNormalToleranceDegrees <= s.normalToleranceDegrees))
+    fail(
+        "reflection denoise mirror normal tolerance {} degrees: expected above 0, at most the "
+        "normal tolerance ({})",
+        s.mirrorNormalToleranceDegrees, s.normalToleranceDegrees);
   if (!(s.roughnessTolerance > 0.0f && std::isfinite(s.roughnessTolerance)))
     fail("reflection denoise roughness tolerance {}: expected above 0", s.roughnessTolerance);
   if (!(s.ghostSigma >= 0.0f && std::isfinite(s.ghostSigma)))
@@ -63,7 +69,8 @@ gpu::ReflectionDenoiseConstants ReflectionsDenoisePass::constants(
   c.glossyHistoryRoughness = s.glossyHistoryRoughness;
   c.virtualRoughnessLimit = s.virtualRoughnessLimit;
   c.planeTolerance = s.planeTolerance;
-  c.normalTolerance = std::cos(s.normalToleranceDegrees * float(M_PI) / 180.0f);
+  c.normalTolerance = s.normalToleranceDegrees * float(M_PI) / 180.0f;
+  c.mirrorNormalTolerance = s.mirrorNormalToleranceDegrees * float(M_PI) / 180.0f;
   c.roughnessTolerance = s.roughnessTolerance;
   c.ghostSigma = s.ghostSigma;
   c.responsiveFrames = s.responsiveFrames;
@@ -80,8 +87,8 @@ TracedReflections ReflectionsDenoisePass::declare(graph::FrameGraph& graph,
   constexpr VkFormat rgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
   const graph::ImageSize size = graph::ImageSize::dividedRes(trace.divisor);
   graph::HistoryImage temporal = graph.createHistoryImage("reflections.temporal", {rgba16f, size});
-  graph::HistoryImage moments =
-      graph.createHistoryImage("reflections.temporal-moments", {VK_FORMAT_R32G32_SFLOAT, size});
+  graph::HistoryImage moments = graph.createHistoryImage("reflections.temporal-moments",
+                                                         {VK_FORMAT_R32G32B32A32_SFLOAT, size});
   graph::HistoryImage surface = graph.createHistoryImage("reflections.temporal-surface",
                                                          {VK_FORMAT_R32G32B32A32_SFLOAT, size});
   TracedReflections out{graph.createImage("reflections.denoised", {rgba16f, size})};

@@ -40,13 +40,17 @@ struct ReflectionDenoiseSettings {
   // surface reprojection only. 0 to 1.
   float virtualRoughnessLimit = 0.5f;
   // History and spatial taps count only on this pixel's surface: within planeTolerance x view
-  // depth of its tangent plane (0.02: 2 cm at 1 m), with shading normals within
-  // normalToleranceDegrees (25) and perceptual roughness within roughnessTolerance (0.1).
-  // Tighter: less bleeding across edges and materials, more pixels without history after
-  // motion (noisier).
+  // depth of its tangent plane (0.02: 2 cm at 1 m), with perceptual roughness within
+  // roughnessTolerance (0.1) and shading normals within mirrorNormalToleranceDegrees +
+  // atan(alpha), at most normalToleranceDegrees: a normal turned by t turns the reflection by
+  // 2 t, which a lobe of GGX alpha = roughness^2 hides while t <= atan(alpha); a mirror's
+  // reflection differs from its neighbour's as soon as the normal does. Tighter: less bleeding
+  // of one reflection into another (ghosts on curved mirrors), more pixels without history
+  // after motion (noisier).
   float planeTolerance = 0.02f;
-  float normalToleranceDegrees = 25.0f;  // > 0 to 180
-  float roughnessTolerance = 0.1f;       // > 0
+  float mirrorNormalToleranceDegrees = 5.0f;  // > 0 to normalToleranceDegrees
+  float normalToleranceDegrees = 25.0f;       // > 0 to 180
+  float roughnessTolerance = 0.1f;            // > 0
   // History is cut to responsiveFrames where the 8 neighbours' fresh samples disagree with
   // their histories by more than ghostSigma standard errors (of the samples' variance, pooled):
   // what the reflection shows changed (a moving object, light). The test never looks at the
