@@ -64,6 +64,7 @@ struct RenderOptions {
   std::optional<int64_t> shadowDivisor;
   std::optional<int64_t> reflectionDivisor;  // not given: the preset's
   std::string reflectionReuse;               // on|off; empty: the preset's
+  std::string reflectionDenoise;             // "on", "off"; empty: the settings' (on)
   bool lambert = false;
   // Motion and time.
   bool animate = false;
@@ -124,6 +125,10 @@ void refuseConflicts(const RenderOptions& o) {
             "--gi {} and {} cannot be used together: {} sets ReSTIR GI, which only --gi evolve "
             "runs",
             o.gi, option, option);
+  if (o.reflectionDivisor == 0 && o.reflectionDenoise == "on")
+    fail(
+        "--reflection-divisor 0 and --reflection-denoise on cannot be used together: without "
+        "reflection rays there is nothing to denoise");
   if (o.gi == "none" && given.has("--gi-texture-side"))
     fail(
         "--gi none and --gi-texture-side cannot be used together: without GI no ray reads "
@@ -170,6 +175,8 @@ void checkArguments(const RenderOptions& o) {
   if (!o.preset.empty()) requireOneOf("--preset", o.preset, splitNames(presetNames()));
   if (!o.restirSecondVertex.empty())
     requireOneOf("--restir-second-vertex", o.restirSecondVertex, {"nee", "path", "cache"});
+  if (!o.reflectionDenoise.empty())
+    requireOneOf("--reflection-denoise", o.reflectionDenoise, {"on", "off"});
   if (o.frames < 1 || o.frames > kMaxFrames)
     fail("--frames {}: expected 1 to {} frames", o.frames, kMaxFrames);
   if (!(o.fps > 0.0f) || !std::isfinite(o.fps)) fail("--fps {}: must be positive", o.fps);
@@ -293,6 +300,8 @@ HybridSettings settingsFrom(const RenderOptions& o) {
       s.reflections.divisor = wholeNumber("--reflection-divisor", *o.reflectionDivisor);
     });
   if (!o.reflectionReuse.empty()) settings.reflections.reuse = o.reflectionReuse == "on";
+  if (!o.reflectionDenoise.empty())
+    settings.reflectionDenoise.enabled = o.reflectionDenoise == "on";
   settings.lambert = o.lambert;
   return settings;
 }
@@ -563,6 +572,9 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                   "ReSTIR-style reuse of glossy reflection samples across frames and neighbours "
                   "(reflections-temporal, -spatial, -resolve): on (the default) or off (the "
                   "traced signal as it is)");
+  cmd->add_option("--reflection-denoise", options->reflectionDenoise,
+                  "on (the default): reflections-denoise-temporal and -spatial filter the traced "
+                  "reflections; off: reflections-upsample reads the one noisy sample per pixel");
   cmd->add_flag("--lambert", options->lambert, "Shade every material as pure Lambert");
   cmd->add_flag("--animate", options->animate,
                 "Play the scene's animation over the frames (glTF animations; built-in scenes' "

@@ -23,6 +23,7 @@ void validate(const HybridSettings& s) {
   if (s.shadows.divisor == 0 || s.shadows.divisor > 16)
     fail("shadow divisor {}: expected 1 to 16", s.shadows.divisor);
   validate(s.reflections);
+  validate(s.reflectionDenoise);
   if (!(s.shadows.maxHistory >= 1.0f))
     fail("shadow history {} frames: expected at least 1", s.shadows.maxHistory);
   if (!(std::abs(s.exposureStops) <= 64.0f))

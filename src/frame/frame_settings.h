@@ -12,6 +12,7 @@
 #include "gi/evolve/cache/clipmap_cache_settings.h"
 #include "gi/evolve/restir/restir_gi_settings.h"
 #include "passes/auto_exposure.h"
+#include "passes/reflections_denoise.h"
 #include "passes/reflections_trace.h"
 #include "passes/shadows_trace.h"
 #include "passes/vbuffer.h"
@@ -30,8 +31,9 @@ struct HybridSettings {
   // Render resolution in pixels. Presets: mobile 1170x540, desktop 1920x1080 (seed 000).
   uint32_t width = 1920;
   uint32_t height = 1080;
-  ShadowSettings shadows;          // shadows-trace, shadows-denoise
-  ReflectionSettings reflections;  // reflections-trace, reflections-upsample
+  ShadowSettings shadows;                       // shadows-trace, shadows-denoise
+  ReflectionSettings reflections;               // reflections-trace, reflections-upsample
+  ReflectionDenoiseSettings reflectionDenoise;  // reflections-denoise-temporal, -spatial
   // Exposure before the tone curve. Automatic (the default, both presets): metered from each
   // frame's luminance histogram and adapted over frames (passes/auto_exposure.h, settings in
   // `exposure`), with `exposureStops` as compensation (+1: twice as bright); 0 = middle grey

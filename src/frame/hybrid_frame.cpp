@@ -77,6 +77,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
       shadowsDenoise_(context, gpuScene),
       skyPass_(context, gpuScene),
       reflectionsTrace_(context, gpuScene, scene, specularAlbedo_, settings.reflections),
+      reflectionsDenoise_(context, gpuScene, settings.reflectionDenoise),
       reflectionsUpsample_(context, gpuScene),
       composite_(context, gpuScene, specularAlbedo_),
       tonemap_(context, gpuScene),
@@ -264,10 +265,11 @@ void HybridFrame::recordFrame() {
   tonemap_.declare(graph_, frame, hdr, exposure);
 }
 
-// reflections-trace, the reuse passes (reflections-temporal, -spatial, -resolve; unless
-// ReflectionSettings::reuse is off) and reflections-upsample; the trace looks the GI's
-// radiance cache up at its hits when it has one; without reflection rays (divisor 0) composite
-// takes every surface's specular light from the diffuse GI and reads a zero `reflections`.
+// reflections-trace (which looks the GI's radiance cache up at its hits when it has one), the
+// reuse passes (reflections-temporal, -spatial, -resolve; unless ReflectionSettings::reuse is
+// off), reflections-denoise-temporal and -spatial (unless turned off) and reflections-upsample;
+// without reflection rays (divisor 0) composite takes every surface's specular light from the
+// diffuse GI and reads a zero `reflections`.
 void HybridFrame::declareReflections(const FrameContext& frame, const GBuffer& gbuffer,
                                      IndirectLight& indirect) {
   if (!settings_.reflections.enabled()) {
@@ -280,13 +282,15 @@ void HybridFrame::declareReflections(const FrameContext& frame, const GBuffer& g
     cache.constants = clipmap->constantsAddress();
     cache.declare = [clipmap](graph::PassBuilder pass) { return clipmap->declareLookup(pass); };
   }
+  const gpu::ReflectionPassConstants constants =
+      reflectionsTrace_.constants(frame, cache.constants);
   TracedReflections traced = reflectionsTrace_.declare(graph_, frame, gbuffer, cache);
   // ReSTIR-style reuse of the glossy samples: the resolved signal replaces the traced one.
   if (reflectionsReuse_) traced = reflectionsReuse_->declare(graph_, frame, gbuffer, traced);
-  indirect.reflections = reflectionsUpsample_
-                             .declare(graph_, frame, gbuffer, traced,
-                                      reflectionsTrace_.constants(frame, cache.constants))
-                             .radiance;
+  if (settings_.reflectionDenoise.enabled)
+    traced = reflectionsDenoise_.declare(graph_, frame, gbuffer, traced, constants);
+  indirect.reflections =
+      reflectionsUpsample_.declare(graph_, frame, gbuffer, traced, constants).radiance;
   indirect.reflectionMaxRoughness = settings_.reflections.maxTracedRoughness;
 }
 

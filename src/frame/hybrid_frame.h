@@ -33,6 +33,7 @@
 #include "passes/gbuffer.h"
 #include "passes/gbuffer_import.h"
 #include "passes/reflections_reuse.h"
+#include "passes/reflections_denoise.h"
 #include "passes/reflections_trace.h"
 #include "passes/reflections_upsample.h"
 #include "passes/scene_update.h"
@@ -152,6 +153,7 @@ class HybridFrame {
   SkyPass skyPass_;
   ReflectionsTracePass reflectionsTrace_;
   std::optional<ReflectionsReuse> reflectionsReuse_;  // settings.reflections.reuseEnabled()
+  ReflectionsDenoisePass reflectionsDenoise_;
   ReflectionsUpsamplePass reflectionsUpsample_;
   CompositePass composite_;
   std::optional<AutoExposure> autoExposure_;  // settings.autoExposure
