@@ -27,6 +27,8 @@
 #include "scene/load.h"
 #include "scene/procedural/builtin_scenes.h"
 #include "scene/procedural/mesh_builder.h"
+#include "scene/scene_options.h"
+#include "shared/hybrid_frame_io.h"
 #include "shared/specular_albedo_io.h"
 #include "tools/image_io.h"
 #include "tools/metrics.h"
@@ -318,15 +320,15 @@ double rowMeanRatio(const Scene& scene, const SpheresRender& hybrid, const Image
 }
 
 // `spheres` at 192 x 108, desktop preset (half-res reflections and GI), the mean of frames 9-16
-// against 32 reference samples through pixel centres, with and without reflection rays.
+// against 64 reference samples through pixel centres, with and without reflection rays.
 // Without reuse or a denoiser the traced reflections are one sample per half-res pixel and
 // frame, so pixels stay noisy; but they must show what the fallback (the diffuse GI as every
 // surface's specular light) cannot: the mirrors' images of floor, sky, panels and neighbours.
-// Measured on lavapipe (docs/reflections.md): relMSE 0.42-0.60 traced against 1.89 without;
-// the metal rows' means 0.91-0.94 of the reference with and without reflections alike, so that
-// shortfall lies outside the reflection signal (see the doc) and is printed, not asserted, until
-// it is understood (issue 19 wants 5 %). What is asserted per metal row is the bug this work
-// fixed: metals lit by their direct highlights alone (black) would be far below half.
+// And each metal row's mean must be within 5 % of the reference's (issue 19). Measured on
+// lavapipe (docs/reflections.md, "The metals' shortfall"): 0.95-1.00 per metal row over five
+// reference seeds at 32 samples and at 128-512, traced; 0.91-0.93 before the GI's rays saw
+// metals by their specular lobe. The reference's own noise on a row's mean (glints of the sun
+// in neighbouring spheres, seen through pixel centres) is about 2 % at 32 samples.
 TEST(SpecularSpheres, TracedReflectionsBringTheMetalsTowardsTheReference) {
   Scene scene = *makeBuiltinScene("spheres");
   vk::Context context(vk::contextOptionsFromEnvironment());
@@ -338,7 +340,7 @@ TEST(SpecularSpheres, TracedReflectionsBringTheMetalsTowardsTheReference) {
   ReferenceOptions options;
   options.width = kSpheresWidth;
   options.height = kSpheresHeight;
-  options.samplesPerPixel = 32;
+  options.samplesPerPixel = 64;
   options.pixelCentre = true;
   ImageRGBA32F reference = tracer.render(*scene.camera, options).image;
   if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES")) {
@@ -360,8 +362,76 @@ TEST(SpecularSpheres, TracedReflectionsBringTheMetalsTowardsTheReference) {
     std::printf("spheres row %d (%s): mean composite/reference %.4f traced, %.4f without\n", row,
                 row < procedural::kSpheresMetalRows ? "metal" : "dielectric", ratio,
                 rowMeanRatio(scene, fallback, reference, row));
-    if (row < procedural::kSpheresMetalRows) EXPECT_GT(ratio, 0.5) << "metal row " << row;
+    if (row < procedural::kSpheresMetalRows) EXPECT_NEAR(ratio, 1.0, 0.05) << "metal row " << row;
   }
+}
+
+// ---- DamagedHelmet ------------------------------------------------------------------------------
+
+// The glTF DamagedHelmet (../shared/scenes/damaged_helmet: textured metal and dielectric parts,
+// normal map, emission) under a constant white sky and a sun, desktop preset, ReSTIR GI and
+// traced reflections, 96 x 96, the mean of frames 9-16 against 64 reference samples through
+// pixel centres: the helmet's pixels' mean within 10 % of the reference (issue 19). Its metals
+// were black before reflections and composite's split sum.
+TEST(SpecularHelmet, HelmetMeanWithinTenPercentOfTheReference) {
+  const std::string path = test::sharedDir() + "/scenes/damaged_helmet/glTF/DamagedHelmet.gltf";
+  Scene scene = loadScene(path);
+  SceneOverrides overrides;
+  overrides.sky = parseSky("1,1,1");
+  overrides.sun = parseSun("-0.4,-1,-0.6:3");  // irradiance about the sky's on a level surface
+  applyOverrides(scene, overrides);
+  const Camera camera = effectiveCamera(scene);
+  constexpr uint32_t kSize = 96;
+  constexpr int kFrames = 16, kAveraged = 8;
+
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  HybridSettings settings = presetSettings(Preset::Desktop);
+  settings.width = kSize;
+  settings.height = kSize;
+  settings.gi = GiMode::Evolve;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("composite");
+  frame.requestDebugView("vbuffer.ids");
+  ImageRGBA32F hybrid(kSize, kSize, glm::vec4(0.0f));
+  for (int i = 0; i < kFrames; ++i) {
+    frame.render(camera);
+    if (i < kFrames - kAveraged) continue;
+    ImageRGBA32F composite = frame.debugViewImage("composite");
+    for (size_t k = 0; k < hybrid.pixels.size(); ++k)
+      hybrid.pixels[k] += composite.pixels[k] / float(kAveraged);
+  }
+  const graph::DebugView& view = frame.graph().readDebugView("vbuffer.ids");
+  std::vector<glm::uvec4> ids(view.bytes.size() / sizeof(glm::uvec4));
+  std::memcpy(ids.data(), view.bytes.data(), ids.size() * sizeof(glm::uvec4));
+
+  ReferencePathTracer tracer(context, gpuScene, scene);
+  ReferenceOptions options;
+  options.width = kSize;
+  options.height = kSize;
+  options.samplesPerPixel = 64;
+  options.pixelCentre = true;
+  ImageRGBA32F reference = tracer.render(camera, options).image;
+  if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES")) {
+    writePng(std::string(dir) + "/helmet-hybrid.png", hybrid, 0.5f);
+    writePng(std::string(dir) + "/helmet-reference.png", reference, 0.5f);
+  }
+  EXPECT_EQ(countNonFinitePixels(hybrid), 0u);
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+
+  double sumHybrid = 0.0, sumReference = 0.0;
+  int pixels = 0;
+  for (uint32_t y = 0; y < kSize; ++y)
+    for (uint32_t x = 0; x < kSize; ++x) {
+      if (ids[y * kSize + x].x == gpu::VBUFFER_NO_HIT) continue;
+      sumHybrid += luminance(glm::vec3(hybrid.at(int(x), int(y))));
+      sumReference += luminance(glm::vec3(reference.at(int(x), int(y))));
+      ++pixels;
+    }
+  std::printf("helmet %ux%u: %d pixels, mean composite %.4f reference %.4f (ratio %.4f)\n", kSize,
+              kSize, pixels, sumHybrid / pixels, sumReference / pixels, sumHybrid / sumReference);
+  ASSERT_GT(pixels, int(kSize * kSize / 10));
+  EXPECT_NEAR(sumHybrid / sumReference, 1.0, 0.10);
 }
 
 }  // namespace

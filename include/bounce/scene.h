@@ -79,7 +79,8 @@ class Scene {
   // of problem. A file without any light (no lights, no emissive material) gets a daylight
   // sun and sky at mid-morning, as glTF viewers do; setSun / setSky replace them.
   static Scene load(const std::string& nameOrPath);
-  // cornell, sunroom, foliage, manylights, furnace, city (docs/scenes.md describes each).
+  // cornell, sunroom, sunroom-glossy, foliage, manylights, furnace, city, spheres
+  // (docs/scenes.md describes each).
   static std::vector<std::string> builtinNames();
 
   MaterialId addMaterial(const Material& material);

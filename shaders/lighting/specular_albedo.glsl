@@ -56,4 +56,20 @@ vec3 diffuseReflectance(SpecularAlbedo s, BrdfMaterial m) {
   return m.baseColor * ((1.0 - m.metallic) * transmitted);
 }
 
+// What a surface that a GI or cache ray hits reflects of the cache's irradiance / pi there
+// (seed 000's diffuse-only continuation from the 3rd vertex on): the non-metal part its Lambert
+// albedo c, the metal part its specular lobe's albedo c scale + bias, seen from wo. A metal
+// reflects all it reflects through its specular lobe; with the diffuse albedo c (1 - metallic)
+// alone it is black to the GI but for its direct highlights, which left the `spheres` scene's
+// spheres 5-20 % dark in gi.diffuse under a uniform sky (docs/reflections.md, "The metals'
+// shortfall"). The non-metal part keeps c so that the cache's Lambert reference estimator
+// (gi/evolve/reference_irradiance.comp) still holds for dielectrics. table = 0: c (1 - metallic).
+vec3 indirectHitReflectance(DeviceAddress table, BrdfMaterial m, vec3 n, vec3 wo) {
+  if (m.lambertOnly) return m.baseColor;
+  vec3 diffuse = m.baseColor * (1.0 - m.metallic);
+  if (table == 0ul || m.metallic <= 0.0) return diffuse;
+  SpecularAlbedo s = specularAlbedo(table, max(dot(n, wo), 0.0), m.alpha);
+  return diffuse + m.metallic * (m.baseColor * s.scale + s.bias);
+}
+
 #endif

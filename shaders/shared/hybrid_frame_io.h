@@ -84,8 +84,11 @@ struct FrameConstants {
   // GpuInstance[], every instance's placement last frame (object motion in gbuffer.velocity);
   // equal to the scene's instances while nothing moves.
   DeviceAddress previousInstances;
+  // vec4[SPECULAR_ALBEDO_SIZE^2], the split-sum table (shared/specular_albedo_io.h), for passes
+  // that reflect light at surfaces their rays hit (the GI's and the cache's metals); 0: none.
+  DeviceAddress specularAlbedo;
 };
-BOUNCE_CHECK_SIZE(FrameConstants, 320);
+BOUNCE_CHECK_SIZE(FrameConstants, 328);
 
 // Push constants of every hybrid-frame compute pass: the frame constants' address.
 struct HybridPassConstants {

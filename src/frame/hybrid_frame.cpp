@@ -135,6 +135,7 @@ gpu::FrameConstants HybridFrame::makeFrameConstants(const Camera& camera) const 
   c.shadowMaxHistory = settings_.shadows.maxHistory;
   c.nearPlane = nearPlane_;
   c.previousInstances = gpuScene_.previousInstanceBuffer().address();
+  c.specularAlbedo = specularAlbedo_.address();
   return c;
 }
 

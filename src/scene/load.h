@@ -17,8 +17,8 @@ namespace bounce {
 Scene loadGltf(const std::string& path, LoadWarnings& warnings);
 Scene loadGltf(const std::string& path);
 
-// Built-in procedural scenes (src/scene/procedural/). Names: cornell, sunroom, foliage,
-// manylights, furnace, city.
+// Built-in procedural scenes (src/scene/procedural/). Names: cornell, sunroom,
+// sunroom-glossy, foliage, manylights, furnace, city, spheres.
 std::vector<std::string> builtinSceneNames();
 std::optional<Scene> makeBuiltinScene(const std::string& name);
 

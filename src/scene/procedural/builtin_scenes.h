@@ -7,12 +7,13 @@
 
 namespace bounce::procedural {
 
-Scene makeCornellScene();     // cornell.cpp: the Cornell box of ../shared/scenes/cornell_box
-Scene makeSunroomScene();     // sunroom.cpp: a closed room lit through one window
-Scene makeFoliageScene();     // foliage.cpp: trees and bushes with alpha-tested leaf cards
-Scene makeManyLightsScene();  // manylights.cpp: a room with 64 coloured point lights
-Scene makeCityScene();        // city.cpp: > 1M triangles of city blocks for BVH stress
-Scene makeSpheresScene();     // spheres.cpp: rows of metal and dielectric spheres, rough to smooth
+Scene makeCornellScene();        // cornell.cpp: the Cornell box of ../shared/scenes/cornell_box
+Scene makeSunroomScene();        // sunroom.cpp: a closed room lit through one window
+Scene makeGlossySunroomScene();  // sunroom.cpp: the same with a glossy floor and a steel ball
+Scene makeFoliageScene();        // foliage.cpp: trees and bushes with alpha-tested leaf cards
+Scene makeManyLightsScene();     // manylights.cpp: a room with 64 coloured point lights
+Scene makeCityScene();           // city.cpp: > 1M triangles of city blocks for BVH stress
+Scene makeSpheresScene();  // spheres.cpp: rows of metal and dielectric spheres, rough to smooth
 
 // The spheres scene's grid: rows front to back are white metal, gold (the kSpheresMetalRows
 // metal rows first), white dielectric, red dielectric; column c has roughness

@@ -18,9 +18,10 @@ Scene makeDefaultFurnace() {
   return makeFurnaceScene(0.5f, glm::vec3(1.0f));
 }
 
-constexpr std::array<BuiltinScene, 7> kBuiltinScenes = {{
+constexpr std::array<BuiltinScene, 8> kBuiltinScenes = {{
     {"cornell", procedural::makeCornellScene},
     {"sunroom", procedural::makeSunroomScene},
+    {"sunroom-glossy", procedural::makeGlossySunroomScene},
     {"foliage", procedural::makeFoliageScene},
     {"manylights", procedural::makeManyLightsScene},
     {"furnace", makeDefaultFurnace},

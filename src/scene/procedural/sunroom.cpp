@@ -2,6 +2,9 @@
 // window onto a patch of the floor; everything else inside (most of the walls, the ceiling, the
 // shaded sides of the furniture) is lit only by light bounced off that patch and by skylight
 // coming through the window, which is the case seed 000's GI is built for.
+// `sunroom-glossy` is the same room with a lacquered floor and a polished steel ball rolling
+// through the sun patch: the scene for glossy reflections of the sun patch, walls and furniture
+// (issue 19), and for reflections of a moving object.
 #include "scene/procedural/sunroom.h"
 
 #include <string>
@@ -202,6 +205,57 @@ Scene makeSunroomScene() {
   camera.verticalFovDegrees = 65.0f;
   scene.camera = camera;
   addSunroomAnimation(scene);
+  return scene;
+}
+
+namespace {
+
+// The lacquered floor: the oak's colour under a clear coat, as one glTF metallic-roughness
+// layer (a dielectric of F0 0.04) with roughness 0.15: sharp enough that the window, furniture
+// and sun patch show as blurred images in it.
+constexpr float kGlossyFloorRoughness = 0.15f;
+constexpr float kBallRadius = 0.3f;
+// The ball rolls 1.2 m along x through the sun patch and back over 4 s, as the cube slides.
+constexpr glm::vec3 kBallRest{3.7f, kBallRadius, 3.5f};
+constexpr glm::vec3 kBallTravel{1.2f, 0.0f, 0.0f};
+
+void addRollingBall(Scene& scene) {
+  Material steel = lambertMaterial("ball_polished_steel", {0.78f, 0.78f, 0.76f});
+  steel.metallic = 1.0f;
+  steel.roughness = 0.1f;
+  Geometry g;
+  g.material = addMaterial(scene, steel);
+  addSphere(g, {0, 0, 0}, kBallRadius, 48, 24);
+  Mesh mesh;
+  mesh.name = "ball_steel";
+  mesh.geometries.push_back(std::move(g));
+  const uint32_t instance = uint32_t(scene.instances.size());
+  addInstance(scene, addMesh(scene, std::move(mesh)),
+              translation({kBallRest.x, sunroomLayout().interior.min.y + kBallRest.y, kBallRest.z}),
+              "ball_steel");
+  TransformTrack track;
+  track.instance = instance;
+  track.restTranslation = glm::vec3(scene.instances[instance].transform[3]);
+  track.translation.times = {0.0f, 2.0f, 4.0f};
+  track.translation.values = {track.restTranslation, track.restTranslation + kBallTravel,
+                              track.restTranslation};
+  scene.animation.transforms.push_back(track);
+}
+
+}  // namespace
+
+Scene makeGlossySunroomScene() {
+  Scene scene = makeSunroomScene();
+  scene.name = "sunroom-glossy";
+  bool floorFound = false;
+  for (Material& m : scene.materials)
+    if (m.name == "floor_oak") {
+      m.name = "floor_oak_lacquered";
+      m.roughness = kGlossyFloorRoughness;
+      floorFound = true;
+    }
+  if (!floorFound) fail("sunroom-glossy: the sunroom has no material 'floor_oak'");
+  addRollingBall(scene);
   return scene;
 }
 

@@ -1,8 +1,8 @@
 // Radiance arriving along a cache ray (cache-trace-diffuse-rays, seed 000): at the hit, light
 // reflected once from the frame's sun and from the scene's lights by next-event estimation (one
 // sample of the sun, one local light, emissive triangle or KHR punctual, picked by power, and
-// every KHR directional light; src/lighting/gpu_light_tables.h), plus the albedo times the cache's
-// irradiance at the hit (a recursive lookup, which makes the bounces infinite), plus the
+// every KHR directional light; src/lighting/gpu_light_tables.h), plus the reflectance
+// (indirectHitReflectance: a metal's by its specular lobe) times the cache's irradiance at the hit (a recursive lookup, which makes the bounces infinite), plus the
 // surface's emission; the sky on a miss.
 // Emitters are split between NEE and the cache's rays (src/lighting/gpu_light_tables.h): large ones
 // are not in the light tables (area pdf 0) and count when a ray hits them, small ones count by
@@ -16,6 +16,7 @@
 #include "gi/evolve/cache/cache_lookup.glsl"
 #include "passes/hybrid_frame.glsl"
 #include "lighting/lights.glsl"
+#include "lighting/specular_albedo.glsl"
 #include "lighting/surface.glsl"
 
 const float CACHE_RAY_FAR = 1e30;
@@ -103,7 +104,7 @@ vec3 cacheRayRadiance(FrameConstants f, ClipmapCacheView cache, vec3 origin, vec
   Surface s = loadSurfaceAtCoarseMip(hit, dir, (f.flags & FRAME_FLAG_LAMBERT) != 0u, cache.constants.v.materialTextureSide);
   vec4 u = uniformFromHash(pcg4d(seed));
   vec2 jitter = uniformFromHash(pcg4d(seed.yzwx ^ uvec4(0x68E31DA4u))).xy - 0.5;
-  vec3 albedo = s.brdf.baseColor * (1.0 - s.brdf.metallic);
+  vec3 albedo = indirectHitReflectance(f.specularAlbedo, s.brdf, s.shadingNormal, -dir);
   vec3 emission = cacheRayCountsEmission(s) ? s.emission : vec3(0.0);
   vec3 radiance = emission + cacheDirectLight(f, s, -dir, u, alphaTest) +
                   albedo * clipmapQuery(cache, s.position, s.shadingNormal, jitter, touch, allocate);

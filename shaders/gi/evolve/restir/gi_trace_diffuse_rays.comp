@@ -31,13 +31,14 @@ const uint RANDOM_GI_CACHE = 0x47490005u;
 
 // Light from the 3rd vertex on, reflected at x2 (seed 000, "Clipmap for 3rd+ vertices"): the
 // cache holds irradiance / pi at x2 (sky + all indirect bounces, no direct light of the sun or
-// lights, which NEE adds), so the reflected radiance is the diffuse albedo times it. Specular
-// lobes at x2 are ignored (diffuse-only continuation, a small darkening on metals).
-vec3 cacheBounce(Surface s, uint seed) {
+// lights, which NEE adds), so the reflected radiance is x2's reflectance times it: the diffuse
+// albedo, and for metals their specular lobe's split-sum albedo (indirectHitReflectance), so
+// that a metal is not black to the GI but for its highlights.
+vec3 cacheBounce(FrameConstants f, Surface s, vec3 wo, uint seed) {
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
-  vec3 diffuseAlbedo = s.brdf.lambertOnly ? s.brdf.baseColor : s.brdf.baseColor * (1.0 - s.brdf.metallic);
+  vec3 reflectance = indirectHitReflectance(f.specularAlbedo, s.brdf, s.shadingNormal, wo);
   ClipmapCacheView cache = clipmapCacheView(gi.cache);
-  return diffuseAlbedo * cacheLookupIrradiance(cache, s.position, s.geometricNormal, seed ^ RANDOM_GI_CACHE);
+  return reflectance * cacheLookupIrradiance(cache, s.position, s.geometricNormal, seed ^ RANDOM_GI_CACHE);
 }
 
 void main() {
@@ -88,7 +89,7 @@ void main() {
     }
     if (continues)
       radiance += continuedPath(f, s, wo, key, localPick, gi.maxPathBounces, lambert, gi.materialTextureSide);
-    if (addsCache) radiance += cacheBounce(s, key.x);
+    if (addsCache) radiance += cacheBounce(f, s, wo, key.x);
   }
   writeResult(g, s.position, RESTIR_GI_KIND_SURFACE, s.geometricNormal, radiance, neeRay, neeRadiance);
 }
