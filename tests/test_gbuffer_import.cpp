@@ -125,6 +125,10 @@ HybridSettings giSettings() {
   settings.gi = GiMode::Evolve;
   settings.width = kWidth;
   settings.height = kHeight;
+  // A bring-your-own-G-buffer frame has no ReSTIR DI, so its gi.diffuse keeps the light of the
+  // emitters DI would sample (the host lights its own direct light); Bounce's own frame does the
+  // same only without DI. Same light on both sides, so the images must agree.
+  settings.di.mode = DiMode::Off;
   return settings;
 }
 

@@ -45,6 +45,9 @@ HybridSettings denoiseSettings() {
   s.height = kHeight;
   s.gi = GiMode::None;
   s.reflections.divisor = kDivisor;
+  // The denoiser alone, on the traced signal: its bounds assume a fresh, independent sample per
+  // pixel and frame, which ReSTIR reuse (correlated across frames) is not.
+  s.reflections.reuse = false;
   return s;
 }
 

@@ -69,7 +69,8 @@ std::vector<std::string> splitList(const std::string& text, char separator) {
 
 // A configuration name is a '+'-separated list of parts: the GI mode (none, cache, evolve),
 // dN (reflection divisor N), maxrX (maxTracedRoughness X), mirrorX (mirrorRoughness X),
-// ambientX (skyAmbientStrength X), full-mip (reflection textures at full resolution), mobile.
+// ambientX (skyAmbientStrength X), full-mip (reflection textures at full resolution), mobile,
+// no-reuse, no-denoise (the reflection chain's stages off), no-di (ReSTIR DI off).
 HybridSettings configurationSettings(const std::string& name, uint32_t width, uint32_t height) {
   HybridSettings settings = presetSettings(Preset::Desktop);
   for (const std::string& part : splitList(name, '+'))
@@ -92,6 +93,12 @@ HybridSettings configurationSettings(const std::string& name, uint32_t width, ui
       settings.skyAmbientStrength = number("ambient");
     } else if (part == "full-mip") {
       settings.reflections.materialTextureSide = 0;
+    } else if (part == "no-reuse") {
+      settings.reflections.reuse = false;
+    } else if (part == "no-denoise") {
+      settings.reflectionDenoise.enabled = false;
+    } else if (part == "no-di") {
+      settings.di.mode = DiMode::Off;
     } else {
       fail("--configs: unknown part '{}' in '{}'", part, name);
     }
@@ -325,7 +332,7 @@ int main(int argc, char** argv) {
   app.add_option("--res", o.resolution, "Image size WxH");
   app.add_option("--configs", o.configs,
                  "Comma-separated configurations: '+'-joined parts none|cache|evolve, dN "
-                 "(reflection divisor), maxrX, mirrorX, ambientX, full-mip, mobile");
+                 "(reflection divisor), maxrX, mirrorX, ambientX, full-mip, mobile, no-reuse, no-denoise, no-di");
   app.add_option("--sun", o.sun, "Sun override, as bounce render's --sun");
   app.add_option("--sky", o.sky, "Sky override, as bounce render's --sky");
   app.add_option("--frames", o.frames, "Frames per configuration")->check(CLI::Range(1, 100000));
