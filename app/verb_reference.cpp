@@ -17,6 +17,7 @@
 #include "progress.h"
 #include "reference/path_tracer.h"
 #include "rt/gpu_scene.h"
+#include "scene/time_of_day.h"
 #include "tools/image_io.h"
 #include "tools/output_file.h"
 #include "verbs.h"
@@ -36,6 +37,7 @@ struct ReferenceVerbOptions {
   bool pixelCentre = false;
   double timeLimit = 0.0;
   double exposureStops = 0.0;
+  std::optional<float> timeOfDay;
   std::string out = "out/reference.exr";
 };
 
@@ -89,6 +91,9 @@ void checkArguments(const ReferenceVerbOptions& o) {
         "--exposure and --out '{}' cannot be used together: an EXR holds linear radiance "
         "unscaled; --exposure scales PNG output only",
         o.out);
+  o.common.given.refuseTogether("--time-of-day", "--sun", "the time of day sets the sun");
+  if (o.timeOfDay && !(*o.timeOfDay >= 0.0f && *o.timeOfDay <= 24.0f))
+    fail("--time-of-day {}: expected hours in [0, 24]", *o.timeOfDay);
   requireWritableFile("--out", o.out);
 }
 
@@ -97,6 +102,12 @@ int runReference(const ReferenceVerbOptions& o) {
   checkArguments(o);
 
   Scene scene = o.common.loadScene();
+  // The sun and sky `bounce render --time-of-day` gives the same scene (its frame 0).
+  if (o.timeOfDay) {
+    const Sun daySun = scene.sun;
+    const Sky daySky = scene.sky;
+    applyTimeOfDay(*o.timeOfDay, daySun, daySky, scene.sun, scene.sky);
+  }
   std::unique_ptr<vk::Context> context = o.common.createContext();
   GpuScene gpuScene(*context, scene);
   ReferencePathTracer tracer(*context, gpuScene, scene);
@@ -164,6 +175,9 @@ void addReferenceVerb(CLI::App& app, VerbAction& action) {
                 "pixel with `bounce render`");
   cmd->add_option("--time-limit", options->timeLimit,
                   "Stop after the batch that passes this many seconds; reports the spp reached");
+  cmd->add_option("--time-of-day", options->timeOfDay,
+                  "Solar time in hours [0, 24], as `bounce render --time-of-day` (below the "
+                  "horizon: no sun, a dim constant sky)");
   cmd->add_option("--out", options->out,
                   "Output image (.exr linear, .png sRGB); checked writable before any work")
       ->capture_default_str();

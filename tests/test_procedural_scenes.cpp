@@ -19,6 +19,9 @@
 #include <nlohmann/json.hpp>
 
 #include "harness.h"
+#include "lighting/gpu_light_tables.h"
+#include "lighting/light_table.h"
+#include "rt/scene_bvh.h"
 #include "scene/load.h"
 #include "scene/procedural/builtin_scenes.h"
 #include "scene/procedural/furnace.h"
@@ -138,12 +141,13 @@ bool contains(const Aabb& box, const glm::vec3& p, float margin = 0.0f) {
 
 // ---- every built-in scene ----------------------------------------------------------------------
 
-TEST(ProceduralScenes, ListsTheEightBuiltins) {
+TEST(ProceduralScenes, ListsTheNineBuiltins) {
   std::vector<std::string> names = builtinSceneNames();
   std::set<std::string> unique(names.begin(), names.end());
-  EXPECT_EQ(names.size(), 8u);
-  EXPECT_EQ(unique, (std::set<std::string>{"cornell", "sunroom", "sunroom-glossy", "foliage",
-                                           "manylights", "furnace", "city", "spheres"}));
+  EXPECT_EQ(names.size(), 9u);
+  EXPECT_EQ(unique,
+            (std::set<std::string>{"cornell", "sunroom", "sunroom-glossy", "foliage", "manylights",
+                                   "furnace", "city", "city-10k", "spheres"}));
 }
 
 TEST(ProceduralScenes, UnknownNameGivesNothing) {
@@ -721,6 +725,89 @@ TEST(CityScene, HasOverAMillionTrianglesAndBuildsQuickly) {
   EXPECT_GE(scene.uniqueTriangleCount(), 300000u);
   EXPECT_GT(scene.instances.size(), scene.meshes.size()) << "props and blocks are instanced";
   EXPECT_LT(seconds, 2.0) << "a sanity bound, not a benchmark";
+}
+
+// The flux of a spot light in the scene's units (klm when intensity is kcd): its luminous
+// intensity times the solid angle its glTF falloff covers, integrated here by the midpoint rule
+// over the polar angle (not the closed form city.cpp uses).
+double spotFlux(const PunctualLight& light) {
+  const double cosInner = std::cos(double(light.innerConeAngle));
+  const double cosOuter = std::cos(double(light.outerConeAngle));
+  const int steps = 100000;
+  double solidAngle = 0.0;
+  for (int i = 0; i < steps; ++i) {
+    const double theta = (double(i) + 0.5) / steps * M_PI, dTheta = M_PI / steps;
+    const double a = std::clamp((std::cos(theta) - cosOuter) / (cosInner - cosOuter), 0.0, 1.0);
+    solidAngle += a * a * 2.0 * M_PI * std::sin(theta) * dTheta;
+  }
+  return solidAngle * double(luminance(light.intensity * light.color));
+}
+
+// The street lights of a city (or city-10k) as its light table sees them.
+struct CityLights {
+  Scene scene;
+  LightTable table;
+  double tableSeconds = 0.0;  // buildLightTable and the large/small split, not the BVH
+  uint32_t coverMaterial = 0;
+  std::vector<bool> large;
+};
+
+CityLights cityLights(const std::string& name) {
+  CityLights c{buildBuiltin(name), {}, 0.0, 0, {}};
+  rt::SceneBvh bvh = rt::buildSceneBvh(c.scene);
+  auto start = std::chrono::steady_clock::now();
+  c.table = buildLightTable(c.scene, bvh);
+  c.large = largeEmitterMaterials(c.table, c.scene.bounds());
+  c.tableSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (uint32_t m = 0; m < c.scene.materials.size(); ++m)
+    if (c.scene.materials[m].name == "street_light_cover") c.coverMaterial = m;
+  return c;
+}
+
+// Issue 20: every street light is a light, a lamp of 12,000 lm (city.cpp's photometry): its
+// spot light shining down carries 9,600 lm and its cover, two emissive triangles that the
+// light table samples (small emitters, not left to rays), 2,400 lm.
+TEST(CityScene, EveryStreetLightIsATwelveKilolumenLamp) {
+  CityLights c = cityLights("city");
+  const size_t lamps = size_t(procedural::kCityBlocksPerSide * procedural::kCityBlocksPerSide *
+                              procedural::kCityStreetLightsPerBlock);
+  ASSERT_EQ(lamps, 1024u);
+  ASSERT_EQ(c.scene.lights.size(), lamps);
+  for (const PunctualLight& light : c.scene.lights) {
+    ASSERT_EQ(light.type, PunctualLight::Type::Spot) << light.name;
+    EXPECT_NEAR(light.direction.y, -1.0f, 1e-6f) << light.name << " shines down";
+    EXPECT_NEAR(light.position.y, 0.15f + 6.93f, 1e-4f) << light.name << " under its lamp";
+    EXPECT_NEAR(spotFlux(light), 9.6, 0.01 * 9.6) << light.name;
+  }
+  EXPECT_EQ(c.table.punctualLights.size(), lamps);
+  EXPECT_EQ(c.table.emissiveTriangles.size(), 2 * lamps) << "one quad of cover per lamp";
+  EXPECT_EQ(c.table.localLightCount(), 3 * lamps);
+  const Material& cover = c.scene.materials.at(c.coverMaterial);
+  const double coverFlux =
+      M_PI * double(luminance(cover.emissive)) * c.table.materialEmissiveArea[c.coverMaterial];
+  EXPECT_NEAR(coverFlux / double(lamps), 2.4, 0.01 * 2.4);
+  EXPECT_FALSE(c.large.at(c.coverMaterial))
+      << "lamp covers must be sampled by DI, not left to rays";
+  std::printf("city: %zu lights in the light table, built and split in %.1f ms\n",
+              size_t(c.table.localLightCount()), 1e3 * c.tableSeconds);
+}
+
+// The scale-test variant: 10,000 street lights (30,000 local lights with the covers), the same
+// unique meshes, and a light table built in milliseconds.
+TEST(CityScene, TenThousandLightVariantHasTenThousandLamps) {
+  CityLights c = cityLights("city-10k");
+  EXPECT_EQ(c.scene.lights.size(), 10000u);
+  EXPECT_EQ(c.table.punctualLights.size(), 10000u);
+  EXPECT_EQ(c.table.emissiveTriangles.size(), 20000u);
+  EXPECT_FALSE(c.large.at(c.coverMaterial));
+  EXPECT_EQ(c.scene.uniqueTriangleCount(), buildBuiltin("city").uniqueTriangleCount());
+  std::printf(
+      "city-10k: %llu triangles (%llu unique), %zu instances, %u lights in the light "
+      "table, built and split in %.1f ms\n",
+      (unsigned long long)c.scene.triangleCount(),
+      (unsigned long long)c.scene.uniqueTriangleCount(), c.scene.instances.size(),
+      c.table.localLightCount(), 1e3 * c.tableSeconds);
+  EXPECT_LT(c.tableSeconds, 1.0) << "a sanity bound, not a benchmark";
 }
 
 }  // namespace

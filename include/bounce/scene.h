@@ -79,7 +79,7 @@ class Scene {
   // of problem. A file without any light (no lights, no emissive material) gets a daylight
   // sun and sky at mid-morning, as glTF viewers do; setSun / setSky replace them.
   static Scene load(const std::string& nameOrPath);
-  // cornell, sunroom, sunroom-glossy, foliage, manylights, furnace, city, spheres
+  // cornell, sunroom, sunroom-glossy, foliage, manylights, furnace, city, city-10k, spheres
   // (docs/scenes.md describes each).
   static std::vector<std::string> builtinNames();
 

@@ -18,11 +18,9 @@ vk::Buffer upload(vk::Context& context, std::span<const T> items, const std::str
   return vk::uploadBuffer(context, std::as_bytes(items), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, name);
 }
 
-// Emitters larger than this fraction of the bounding box's surface area are reached by rays only.
-constexpr double kLargeEmitterFraction = 0.1;
+}  // namespace
 
-// The materials whose emitters are reached by rays only (see the header).
-std::vector<bool> largeEmitters(const LightTable& lights, const Aabb& bounds) {
+std::vector<bool> largeEmitterMaterials(const LightTable& lights, const Aabb& bounds) {
   glm::dvec3 e = glm::max(glm::dvec3(bounds.max - bounds.min), glm::dvec3(0.0));
   double boxArea = 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
   std::vector<bool> large(lights.materialEmissiveArea.size(), false);
@@ -31,11 +29,9 @@ std::vector<bool> largeEmitters(const LightTable& lights, const Aabb& bounds) {
   return large;
 }
 
-}  // namespace
-
 GpuLightTables::GpuLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene) {
   LightTable lights = buildLightTable(scene, gpuScene.bvh());
-  std::vector<bool> large = largeEmitters(lights, gpuScene.bounds());
+  std::vector<bool> large = largeEmitterMaterials(lights, gpuScene.bounds());
   if (std::find(large.begin(), large.end(), true) != large.end())
     lights = buildLightTable(scene, gpuScene.bvh(), large);
   std::span<const gpu::GpuDistantLight> distant(lights.distantLights);

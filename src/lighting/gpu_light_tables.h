@@ -15,12 +15,23 @@
 // multiple importance sampling with weights 0 and 1, which stays unbiased where consumers
 // evaluate from different points (the clipmap cache's cells vs the points that look them up).
 #pragma once
+#include <vector>
+
 #include "vk/resources.h"
 
 namespace bounce {
 
 class GpuScene;
+struct Aabb;
+struct LightTable;
 struct Scene;
+
+// Emitters larger than this fraction of the bounding box's surface area are reached by rays only.
+inline constexpr double kLargeEmitterFraction = 0.1;
+
+// Per Scene::materials entry: whether its emitters are large (reached by rays only, see above)
+// in a scene of these lights and bounds.
+std::vector<bool> largeEmitterMaterials(const LightTable& lights, const Aabb& bounds);
 
 class GpuLightTables {
  public:

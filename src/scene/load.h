@@ -18,7 +18,7 @@ Scene loadGltf(const std::string& path, LoadWarnings& warnings);
 Scene loadGltf(const std::string& path);
 
 // Built-in procedural scenes (src/scene/procedural/). Names: cornell, sunroom,
-// sunroom-glossy, foliage, manylights, furnace, city, spheres.
+// sunroom-glossy, foliage, manylights, furnace, city, city-10k, spheres.
 std::vector<std::string> builtinSceneNames();
 std::optional<Scene> makeBuiltinScene(const std::string& name);
 

@@ -3,6 +3,11 @@
 // so triangles are many, small and axis-aligned, with long thin slivers: hard cases for SAH.
 // A few dozen unique block designs (about 400k triangles) are instanced, rotated, over the
 // grid, and streets get instanced street lights and cars: over 1.5M triangles as rays see them.
+//
+// Every street light is a real light (16 to a block, 1,024 in all): an emissive lamp cover
+// and a KHR spot light shining down just under it, so the city by night (--time-of-day 22) is
+// lit by its streets (docs/di.md). `city-10k` is the same city on a 25 x 25 grid: the same
+// unique meshes, 10,000 street lights, for the many-lights scale test.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -19,15 +24,86 @@ namespace bounce::procedural {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-constexpr int kBlocksPerSide = 8;
 constexpr int kBlockDesigns = 18;
 constexpr float kBlockSize = 64.0f;
 constexpr float kStreetWidth = 16.0f;
 constexpr float kBlockPitch = kBlockSize + kStreetWidth;
 constexpr float kSidewalkWidth = 3.0f;
 constexpr float kSidewalkHeight = 0.15f;
-constexpr float kCityHalfSize =
-    0.5f * kBlockPitch * kBlocksPerSide;  // to the outer street's middle
+
+// The grid's size: blocks along each axis, and the half size to the outer street's middle.
+struct CityGrid {
+  int blocksPerSide;
+  float halfSize() const { return 0.5f * kBlockPitch * float(blocksPerSide); }
+  // The centre of block (bx, bz) on the ground.
+  glm::vec3 blockCenter(int bx, int bz) const {
+    const float middle = 0.5f * float(blocksPerSide - 1);
+    return {(float(bx) - middle) * kBlockPitch, 0.0f, (float(bz) - middle) * kBlockPitch};
+  }
+};
+
+// ---- street lamps ------------------------------------------------------------------------------
+//
+// Photometry. The scene's units are its sun's: sunFromAngles(..., 100) is a clear day's
+// kDaylightSunKilolux = 100 klux (scene.h), so irradiance 1 = 1 klux, a punctual intensity of
+// 1 = 1 kcd (the renderer reads intensity as W/sr in the sun's units, lighting_io.h) and
+// radiance 1 = 1 kcd/m^2. One lamp is a 100 W LED street luminaire at 120 lm/W: 12,000 lm
+// leave it, about what a 150 W high-pressure sodium lamp gives after its luminaire's losses.
+// Its light is warm white, 3000 K. A fifth of the flux leaves through the lamp cover as a
+// Lambertian glow (what the camera and glossy surfaces see), the rest is the LED array's beam:
+// a spot light pointing down with a wide cut-off (full intensity to 55 degrees from the nadir,
+// none beyond 75), as street optics spread light along the road and keep it out of windows.
+// Under a lamp (7 m up) the street gets about 60 lux from the beam and 15 from the cover;
+// road-lighting classes ask for 10-30 lux on average (EN 13201-2).
+constexpr float kLampFluxKilolumens = 12.0f;
+constexpr float kLampCoverShare = 0.2f;
+constexpr float kLampBeamInnerDegrees = 55.0f;
+constexpr float kLampBeamOuterDegrees = 75.0f;
+// A 3000 K blackbody in linear Rec. 709, scaled to a maximum of 1 (Planck's law integrated
+// against the CIE 1931 observer, in the analytic fit of Wyman, Sloan & Shirley 2013, "Simple
+// Analytic Approximations to the CIE XYZ Color Matching Functions"); its luminance is 0.570.
+constexpr glm::vec3 kLampColor{1.0f, 0.484f, 0.155f};
+// The street light's lamp head (in the street light mesh's frame, arm along +X); the cover closes
+// its underside (0.21 m^2), and the beam starts 2 cm under the cover's middle, so the cover
+// does not shadow it.
+const Aabb kLampHead{{1.35f, 6.95f, -0.15f}, {2.05f, 7.1f, 0.15f}};
+const glm::vec3 kLampBeamOrigin{1.7f, 6.93f, 0.0f};
+
+float luminanceOf(const glm::vec3& rgb) {
+  return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z;
+}
+
+// The cover's emitted radiance (RGB, kcd/m^2 in luminance): a Lambertian emitter of area A
+// sends pi A L, so L = flux / (pi A).
+glm::vec3 lampCoverEmission() {
+  const glm::vec3 size = kLampHead.max - kLampHead.min;
+  const float luminance = kLampCoverShare * kLampFluxKilolumens / (kPi * size.x * size.z);
+  return kLampColor * (luminance / luminanceOf(kLampColor));
+}
+
+// The solid angle the glTF spot falloff a(theta) = clamp((cos theta - cos o) / (cos i - cos o),
+// 0, 1)^2 integrates to: 2 pi (integral over cos theta of a) = 2 pi ((1 - cos i) +
+// (cos i - cos o) / 3). The beam's intensity is its flux over this.
+float spotEffectiveSolidAngle(float innerRadians, float outerRadians) {
+  const float cosInner = std::cos(innerRadians), cosOuter = std::cos(outerRadians);
+  return 2.0f * kPi * ((1.0f - cosInner) + (cosInner - cosOuter) / 3.0f);
+}
+
+// The spot light of one lamp at `position`, shining straight down.
+PunctualLight lampBeam(const glm::vec3& position, std::string name) {
+  PunctualLight light;
+  light.type = PunctualLight::Type::Spot;
+  light.name = std::move(name);
+  light.color = kLampColor;
+  light.innerConeAngle = kLampBeamInnerDegrees * kPi / 180.0f;
+  light.outerConeAngle = kLampBeamOuterDegrees * kPi / 180.0f;
+  const float candela = (1.0f - kLampCoverShare) * kLampFluxKilolumens /
+                        spotEffectiveSolidAngle(light.innerConeAngle, light.outerConeAngle);
+  light.intensity = candela / luminanceOf(kLampColor);
+  light.position = position;
+  light.direction = {0.0f, -1.0f, 0.0f};
+  return light;
+}
 
 struct CityMaterials {
   std::vector<uint32_t> facades;
@@ -55,7 +131,9 @@ CityMaterials addCityMaterials(Scene& scene) {
   m.sidewalk = addMaterial(scene, lambertMaterial("sidewalk_concrete", {0.55f, 0.55f, 0.52f}));
   m.asphalt = addMaterial(scene, lambertMaterial("street_asphalt", {0.08f, 0.08f, 0.09f}));
   m.poleMetal = addMaterial(scene, glossy("street_light_metal", {0.15f, 0.16f, 0.17f}, 1.0f, 0.4f));
-  m.lampGlass = addMaterial(scene, glossy("street_light_cover", {0.90f, 0.90f, 0.85f}, 0.0f, 0.2f));
+  Material cover = glossy("street_light_cover", {0.90f, 0.90f, 0.85f}, 0.0f, 0.2f);
+  cover.emissive = lampCoverEmission();
+  m.lampGlass = addMaterial(scene, cover);
   m.tyre = addMaterial(scene, lambertMaterial("tyre_rubber", {0.03f, 0.03f, 0.03f}));
   const std::pair<const char*, glm::vec3> paints[] = {
       {"car_paint_red", {0.60f, 0.05f, 0.04f}},
@@ -235,7 +313,7 @@ Mesh makeStreetLight(const CityMaterials& m) {
   addFrustum(metal, {0, -0.05f, 0}, {0, 0.5f, 0}, 0.18f, 0.12f, 16);
   addFrustum(metal, {0, 0.45f, 0}, {0, 7.0f, 0}, 0.10f, 0.06f, 16);
   addCylinder(metal, {0, 6.75f, 0}, {1.6f, 7.05f, 0}, 0.04f, 12);
-  const Aabb head{{1.35f, 6.95f, -0.15f}, {2.05f, 7.1f, 0.15f}};
+  const Aabb& head = kLampHead;
   addBox(metal, head, Facing::Outward, kAllFaces & ~kFaceNegY);
   // The lamp cover closes the head's underside.
   addBox(builder.geometry(m.lampGlass), head, Facing::Outward, kFaceNegY);
@@ -264,41 +342,44 @@ Mesh makeCar(uint32_t paint, const CityMaterials& m, int variant) {
   return builder.build(fmt::format("car_{}", variant));
 }
 
-// Street lights along each block's sidewalk, four to a side, arms over the street.
-void placeStreetLights(Scene& scene, uint32_t mesh) {
+// Street lights along each block's sidewalk, four to a side, arms over the street; each one's
+// lamp gets its beam (the cover emits through its material).
+void placeStreetLights(Scene& scene, uint32_t mesh, const CityGrid& grid) {
   const float edge = 0.5f * kBlockSize - 0.8f;
   int count = 0;
-  for (int bx = 0; bx < kBlocksPerSide; ++bx)
-    for (int bz = 0; bz < kBlocksPerSide; ++bz) {
-      glm::vec3 center{(float(bx) - 0.5f * float(kBlocksPerSide - 1)) * kBlockPitch,
-                       kSidewalkHeight,
-                       (float(bz) - 0.5f * float(kBlocksPerSide - 1)) * kBlockPitch};
+  for (int bx = 0; bx < grid.blocksPerSide; ++bx)
+    for (int bz = 0; bz < grid.blocksPerSide; ++bz) {
+      const glm::vec3 center = grid.blockCenter(bx, bz) + glm::vec3(0.0f, kSidewalkHeight, 0.0f);
       for (int side = 0; side < 4; ++side) {
         // Side k faces along the rotated +X; the light's arm points the same way, over the street.
         float yaw = float(side) * 0.5f * kPi;
         for (float along : {-24.0f, -8.0f, 8.0f, 24.0f}) {
-          glm::mat4 local = rotationY(yaw) * translation({edge, 0.0f, along});
-          addInstance(scene, mesh, translation(center) * local,
-                      fmt::format("street_light_{}", count++));
+          const glm::mat4 transform =
+              translation(center) * rotationY(yaw) * translation({edge, 0.0f, along});
+          const std::string name = fmt::format("street_light_{}", count++);
+          scene.lights.push_back(
+              lampBeam(glm::vec3(transform * glm::vec4(kLampBeamOrigin, 1.0f)), name + "_beam"));
+          addInstance(scene, mesh, transform, name);
         }
       }
     }
 }
 
 // Cars parked or driving in both lanes of every street, right-hand traffic, clear of crossings.
-void placeCars(Scene& scene, uint32_t firstCarMesh, int variants) {
+void placeCars(Scene& scene, uint32_t firstCarMesh, int variants, const CityGrid& grid) {
+  const float halfSize = grid.halfSize();
   Pcg32 rng(77);
   int count = 0;
   for (int axis = 0; axis < 2; ++axis)
-    for (int line = 0; line <= kBlocksPerSide; ++line) {
-      const float street = -kCityHalfSize + float(line) * kBlockPitch;
+    for (int line = 0; line <= grid.blocksPerSide; ++line) {
+      const float street = -halfSize + float(line) * kBlockPitch;
       for (int lane = 0; lane < 2; ++lane) {
         const float direction = lane == 0 ? 1.0f : -1.0f;
         const float offset = direction * 0.25f * kStreetWidth;
-        for (float pos = -kCityHalfSize + rng.uniform(5.0f, 30.0f); pos < kCityHalfSize;
+        for (float pos = -halfSize + rng.uniform(5.0f, 30.0f); pos < halfSize;
              pos += rng.uniform(9.0f, 45.0f)) {
           // Distance to the nearest crossing's middle; cars keep out of crossings.
-          float fromCrossing = std::abs(std::remainder(pos + kCityHalfSize, kBlockPitch));
+          float fromCrossing = std::abs(std::remainder(pos + halfSize, kBlockPitch));
           if (fromCrossing < 0.5f * kStreetWidth + 2.5f) continue;
           glm::vec3 p = axis == 0 ? glm::vec3(pos, 0.0f, street + offset)
                                   : glm::vec3(street - offset, 0.0f, pos);
@@ -312,8 +393,8 @@ void placeCars(Scene& scene, uint32_t firstCarMesh, int variants) {
     }
 }
 
-Mesh makeGround(uint32_t asphalt) {
-  const float h = kCityHalfSize + 40.0f;
+Mesh makeGround(uint32_t asphalt, const CityGrid& grid) {
+  const float h = grid.halfSize() + 40.0f;
   MeshBuilder builder;
   addRect(builder.geometry(asphalt), Frame{{-h, 0.0f, h}, {1, 0, 0}, {0, 0, -1}}, {0, 0},
           {2 * h, 2 * h});
@@ -322,50 +403,63 @@ Mesh makeGround(uint32_t asphalt) {
 
 // Blocks get designs in a shuffled order so each design appears, and rotations in quarter turns
 // so repeats are less obvious.
-void placeBlocks(Scene& scene, uint32_t firstDesignMesh) {
+void placeBlocks(Scene& scene, uint32_t firstDesignMesh, const CityGrid& grid) {
+  const int n = grid.blocksPerSide;
   Pcg32 rng(99);
-  std::vector<int> order(kBlocksPerSide * kBlocksPerSide);
+  std::vector<int> order(size_t(n * n));
   std::iota(order.begin(), order.end(), 0);
   for (size_t i = order.size() - 1; i > 0; --i)
     std::swap(order[i], order[size_t(rng.nextUint() % (i + 1))]);
-  for (int bx = 0; bx < kBlocksPerSide; ++bx)
-    for (int bz = 0; bz < kBlocksPerSide; ++bz) {
-      int design = order[size_t(bx * kBlocksPerSide + bz)] % kBlockDesigns;
-      glm::vec3 center{(float(bx) - 0.5f * float(kBlocksPerSide - 1)) * kBlockPitch, 0.0f,
-                       (float(bz) - 0.5f * float(kBlocksPerSide - 1)) * kBlockPitch};
+  for (int bx = 0; bx < n; ++bx)
+    for (int bz = 0; bz < n; ++bz) {
+      int design = order[size_t(bx * n + bz)] % kBlockDesigns;
+      const glm::vec3 center = grid.blockCenter(bx, bz);
       float yaw = float(rng.uniformInt(0, 3)) * 0.5f * kPi;
       addInstance(scene, firstDesignMesh + uint32_t(design), translation(center) * rotationY(yaw),
                   fmt::format("block_{}_{}", bx, bz));
     }
 }
 
-}  // namespace
-
-Scene makeCityScene() {
+// The city on a grid of `blocksPerSide` blocks, its camera looking down the avenue nearest to
+// x = 0 (a street runs there when the count is even; else one runs half a block east).
+Scene makeCity(const CityGrid& grid) {
   Scene scene;
   scene.name = "city";
   const CityMaterials m = addCityMaterials(scene);
-  addMeshInstance(scene, makeGround(m.asphalt));
+  addMeshInstance(scene, makeGround(m.asphalt, grid));
 
   const uint32_t firstDesign = uint32_t(scene.meshes.size());
   for (int d = 0; d < kBlockDesigns; ++d) addMesh(scene, makeBlockDesign(d, m));
-  placeBlocks(scene, firstDesign);
+  placeBlocks(scene, firstDesign, grid);
 
-  placeStreetLights(scene, addMesh(scene, makeStreetLight(m)));
+  placeStreetLights(scene, addMesh(scene, makeStreetLight(m)), grid);
   const uint32_t firstCar = uint32_t(scene.meshes.size());
   for (size_t v = 0; v < m.carPaints.size(); ++v)
     addMesh(scene, makeCar(m.carPaints[v], m, int(v)));
-  placeCars(scene, firstCar, int(m.carPaints.size()));
+  placeCars(scene, firstCar, int(m.carPaints.size()), grid);
 
   scene.sun = sunFromAngles(35.0f, 60.0f, 100.0f, {1.0f, 0.95f, 0.88f});
   scene.sky.radiance = {1.4f, 2.0f, 3.0f};
 
-  // Slightly above the street, looking down the avenue at x = 0 towards -Z.
+  // Slightly above the street, looking down the avenue towards -Z.
+  const float avenue = grid.blocksPerSide % 2 == 0 ? 0.0f : 0.5f * kBlockPitch;
   Camera camera;
-  camera.position = {2.5f, 6.0f, 290.0f};
-  camera.target = {-1.0f, 14.0f, -300.0f};
+  camera.position = {avenue + 2.5f, 6.0f, 290.0f};
+  camera.target = {avenue - 1.0f, 14.0f, -300.0f};
   camera.verticalFovDegrees = 55.0f;
   scene.camera = camera;
+  return scene;
+}
+
+}  // namespace
+
+Scene makeCityScene() {
+  return makeCity(CityGrid{kCityBlocksPerSide});
+}
+
+Scene makeCity10kScene() {
+  Scene scene = makeCity(CityGrid{kCity10kBlocksPerSide});
+  scene.name = "city-10k";
   return scene;
 }
 

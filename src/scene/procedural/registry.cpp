@@ -18,7 +18,7 @@ Scene makeDefaultFurnace() {
   return makeFurnaceScene(0.5f, glm::vec3(1.0f));
 }
 
-constexpr std::array<BuiltinScene, 8> kBuiltinScenes = {{
+constexpr std::array<BuiltinScene, 9> kBuiltinScenes = {{
     {"cornell", procedural::makeCornellScene},
     {"sunroom", procedural::makeSunroomScene},
     {"sunroom-glossy", procedural::makeGlossySunroomScene},
@@ -26,6 +26,7 @@ constexpr std::array<BuiltinScene, 8> kBuiltinScenes = {{
     {"manylights", procedural::makeManyLightsScene},
     {"furnace", makeDefaultFurnace},
     {"city", procedural::makeCityScene},
+    {"city-10k", procedural::makeCity10kScene},
     {"spheres", procedural::makeSpheresScene},
 }};
 
