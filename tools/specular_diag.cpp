@@ -332,7 +332,8 @@ int main(int argc, char** argv) {
   app.add_option("--res", o.resolution, "Image size WxH");
   app.add_option("--configs", o.configs,
                  "Comma-separated configurations: '+'-joined parts none|cache|evolve, dN "
-                 "(reflection divisor), maxrX, mirrorX, ambientX, full-mip, mobile, no-reuse, no-denoise, no-di");
+                 "(reflection divisor), maxrX, mirrorX, ambientX, full-mip, mobile, no-reuse, "
+                 "no-denoise, no-di");
   app.add_option("--sun", o.sun, "Sun override, as bounce render's --sun");
   app.add_option("--sky", o.sky, "Sky override, as bounce render's --sky");
   app.add_option("--frames", o.frames, "Frames per configuration")->check(CLI::Range(1, 100000));
