@@ -54,6 +54,13 @@ DirectLightComparison compareDirectLight(const DirectLightCase& c) {
   Scene scene = loadScene(sceneName);
   scene.sky.model = SkyModel::Constant;
   scene.sky.radiance = glm::vec3(0.0f);  // direct sun light only
+  // ... and no local lights (city's street lamps): ReSTIR DI estimates those stochastically,
+  // while the sun's full-resolution hard shadow is the one thing both sides compute exactly.
+  scene.lights.clear();
+  for (Material& material : scene.materials) {
+    material.emissive = glm::vec3(0.0f);
+    material.emissiveTexture = -1;
+  }
   scene.sun.angularDiameterDegrees = sunAngleDegrees;
   Camera camera = effectiveCamera(scene);
 
