@@ -401,6 +401,31 @@ TEST(ClipmapCache, SunroomAgreesWithPathTracedIrradiance) {
   checkAgreement("sunroom", a);
 }
 
+// A frame that is declared but never run (what `render --view` does to learn the pass names)
+// must not use up the cache's pending reset: the first frame that runs empties the cache.
+// Before this was fixed, the first frame ran on whatever the driver's fresh memory held, and on
+// lavapipe about half the runs started with a garbage live-cell count (10^8-10^9) and failed
+// every allocation. The reset's presence is checked directly (deterministic); the counters
+// after it catch the garbage when the memory happens to hold it.
+TEST(ClipmapCache, DeclaringAFrameWithoutRunningItKeepsThePendingReset) {
+  CacheRun run("cornell", cacheSettings(32, 32, Preset::Mobile));
+  const std::vector<std::string> declaredOnly = run.frame->passNames();
+  ASSERT_NE(std::find(declaredOnly.begin(), declaredOnly.end(), "cache-reset"), declaredOnly.end());
+  Camera camera = effectiveCamera(run.scene);
+  run.frame->render(camera);
+  const std::vector<std::string> ran = run.frame->passNames();
+  EXPECT_NE(std::find(ran.begin(), ran.end(), "cache-reset"), ran.end())
+      << "the first frame that ran did not reset the cache";
+  EXPECT_EQ(statistic(run.frame->giStatistics(), "cache.allocation-failures"), 0.0);
+  EXPECT_LE(statistic(run.frame->giStatistics(), "cache.live-cells"),
+            double(run.frame->settings().cache.maxLiveCells));
+  run.frame->render(camera);
+  const std::vector<std::string> second = run.frame->passNames();
+  EXPECT_EQ(std::find(second.begin(), second.end(), "cache-reset"), second.end())
+      << "the cache resets every frame";
+  EXPECT_EQ(run.context.validationErrorCount(), 0u);
+}
+
 TEST(ClipmapCache, UnusedCellsAreFreedAfterFourFrames) {
   // The Cornell box is open at the front: turned round, the camera sees only the (black) sky,
   // so no pixel looks the cache up, while its position (and so every cascade window) stays.

@@ -23,14 +23,11 @@ uint32_t groupsFor(uint32_t items) {
 
 void ClipmapCache::declareUpdate(graph::FrameGraph& graph, const GiInputs& inputs) {
   importBuffers(graph);
-  ++frames_;
-  if (resetPending_) {
-    resetPending_ = false;
-    declareReset(graph);
-  }
+  // Declaring changes no state: a frame may be declared and never run (the pass and resource
+  // names for --view), so the pending reset and the refresh countdown advance in afterFrame().
+  if (resetPending_) declareReset(graph);
   constantsData_ = makeConstants(inputs);
   const uint32_t bounces = fullRefreshLeft_ > 0 ? settings_.fullRefreshBounces : 1u;
-  if (fullRefreshLeft_ > 0) --fullRefreshLeft_;
   gpu::ClipmapPassConstants push{};
   push.cache = constants_.address();
   push.frame = inputs.frame.constantsAddress;

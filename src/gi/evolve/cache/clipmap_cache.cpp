@@ -135,6 +135,10 @@ void ClipmapCache::declareStatisticsReadback(graph::FrameGraph& graph) {
 }
 
 void ClipmapCache::afterFrame() {
+  // The frame that ran declared the reset if one was pending (declareUpdate()).
+  resetPending_ = false;
+  if (fullRefreshLeft_ > 0) --fullRefreshLeft_;
+  ++frames_;
   previous_ = last_;
   const auto* bytes = static_cast<const std::byte*>(readback_.mapped());
   std::memcpy(&last_.counters, bytes, sizeof(last_.counters));

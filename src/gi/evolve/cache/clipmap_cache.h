@@ -63,7 +63,10 @@ class ClipmapCache {
   const CacheBuffers& buffers() const { return handles_; }
   const ClipmapCacheSettings& settings() const { return settings_; }
 
-  // After the frame's submission: reads the counters copied by declareStatisticsReadback().
+  // After the frame's submission: reads the counters copied by declareStatisticsReadback() and
+  // advances the per-frame state (a pending reset done, the full refresh's countdown). Every
+  // executed frame that declared the update must call it; a declared frame that never runs
+  // must not.
   void afterFrame();
   // Live cells (total and per cascade), allocations, frees (all and by scrolling) and failed
   // allocations of the last frame.

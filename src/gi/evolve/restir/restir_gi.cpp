@@ -130,7 +130,9 @@ gpu::RestirGiConstants RestirGi::makeConstants() const {
 
 void RestirGi::afterFrame() {
   if (cache_) cache_->afterFrame();
+  // One-shot and countdown state advances here, after the frame ran, never while declaring.
   lightCutPending_ = false;
+  if (settleFramesLeft_ > 0) --settleFramesLeft_;
 }
 
 std::vector<GiStatistic> RestirGi::statistics() const {
@@ -156,7 +158,6 @@ RestirFrame RestirGi::beginFrame(const GiInputs& inputs) {
   f.constants = constants_.address();
   f.historyScale = settleFramesLeft_ > 0 ? settings_.settleHistoryScale : 1.0f;
   f.lightCutPending = lightCutPending_;
-  if (settleFramesLeft_ > 0) --settleFramesLeft_;
   return f;
 }
 
