@@ -5,9 +5,9 @@ JOBS ?= $(shell nproc)
 # A compile cache when there is one: scripts/check-consumer.sh then reuses this build's compiles.
 LAUNCHER := $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 export CCACHE_BASEDIR := $(CURDIR)
-FORMATTED = find src app include tests examples tools shaders -name '*.cpp' -o -name '*.h'
+FORMATTED = find src app include tests examples tools shaders fuzz -name '*.cpp' -o -name '*.h'
 
-.PHONY: deps build demo test sanitize clean format format-check consumer
+.PHONY: deps build demo test sanitize clean format format-check consumer fuzz
 
 deps:
 	bash scripts/install-deps.sh
@@ -34,6 +34,10 @@ sanitize: deps
 consumer: build
 	bash scripts/check-consumer.sh
 
+# libFuzzer on the glTF loader and the image readers (fuzz/; FUZZ_RUNS per target, default 1 M).
+fuzz:
+	bash scripts/fuzz.sh
+
 format:
 	$(FORMATTED) | xargs clang-format -i
 
@@ -42,4 +46,4 @@ format-check: deps
 	$(FORMATTED) | xargs clang-format --dry-run --Werror
 
 clean:
-	rm -rf build build-asan build-debug build-consumer out
+	rm -rf build build-asan build-debug build-consumer build-fuzz out

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Bounce needs, and only those that are missing.
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
+# Arguments name extra packages for one task (scripts/fuzz.sh: clang, libFuzzer).
 set -euo pipefail
 
 packages=(
@@ -14,6 +15,7 @@ packages=(
   libgtest-dev libgmock-dev                  # tests
   ccache                                     # compile cache (scripts/check-consumer.sh)
   clang-format                               # make format, make format-check (CI)
+  "$@"
 )
 
 missing=()
