@@ -95,6 +95,7 @@ void checkExrHeader(const std::string& path) {
   InitEXRHeader(&header);
   const char* message = nullptr;
   if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &message) != TINYEXR_SUCCESS) {
+    FreeEXRHeader(&header);  // a failed parse may leave fields allocated (fuzz/fuzz_image)
     fail("{}: invalid EXR header: {}", path, takeExrMessage(message));
   }
   const long long width = (long long)header.data_window.max_x - header.data_window.min_x + 1;
@@ -150,7 +151,25 @@ void decodeSrgb(const Sample* samples, ImageRGBA32F& image) {
   }
 }
 
+// stb also decodes BMP, TGA, PSD, GIF, HDR, PIC and PNM, some of them (TGA) without a magic
+// number, so arbitrary bytes named .png could decode as one of those (found by fuzz/fuzz_image:
+// a 106-byte file that took 10 s). Only files that start with the PNG or JPEG signature reach
+// stb.
+bool hasPngOrJpegSignature(const std::string& path) {
+  static const uint8_t kPng[8] = {0x89, 'P', 'N', 'G', 0x0d, 0x0a, 0x1a, 0x0a};
+  static const uint8_t kJpeg[3] = {0xff, 0xd8, 0xff};
+  uint8_t head[8] = {};
+  FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) return false;
+  const size_t got = std::fread(head, 1, sizeof(head), file);
+  std::fclose(file);
+  return (got >= 8 && std::equal(kPng, kPng + 8, head)) ||
+         (got >= 3 && std::equal(kJpeg, kJpeg + 3, head));
+}
+
 ImageRGBA32F readLdr(const std::string& path) {
+  if (!hasPngOrJpegSignature(path))
+    fail("{}: not a PNG or JPEG file (it starts with neither signature)", path);
   int width = 0, height = 0, channels = 0;
   if (!stbi_info(path.c_str(), &width, &height, &channels)) {
     fail("{}: not a readable PNG/JPEG image: {}", path, stbReason());
@@ -160,16 +179,18 @@ ImageRGBA32F readLdr(const std::string& path) {
   image.width = width;
   image.height = height;
   image.sourceWasLdr = true;
-  image.pixels.resize(image.pixelCount() * 4);
-  // Ask for 4 channels: grey and grey+alpha files are expanded by stb.
+  // Ask for 4 channels: grey and grey+alpha files are expanded by stb. The float pixels are
+  // allocated after a successful decode: a truncated file that claims 128 Mpixel fails first.
   if (stbi_is_16_bit(path.c_str())) {
     stbi_us* samples = stbi_load_16(path.c_str(), &width, &height, &channels, 4);
     if (!samples) fail("{}: cannot decode image (truncated or corrupt?): {}", path, stbReason());
+    image.pixels.resize(image.pixelCount() * 4);
     decodeSrgb(samples, image);
     stbi_image_free(samples);
   } else {
     stbi_uc* samples = stbi_load(path.c_str(), &width, &height, &channels, 4);
     if (!samples) fail("{}: cannot decode image (truncated or corrupt?): {}", path, stbReason());
+    image.pixels.resize(image.pixelCount() * 4);
     decodeSrgb(samples, image);
     stbi_image_free(samples);
   }
@@ -256,8 +277,10 @@ ImageMetadata readExrMetadata(const std::string& path) {
   EXRHeader header;
   InitEXRHeader(&header);
   const char* message = nullptr;
-  if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &message) != TINYEXR_SUCCESS)
+  if (ParseEXRHeaderFromFile(&header, &version, path.c_str(), &message) != TINYEXR_SUCCESS) {
+    FreeEXRHeader(&header);
     fail("{}: invalid EXR header: {}", path, takeExrMessage(message));
+  }
   ImageMetadata metadata;
   for (int i = 0; i < header.num_custom_attributes; ++i) {
     const EXRAttribute& a = header.custom_attributes[i];
