@@ -400,7 +400,8 @@ TEST(RestirDiAnimation, MovedEmissiveInstanceLightsLikeOnePlacedThere) {
 
 // Issue 20: 1,000 frames of manylights' light animation (scene.animation.lights: wall lights
 // blinking and bobbing, ceiling lights pulsing) with a swaying camera at a tiny resolution: no
-// NaN or Inf in DI's output or the composite, validation silent.
+// NaN or Inf in DI's output or the composite, validation silent, and no GPU allocation after
+// the first frames (DESIGN.md §1).
 TEST(RestirDiAnimation, ThousandAnimatedFramesStayFinite) {
   const uint32_t width = 12, height = 8;
   Scene scene = loadScene("manylights");
@@ -416,14 +417,18 @@ TEST(RestirDiAnimation, ThousandAnimatedFramesStayFinite) {
   animation.camera = swayCameraPath(effectiveCamera(scene), 20.0f, 0.3f, 8.0f);
   AnimationPlayer player(scene, animation);
   size_t nonFinite = 0;
+  uint64_t allocationsAfterWarmUp = 0;
   for (int i = 0; i < 1000; ++i) {
     frame.render(player.apply(frame, float(i) / 30.0f));
+    if (i == 2) allocationsAfterWarmUp = context.allocationCount();
     if (i % 10 == 9) {
       nonFinite += countNonFinitePixels(frame.debugViewImage("composite"));
       nonFinite += countNonFinitePixels(frame.debugViewImage("di-shade"));
     }
   }
   EXPECT_EQ(nonFinite, 0u);
+  // Moving and switching lights rewrites the tables in place: no frame allocates.
+  EXPECT_EQ(context.allocationCount(), allocationsAfterWarmUp);
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
