@@ -47,6 +47,7 @@ struct RenderOptions {
   std::string gi = "evolve";  // seed 000's full diffuse GI
   std::string di = "restir";  // ReSTIR DI (DiSettings)
   bool diUnbiased = false;
+  int64_t diBrdfCandidates = 1;
   std::string vbuffer = "raster";
   std::optional<int64_t> giDivisor;
   std::string restirSecondVertex;
@@ -275,6 +276,7 @@ HybridSettings settingsFrom(const RenderOptions& o) {
   settings.vbuffer = *vbufferModeFromName(o.vbuffer);
   settings.di.mode = *diModeFromName(o.di);
   settings.di.unbiased = o.diUnbiased;
+  settings.di.brdfCandidates = uint32_t(o.diBrdfCandidates);
   validate(settings);  // the preset's values, for the chosen GI
   applyRestirOptions(o, settings);
   if (o.materialTextureSide)
@@ -346,7 +348,8 @@ struct RenderRecord {
 };
 
 void writeTimingsJson(const RenderOptions& o, const RenderRecord& record, const Scene& scene,
-                      const HybridSettings& settings, const vk::Context& context) {
+                      const HybridSettings& settings, const vk::Context& context,
+                      uint32_t diPipelines) {
   nlohmann::json j;
   j["scene"] = scene.name;
   j["scene_source"] = o.common.scene;
@@ -356,6 +359,8 @@ void writeTimingsJson(const RenderOptions& o, const RenderRecord& record, const 
   j["gpu_times_meaningful"] = !isCpuDevice(context);
   j["width"] = settings.width;
   j["height"] = settings.height;
+  // Compute pipelines ReSTIR DI compiled (seed 002's budget: ReSTIR + denoise at most 15).
+  j["di_pipelines"] = diPipelines;
   j["timings"] = nlohmann::json::array();
   for (const TimingRow& row : record.timings)
     j["timings"].push_back(
@@ -468,7 +473,8 @@ int renderHybridFrame(const RenderOptions& options) {
   }
   progress.finish();
   if (!everyFrame) writeImage(options.out, frame.debugViewImage(options.view));
-  if (!options.timings.empty()) writeTimingsJson(options, record, scene, settings, *context);
+  if (!options.timings.empty())
+    writeTimingsJson(options, record, scene, settings, *context, frame.diPipelineCount());
   const double startupSeconds = std::chrono::duration<double>(firstFrame - start).count();
   printSummary(options, record, scene, settings, *context, startupSeconds,
                secondsSince(firstFrame));
@@ -513,6 +519,11 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
   cmd->add_flag("--di-unbiased", options->diUnbiased,
                 "ReSTIR DI's ray-traced bias correction in spatial reuse (a shadow ray per "
                 "neighbour)");
+  cmd->add_option("--di-brdf-candidates", options->diBrdfCandidates,
+                  "ReSTIR DI's BRDF-sampled candidates per pixel, 0 or 1 (a ray that finds "
+                  "emissive triangles in glossy reflections)")
+      ->check(CLI::Range(0, 1))
+      ->capture_default_str();
   cmd->add_option("--gi-divisor", options->giDivisor,
                   "ReSTIR GI resolution = render resolution / N (1 to 16; default: the "
                   "preset's, 4 mobile, 2 desktop)");

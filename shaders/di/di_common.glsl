@@ -161,6 +161,9 @@ struct DiLight {
   vec3 direction;     // unit, towards the light
   vec3 shadowTarget;  // local lights: the ray's end
   bool distant;       // distant lights: the ray goes to infinity along direction
+  // |d omega / du| (emissive triangles: cos at the light x area / distance^2; 0 for lights no
+  // ray can hit): turns a solid-angle density into one over u (di_brdf_candidate.glsl).
+  float solidAngleToU;
 };
 
 DiLight noDiLight() {
@@ -169,6 +172,7 @@ DiLight noDiLight() {
   l.direction = vec3(0.0, 1.0, 0.0);
   l.shadowTarget = vec3(0.0);
   l.distant = false;
+  l.solidAngleToU = 0.0;
   return l;
 }
 
@@ -216,7 +220,8 @@ vec3 diIncidentLight(uint light, vec2 u, vec3 x, inout DiLight l) {
     return vec3(0.0);
   vec3 radiance = materialEmission(m, interpolateUv(triangleVertices(g, e.primitive), b));
   // Area measure to u: |dy/du| = area.
-  return radiance * (cosLight * e.area / distanceSq);
+  l.solidAngleToU = cosLight * e.area / distanceSq;
+  return radiance * l.solidAngleToU;
 }
 
 DiLight evaluateDiLight(DiSurface s, uint light, vec2 u) {

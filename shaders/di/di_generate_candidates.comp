@@ -1,10 +1,13 @@
 // di-generate-candidates: each pixel's initial reservoir by resampled importance sampling
 // (Talbot 2005; Bitterli et al. 2020, Alg. 3) over DiConstants::lightCandidates light candidates
-// drawn by power (the alias table; distant lights uniformly): candidate i gets the weight
-// p_hat(y_i) / (M p(y_i)), the kept one y has W = (sum of weights) / p_hat(y) and M = 1.
+// drawn by power (the alias table; distant lights uniformly) and DiConstants::brdfCandidates
+// BRDF-sampled candidates (di_brdf_candidate.glsl): candidate i gets the balance-heuristic weight
+// p_hat(y_i) / (M_L p_L(y_i) + M_B p_B(y_i)), the kept one y has W = (sum of weights) / p_hat(y)
+// and M = 1.
 // Then one shadow ray for y (RTXDI's initial visibility): an occluded y keeps M but W = 0, so
 // that reuse does not spread a light this pixel cannot see.
 #version 460
+#include "di/di_brdf_candidate.glsl"
 #include "di/di_common.glsl"
 
 layout(local_size_x = DI_GROUP_SIZE, local_size_y = DI_GROUP_SIZE) in;
@@ -23,9 +26,17 @@ DiReservoir resampleCandidates(FrameConstants f, DiConstants di, DiSurface s, iv
     vec2 u;
     uint light = sampleDiLight(a, b.xy, u);
     float pdf = diSelectionPdf(light);
-    float pHat = light != DI_NO_LIGHT && pdf > 0.0 ? diTarget(evaluateDiLight(s, light, u)) : 0.0;
-    float w = pHat > 0.0 ? pHat / (count * pdf) : 0.0;
-    if (diStream(r, weightSum, light, u, w, 0.0, b.z)) target = pHat;
+    DiLight l = light != DI_NO_LIGHT && pdf > 0.0 ? evaluateDiLight(s, light, u) : noDiLight();
+    if (diStream(r, weightSum, light, u, diCandidateWeight(di, s, l, count * pdf), 0.0, b.z))
+      target = diTarget(l);
+  }
+  if (di.brdfCandidates > 0u) {
+    vec2 u;
+    uint light = sampleDiBrdfCandidate(di, s, diRandom(key), u);
+    DiLight l = evaluateDiLight(s, light, u);
+    if (diStream(r, weightSum, light, u, diCandidateWeight(di, s, l, count * diSelectionPdf(light)), 0.0,
+                 diRandom(key).x))
+      target = diTarget(l);
   }
   r.M = 1.0;
   r.W = diContributionWeight(weightSum, target, 1.0);

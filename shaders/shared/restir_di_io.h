@@ -37,9 +37,12 @@ BOUNCE_CONST uint DI_FLAG_CANDIDATE_VISIBILITY = 8u;  // the chosen candidate's 
 // Constants of the whole chain, uploaded once (RestirDi's constructor; DiSettings documents
 // each field's unit and trade-off).
 struct DiConstants {
-  DeviceAddress lights;      // LightTables (shared/lighting_io.h): the GI's tables, sun left out
-  uint flags;                // DI_FLAG_*
-  uint lightCandidates;      // light candidates per pixel per frame
+  DeviceAddress lights;  // LightTables (shared/lighting_io.h): the GI's tables, sun left out
+  DeviceAddress hitMap;  // uint[]: emissive hit -> light index (light_table.h)
+  uint flags;            // DI_FLAG_*
+  uint lightCandidates;  // light candidates per pixel per frame
+  uint brdfCandidates;   // BRDF-sampled candidates per pixel per frame (0 or 1)
+  uint pad0;
   float temporalMaxM;        // M cap of the history reservoir
   float depthTolerance;      // reuse: |depth - depth'| / depth at most this
   float normalTolerance;     // reuse: n . n' at least this
@@ -49,7 +52,7 @@ struct DiConstants {
   float spatialRadius;  // pixels
   uint seed;            // mixed into every random number of the chain
 };
-BOUNCE_CHECK_SIZE(DiConstants, 48);
+BOUNCE_CHECK_SIZE(DiConstants, 64);
 
 // Push constants of every DI pass.
 struct DiPassConstants {

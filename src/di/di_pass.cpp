@@ -9,6 +9,7 @@ graph::PassBuilder& readDiGBuffer(graph::PassBuilder& pass, const DiFrame& f) {
   return pass.read(f.frame.constants, Access::StorageRead)
       .read(f.frame.instances, Access::StorageRead)
       .read(f.frame.tlas, Access::StorageRead)
+      .read(f.lights, Access::StorageRead)
       .read(g.baseColor, Access::StorageRead, gpu::DI_BINDING_BASE_COLOR)
       .read(g.normals, Access::StorageRead, gpu::DI_BINDING_NORMALS)
       .read(g.depth.current, Access::StorageRead, gpu::DI_BINDING_DEPTH)

@@ -31,6 +31,8 @@ struct DiFrame {
   FrameContext frame;
   GBuffer gbuffer;
   VkDeviceAddress constants = 0;  // gpu::DiConstants
+  graph::BufferHandle lights;     // di.lights: the light tables every pass reads
+  bool dropHistory = false;       // di-temporal ignores its history (a light switched on)
 
   gpu::DiPassConstants passConstants(bool historyValid = false) const {
     return {frame.constantsAddress, constants, historyValid ? 1u : 0u, 0u};

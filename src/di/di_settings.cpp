@@ -20,6 +20,7 @@ const char* diModeNames() {
 void validate(const DiSettings& s) {
   if (s.lightCandidates < 1 || s.lightCandidates > 64)
     fail("DI light candidates {}: expected 1 to 64", s.lightCandidates);
+  if (s.brdfCandidates > 1) fail("DI BRDF candidates {}: expected 0 or 1", s.brdfCandidates);
   if (!(s.temporalMaxM >= 1.0f && s.temporalMaxM <= 1000.0f))
     fail("DI temporal M cap {}: expected 1 to 1000", s.temporalMaxM);
   if (!(s.depthTolerance > 0.0f) || !std::isfinite(s.depthTolerance))

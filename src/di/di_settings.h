@@ -23,6 +23,13 @@ struct DiSettings {
   // Light candidates per pixel per frame, drawn by power from the alias table (RTXDI: 8 local
   // lights). More: better initial samples, linear cost in target evaluations (no rays). 1 to 64.
   uint32_t lightCandidates = 8;
+  // BRDF-sampled candidates per pixel per frame (RTXDI: 1): a ray along a direction drawn from
+  // the surface's BRDF; where it hits an emissive triangle of the light table, that point is a
+  // candidate. Both kinds of candidate are weighted by the balance heuristic over the two
+  // strategies, so each covers what the other samples badly: light sampling the diffuse lobe,
+  // BRDF sampling the near-mirror highlight of an area light. Costs a ray per pixel in scenes
+  // with emissive triangles (none without). 0 or 1.
+  uint32_t brdfCandidates = 1;
   // One shadow ray for the kept candidate (RTXDI's initial visibility, on): an occluded sample
   // keeps its M with W = 0, so reuse does not hand it to neighbours. Off saves a ray per pixel
   // and shows as light leaking across shadow edges after reuse; the unbiased configuration

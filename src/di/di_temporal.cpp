@@ -21,9 +21,10 @@ graph::ImageHandle DiTemporalPass::declare(graph::FrameGraph& graph, const DiFra
       .read(reservoir.previous, Access::StorageRead, gpu::DI_TEMPORAL_BINDING_PREVIOUS)
       .read(surface.previous, Access::StorageRead, gpu::DI_TEMPORAL_BINDING_PREVIOUS_SURFACE)
       .record([this, f, reservoir, surface](VkCommandBuffer cmd, const graph::PassResources& r) {
-        // A lighting cut keeps the view's history but drops the light it holds.
-        const bool valid =
-            !f.frame.lightingCut && r.historyValid(reservoir) && r.historyValid(surface);
+        // A lighting cut keeps the view's history but drops the light it holds; so does a
+        // light switching on (RestirDi::setLights).
+        const bool valid = !f.frame.lightingCut && !f.dropHistory && r.historyValid(reservoir) &&
+                           r.historyValid(surface);
         pass_.record(cmd, r, f.passConstants(valid), f.frame.resolution);
       });
   return reservoir.current;

@@ -6,9 +6,12 @@ namespace bounce {
 
 namespace {
 
-gpu::DiConstants makeConstants(const DiSettings& s, VkDeviceAddress lights) {
+gpu::DiConstants makeConstants(const DiSettings& s, const GpuLightTables& lights) {
   gpu::DiConstants c{};
-  c.lights = lights;
+  c.lights = lights.address();
+  c.hitMap = lights.emissiveHitMap();
+  // A BRDF ray can only meet emissive triangles: none, no ray.
+  c.brdfCandidates = lights.table().emissiveTriangles.empty() ? 0 : s.brdfCandidates;
   c.flags = 0;
   if (s.reuses()) c.flags |= gpu::DI_FLAG_TEMPORAL;
   if (s.reuses() && (s.spatialSamples > 0 || s.disocclusionSamples > 0))
@@ -32,24 +35,53 @@ gpu::DiConstants makeConstants(const DiSettings& s, VkDeviceAddress lights) {
 RestirDi::RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& scene,
                    const DiSettings& settings)
     : settings_(settings),
-      lights_(context, gpuScene, scene),
+      lights_(context, gpuScene, scene, /*updatable=*/true),
       candidates_(context, gpuScene),
       shade_(context, gpuScene) {
   if (!settings.enabled()) fail("ReSTIR DI: built with --di off");
   validate(settings);
-  const gpu::DiConstants c = makeConstants(settings, lights_.address());
+  const gpu::DiConstants c = makeConstants(settings, lights_);
   constants_ = vk::uploadBuffer(context, std::as_bytes(std::span(&c, 1)),
                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "di.constants");
   if (settings.reuses()) {
     temporal_.emplace(context, gpuScene);
     if (c.flags & gpu::DI_FLAG_SPATIAL) spatial_.emplace(context, gpuScene);
   }
+  lightState_ = scene.lights;
+}
+
+void RestirDi::setLights(std::span<const PunctualLight> lights) {
+  if (lights.size() != lightState_.size())
+    fail("RestirDi::setLights: {} lights for a scene of {}", lights.size(), lightState_.size());
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const double before = punctualLightPower(lightState_[i]);
+    const double after = punctualLightPower(lights[i]);
+    if (after > kHistoryDropRise * before) dropHistory_ = true;
+    lightState_[i] = lights[i];
+  }
+  lights_.update(lightState_);
+}
+
+void RestirDi::instancesMoved() {
+  if (!lights_.table().emissiveTriangles.empty()) lights_.update(lightState_);
+}
+
+uint32_t RestirDi::pipelineCount() const {
+  return 2 + (temporal_ ? 1 : 0) + (spatial_ ? 1 : 0);
 }
 
 // The chain, top to bottom (see the header).
 DirectLight RestirDi::declare(graph::FrameGraph& graph, const FrameContext& frame,
                               const GBuffer& gbuffer) {
-  const DiFrame f{frame, gbuffer, constants_.address()};
+  DiFrame f{frame, gbuffer, constants_.address()};
+  f.lights = graph.importBuffer("di.lights", graph::ImportedBuffer::from(lights_.buffer()));
+  f.dropHistory = dropHistory_;
+  dropHistory_ = false;
+  graph.addPass("di-lights-update", graph::QueueKind::Compute)
+      .write(f.lights, graph::Access::TransferDst)
+      .record([this](VkCommandBuffer cmd, const graph::PassResources&) {
+        lights_.recordUpload(cmd);  // nothing when no light changed
+      });
   graph::ImageHandle reservoirs = candidates_.declare(graph, f);
   if (temporal_) reservoirs = temporal_->declare(graph, f, reservoirs);
   if (spatial_) reservoirs = spatial_->declare(graph, f, reservoirs);

@@ -15,8 +15,20 @@
 // (FRAME_FLAG_DI_LIGHTS: the light tables' materials with materialLightAreaPdf > 0), so that
 // direct and indirect light add up without double counting; large emitters, which the tables
 // leave to rays, stay the GI's.
+//
+// Light animation: setLights() and instancesMoved() rewrite the light tables in place (every
+// light keeps its index for the scene's lifetime, lighting/light_table.h), uploaded by
+// `di-lights-update` at the start of the next frame; nothing is allocated on the GPU. Stored
+// reservoirs therefore never name another light than the one they sampled; they hold a light's
+// index and its u, and every pass re-evaluates the sample with the light's current state, so a
+// moved, dimmed or switched-off light is accounted for from the next frame on. A light that
+// switches on (or brightens by more than kHistoryDropRise) is missing from every reservoir's
+// history, which would hold it back by up to the M cap (20 frames): that frame drops di-temporal's
+// history (docs/di.md, "Light animation").
 #pragma once
 #include <optional>
+#include <span>
+#include <vector>
 
 #include "di/di_generate_candidates.h"
 #include "di/di_settings.h"
@@ -35,10 +47,24 @@ class RestirDi {
 
   DirectLight declare(graph::FrameGraph& graph, const FrameContext& frame, const GBuffer& gbuffer);
 
+  // The scene's punctual lights from the next frame on: Scene::lights with positions,
+  // directions, colours and intensities changed (0: off), the same count and types.
+  void setLights(std::span<const PunctualLight> lights);
+  // The GpuScene's instances moved (GpuScene::setInstanceTransforms): emissive triangles follow.
+  void instancesMoved();
+
+  // A light whose power rises by more than this factor in one frame drops the DI history.
+  static constexpr double kHistoryDropRise = 2.0;
+
+  // Compute pipelines the chain compiles (one per pass; di-lights-update is a copy).
+  uint32_t pipelineCount() const;
+
  private:
   DiSettings settings_;
   GpuLightTables lights_;
-  vk::Buffer constants_;  // gpu::DiConstants
+  std::vector<PunctualLight> lightState_;  // the lights as last set
+  bool dropHistory_ = false;               // for the next frame
+  vk::Buffer constants_;                   // gpu::DiConstants
   DiGenerateCandidatesPass candidates_;
   std::optional<DiTemporalPass> temporal_;  // DiMode::Restir only
   std::optional<DiSpatialPass> spatial_;    // DiMode::Restir with spatial samples

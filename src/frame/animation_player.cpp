@@ -9,6 +9,7 @@ AnimationPlayer::AnimationPlayer(const Scene& scene, SceneAnimation animation)
     : scene_(scene), animation_(std::move(animation)) {
   transforms_.reserve(scene.instances.size());
   for (const Instance& instance : scene.instances) transforms_.push_back(instance.transform);
+  lights_ = scene.lights;
 }
 
 Camera AnimationPlayer::apply(HybridFrame& frame, float t) {
@@ -16,6 +17,10 @@ Camera AnimationPlayer::apply(HybridFrame& frame, float t) {
   if (!animation_.transforms.empty()) {
     evaluateTransforms(animation_, t, transforms_);
     frame.setInstanceTransforms(transforms_);
+  }
+  if (!animation_.lights.empty()) {
+    evaluateLights(animation_, t, scene_.lights, lights_);
+    frame.setLights(lights_);
   }
   if (animation_.timeOfDay) {
     Sun sun;

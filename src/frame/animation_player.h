@@ -20,7 +20,7 @@ class AnimationPlayer {
   // animation has no camera path; it must outlive the player.
   AnimationPlayer(const Scene& scene, SceneAnimation animation);
 
-  // Sets the frame's time (HybridFrame::setTime), instances and sun for time t, resets its
+  // Sets the frame's time (HybridFrame::setTime), instances, lights and sun for time t, resets its
   // history at a cut, and returns the camera to render with. Times must not decrease between
   // calls.
   Camera apply(HybridFrame& frame, float t);
@@ -34,6 +34,7 @@ class AnimationPlayer {
   const Scene& scene_;
   SceneAnimation animation_;
   std::vector<glm::mat4> transforms_;
+  std::vector<PunctualLight> lights_;
   std::optional<float> lastTime_;
   std::optional<Camera> lastCamera_;
   bool lastWasCut_ = false;

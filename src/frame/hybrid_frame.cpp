@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "di/di_debug_views.h"
 #include "gi/evolve/cache/clipmap_cache.h"
 #include "gi/evolve/cache_gi.h"
 #include "gi/evolve/restir/restir_gi.h"
@@ -150,6 +151,11 @@ void HybridFrame::setSunAndSky(const Sun& sun, const Sky& sky) {
 
 void HybridFrame::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
   gpuScene_.setInstanceTransforms(objectToWorld);
+  if (di_) di_->instancesMoved();
+}
+
+void HybridFrame::setLights(std::span<const PunctualLight> lights) {
+  if (di_) di_->setLights(lights);
 }
 
 // The time since the last frame (0 for the first), from setTime() or the nominal frame time.
@@ -212,8 +218,17 @@ std::vector<vk::PassTiming> HybridFrame::submitFrame(bool afterHostWork) {
   return timer_.available() ? timer_.read() : std::vector<vk::PassTiming>{};
 }
 
+void HybridFrame::requestDebugView(const std::string& passOrResource) {
+  graph_.requestDebugView(di_ && isDiDerivedView(passOrResource) ? kDiInfoResource
+                                                                 : passOrResource);
+}
+
 ImageRGBA32F HybridFrame::debugViewImage(const std::string& name) const {
-  return graph::debugViewImage(graph_.readDebugView(name));
+  if (di_ && isDiDerivedView(name))
+    return diDerivedView(name, graph::debugViewImage(graph_.readDebugView(kDiInfoResource)));
+  graph::DebugView view = graph_.readDebugView(name);
+  if (isDiReservoirView(view)) return decodeDiReservoirView(view);
+  return graph::debugViewImage(view);
 }
 
 void HybridFrame::resize(uint32_t width, uint32_t height) {
@@ -236,7 +251,10 @@ std::vector<std::string> HybridFrame::passNames() {
 
 std::vector<std::string> HybridFrame::resourceNames() {
   if (graph_.declaredPassNames().empty()) recordFrame();
-  return graph_.declaredResourceNames();
+  std::vector<std::string> names = graph_.declaredResourceNames();
+  if (di_)
+    for (const std::string& name : diDerivedViewNames()) names.push_back(name);
+  return names;
 }
 
 // The frame, top to bottom (DESIGN.md §4): each pass declares its resources and accesses and

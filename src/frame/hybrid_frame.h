@@ -65,6 +65,14 @@ class HybridFrame {
   // rebuilt TLAS into buffers made at init, keeping this frame's placement as the previous one
   // for object motion vectors. Call it every frame while anything moves. No Vulkan allocation.
   void setInstanceTransforms(std::span<const glm::mat4> objectToWorld);
+  // The scene's KHR punctual lights from the next render() on (Scene::lights, the same count
+  // and types, with positions, directions, colours and intensities animated; intensity 0 is
+  // off). ReSTIR DI's light tables follow in place (RestirDi::setLights), as do its emissive
+  // triangles with setInstanceTransforms; the GI's own light tables keep the scene's lights
+  // (docs/di.md, "Light animation"). No Vulkan allocation.
+  void setLights(std::span<const PunctualLight> lights);
+  // The compute pipelines ReSTIR DI compiles (0 with --di off).
+  uint32_t diPipelineCount() const { return di_ ? di_->pipelineCount() : 0; }
   // The sun and sky from now on (a moving sun, day and night). A change that is no longer
   // motion (isLightingCut: the sun turned by more than settings().lightingCutDegrees, or its
   // or the sky's brightness changed by more than half) is a lighting cut: the GI system
@@ -92,11 +100,12 @@ class HybridFrame {
 
   // A pass name shows the first image it writes; a resource name shows that image. Takes
   // effect from the next frame on (it creates a readback buffer).
-  void requestDebugView(const std::string& passOrResource) {
-    graph_.requestDebugView(passOrResource);
-  }
+  // DI's derived views (di.light, di.m, di.w, di.visibility: di/di_debug_views.h) request
+  // di.reservoir-info.
+  void requestDebugView(const std::string& passOrResource);
   void clearDebugViews() { graph_.clearDebugViews(); }
-  // The view as captured by the last frame (linear values; see graph/debug_view_image.h).
+  // The view as captured by the last frame (linear values; see graph/debug_view_image.h; DI's
+  // reservoirs decoded and its derived views computed, di/di_debug_views.h).
   ImageRGBA32F debugViewImage(const std::string& name) const;
   // Forgets temporal history (a camera cut).
   // Automatic exposure takes the next frame's metered exposure directly.
@@ -114,7 +123,8 @@ class HybridFrame {
   void resize(uint32_t width, uint32_t height);
 
   // The passes and resources a frame of these settings declares (declaring one first if none
-  // was): the names requestDebugView() accepts, as the graph knows them.
+  // was): the names requestDebugView() accepts, as the graph knows them (resources: with DI's
+  // derived views).
   std::vector<std::string> passNames();
   std::vector<std::string> resourceNames();
 

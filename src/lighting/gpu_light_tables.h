@@ -14,16 +14,23 @@
 // depends on the light only, not on the point, so the two estimators add up exactly: this is
 // multiple importance sampling with weights 0 and 1, which stays unbiased where consumers
 // evaluate from different points (the clipmap cache's cells vs the points that look them up).
+//
+// Updatable tables (ReSTIR DI's) follow light animation without any GPU allocation: update()
+// rewrites the CPU table in place (lighting/light_table.h, updateLightTable: every light keeps
+// its index) into a staging buffer made at init, and recordUpload() copies it over the one
+// device buffer that holds every array, which the frame graph imports (buffer()).
 #pragma once
+#include <span>
 #include <vector>
 
+#include "lighting/light_table.h"
 #include "vk/resources.h"
 
 namespace bounce {
 
 class GpuScene;
 struct Aabb;
-struct LightTable;
+struct PunctualLight;
 struct Scene;
 
 // Emitters larger than this fraction of the bounding box's surface area are reached by rays only.
@@ -35,15 +42,42 @@ std::vector<bool> largeEmitterMaterials(const LightTable& lights, const Aabb& bo
 
 class GpuLightTables {
  public:
-  GpuLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene);
+  // `updatable`: keep the CPU table and a staging buffer for update() (ReSTIR DI's tables).
+  GpuLightTables(vk::Context& context, const GpuScene& gpuScene, const Scene& scene,
+                 bool updatable = false);
 
   // The gpu::LightTables block (shared/lighting_io.h).
-  VkDeviceAddress address() const { return block_.address(); }
+  VkDeviceAddress address() const { return tables_.address(); }
+  // The emissive hit map (light_table.h, buildEmissiveHitMap): uint[].
+  VkDeviceAddress emissiveHitMap() const { return tables_.address() + hitMapOffset_; }
+  // The one buffer holding the block and every array (for the frame graph).
+  const vk::Buffer& buffer() const { return tables_; }
+  const LightTable& table() const { return table_; }
+
+  // Updatable tables only: the lights' state from now on (the scene's lights, moved, dimmed or
+  // switched; emissive triangles follow their instances' current transforms in the GpuScene's
+  // BVH). Takes effect with the next recordUpload(). No GPU allocation.
+  void update(std::span<const PunctualLight> lights);
+  bool uploadPending() const { return uploadPending_; }
+  // Copies the staging buffer over the tables (a transfer write: the caller orders it before
+  // the shaders that read them). Nothing when no update is pending.
+  void recordUpload(VkCommandBuffer cmd);
 
  private:
-  vk::Buffer emissiveTriangles_, punctualLights_, lightAlias_, distantLights_,
-      materialLightAreaPdf_;
-  vk::Buffer block_;
+  void pack(std::vector<std::byte>& bytes) const;
+  void recordCopy(VkCommandBuffer cmd) const;
+
+  const GpuScene& gpuScene_;
+  const Scene& scene_;
+  // Updatable tables only (else emptied after the first upload): the CPU table, the hit map
+  // and the packed bytes (kept to reuse their allocation).
+  LightTable table_;
+  std::vector<uint32_t> hitMap_;
+  std::vector<std::byte> packed_;
+  VkDeviceSize hitMapOffset_ = 0;
+  vk::Buffer tables_;
+  vk::Buffer staging_;  // updatable tables only
+  bool uploadPending_ = false;
 };
 
 }  // namespace bounce

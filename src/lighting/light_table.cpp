@@ -36,39 +36,52 @@ glm::vec3 meanTextureColor(const Image& image) {
 struct LocalLights {
   std::vector<gpu::GpuEmissiveTriangle> triangles;
   std::vector<double> trianglePower;
+  std::vector<uint32_t> triangleInstance;
 };
+
+// Triangle `primitive` of global geometry `global` placed by `instance`, in world space; its
+// area is 0 (and its normal 0) where the placement makes it degenerate.
+gpu::GpuEmissiveTriangle placeEmissiveTriangle(const rt::SceneBvh& bvh,
+                                               const gpu::GpuInstance& instance, uint32_t global,
+                                               uint32_t primitive) {
+  const gpu::GpuGeometry& g = bvh.geometries.at(global);
+  glm::vec3 p[3];
+  for (uint32_t k = 0; k < 3; ++k) {
+    uint32_t vertex = bvh.indices[g.firstIndex + 3 * primitive + k] + g.vertexOffset;
+    p[k] = transformPoint(instance.objectToWorld, bvh.positions[vertex]);
+  }
+  gpu::GpuEmissiveTriangle t{};
+  t.p0 = p[0];
+  t.edge1 = p[1] - p[0];
+  t.edge2 = p[2] - p[0];
+  t.geometry = global;
+  t.primitive = primitive;
+  glm::vec3 normal = glm::cross(t.edge1, t.edge2);
+  float twiceArea = glm::length(normal);
+  if (!(twiceArea > 0.0f) || !std::isfinite(twiceArea)) return t;
+  t.area = 0.5f * twiceArea;
+  t.frontNormal = (mirrors(instance) ? -1.0f : 1.0f) * normal / twiceArea;
+  return t;
+}
 
 // Every emissive triangle of every instance, in world space.
 LocalLights gatherEmissiveTriangles(const Scene& scene, const rt::SceneBvh& bvh,
                                     const std::vector<float>& materialLuminance) {
   LocalLights out;
-  for (const gpu::GpuInstance& instance : bvh.instances) {
+  for (uint32_t i = 0; i < bvh.instances.size(); ++i) {
+    const gpu::GpuInstance& instance = bvh.instances[i];
     const Mesh& mesh = scene.meshes.at(instance.mesh);
-    const float side = mirrors(instance) ? -1.0f : 1.0f;
     for (uint32_t local = 0; local < mesh.geometries.size(); ++local) {
       const uint32_t global = instance.geometryBase + local;
       const gpu::GpuGeometry& g = bvh.geometries.at(global);
       const float emittedLuminance = materialLuminance.at(g.material);
       if (!(emittedLuminance > 0.0f)) continue;
       for (uint32_t primitive = 0; primitive < g.triangleCount; ++primitive) {
-        glm::vec3 p[3];
-        for (uint32_t k = 0; k < 3; ++k) {
-          uint32_t vertex = bvh.indices[g.firstIndex + 3 * primitive + k] + g.vertexOffset;
-          p[k] = transformPoint(instance.objectToWorld, bvh.positions[vertex]);
-        }
-        gpu::GpuEmissiveTriangle t{};
-        t.p0 = p[0];
-        t.edge1 = p[1] - p[0];
-        t.edge2 = p[2] - p[0];
-        glm::vec3 normal = glm::cross(t.edge1, t.edge2);
-        float twiceArea = glm::length(normal);
-        if (!(twiceArea > 0.0f) || !std::isfinite(twiceArea)) continue;  // no ray can hit it
-        t.area = 0.5f * twiceArea;
-        t.frontNormal = side * normal / twiceArea;
-        t.geometry = global;
-        t.primitive = primitive;
+        gpu::GpuEmissiveTriangle t = placeEmissiveTriangle(bvh, instance, global, primitive);
+        if (!(t.area > 0.0f)) continue;  // no ray can hit it
         out.triangles.push_back(t);
         out.trianglePower.push_back(kPi * double(t.area) * double(emittedLuminance));
+        out.triangleInstance.push_back(i);
       }
     }
   }
@@ -123,6 +136,22 @@ std::vector<gpu::GpuDistantLight> gatherDistantLights(const Scene& scene) {
     fail("{}: {} distant lights (sun and directional lights); the light table takes at most {}",
          scene.name, lights.size(), gpu::MAX_DISTANT_LIGHTS);
   return lights;
+}
+
+// The alias table, total power and materialLightAreaPdf of `power` (one entry per local light).
+void setLocalPower(LightTable& table, const std::vector<double>& power) {
+  table.totalLocalPower = 0.0;
+  for (double p : power) table.totalLocalPower += p;
+  table.materialLightAreaPdf.assign(table.materialLuminance.size(), 0.0f);
+  if (!(table.totalLocalPower > 0.0)) {
+    table.alias.assign(power.size(), gpu::GpuLightAlias{});
+    table.totalLocalPower = 0.0;
+    return;
+  }
+  table.alias = buildAliasTable(power);
+  for (size_t m = 0; m < table.materialLuminance.size(); ++m)
+    table.materialLightAreaPdf[m] =
+        float(kPi * double(table.materialLuminance[m]) / table.totalLocalPower);
 }
 
 }  // namespace
@@ -192,28 +221,68 @@ LightTable buildLightTable(const Scene& scene, const rt::SceneBvh& bvh,
   }
 
   LocalLights emissive = gatherEmissiveTriangles(scene, bvh, materialLuminance);
+  table.emissiveTriangleInstance = std::move(emissive.triangleInstance);
   table.materialEmissiveArea.assign(scene.materials.size(), 0.0);
   for (const gpu::GpuEmissiveTriangle& t : emissive.triangles)
     table.materialEmissiveArea[bvh.geometries.at(t.geometry).material] += t.area;
   table.emissiveTriangles = std::move(emissive.triangles);
   std::vector<double> power = std::move(emissive.trianglePower);
-  for (const PunctualLight& l : scene.lights) {
+  for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+    const PunctualLight& l = scene.lights[i];
     if (l.type == PunctualLight::Type::Directional) continue;
-    double p = punctualLightPower(l);
-    if (!(p > 0.0)) continue;
+    // Switched off (power 0) too: the layout must not depend on the lights' state.
     table.punctualLights.push_back(makePunctualLight(l));
-    power.push_back(p);
+    table.punctualLightSource.push_back(i);
+    power.push_back(std::max(punctualLightPower(l), 0.0));
   }
   table.distantLights = gatherDistantLights(scene);
-
-  table.materialLightAreaPdf.assign(scene.materials.size(), 0.0f);
-  if (power.empty()) return table;
-  table.alias = buildAliasTable(power);
-  for (double p : power) table.totalLocalPower += p;
-  for (size_t m = 0; m < scene.materials.size(); ++m)
-    table.materialLightAreaPdf[m] =
-        float(kPi * double(materialLuminance[m]) / table.totalLocalPower);
+  table.materialLuminance = std::move(materialLuminance);
+  setLocalPower(table, power);
   return table;
+}
+
+void updateLightTable(LightTable& table, std::span<const PunctualLight> lights,
+                      const rt::SceneBvh& bvh) {
+  std::vector<double> power;
+  power.reserve(table.localLightCount());
+  for (size_t i = 0; i < table.emissiveTriangles.size(); ++i) {
+    gpu::GpuEmissiveTriangle& t = table.emissiveTriangles[i];
+    t = placeEmissiveTriangle(bvh, bvh.instances.at(table.emissiveTriangleInstance[i]), t.geometry,
+                              t.primitive);
+    const float emitted = table.materialLuminance.at(bvh.geometries.at(t.geometry).material);
+    power.push_back(kPi * double(t.area) * double(emitted));
+  }
+  for (size_t i = 0; i < table.punctualLights.size(); ++i) {
+    const PunctualLight& l = lights[table.punctualLightSource.at(i)];
+    table.punctualLights[i] = makePunctualLight(l);
+    power.push_back(std::max(punctualLightPower(l), 0.0));
+  }
+  setLocalPower(table, power);
+}
+
+std::vector<uint32_t> buildEmissiveHitMap(const LightTable& table, const rt::SceneBvh& bvh) {
+  std::vector<uint32_t> map(bvh.instances.size(), kNoLightEntry);
+  for (size_t light = 0; light < table.emissiveTriangles.size(); ++light) {
+    const gpu::GpuEmissiveTriangle& t = table.emissiveTriangles[light];
+    const uint32_t instance = table.emissiveTriangleInstance[light];
+    const gpu::GpuInstance& placed = bvh.instances[instance];
+    if (map[instance] == kNoLightEntry) {
+      // Geometry slots of this instance: one per geometry of its mesh.
+      const size_t end = placed.mesh + 1 < bvh.geometryBase.size()
+                             ? bvh.geometryBase[placed.mesh + 1]
+                             : bvh.geometries.size();
+      const uint32_t geometries = uint32_t(end - placed.geometryBase);
+      map[instance] = uint32_t(map.size());
+      map.resize(map.size() + geometries, kNoLightEntry);
+    }
+    const uint32_t geometrySlot = map[instance] + (t.geometry - placed.geometryBase);
+    if (map.at(geometrySlot) == kNoLightEntry) {
+      map[geometrySlot] = uint32_t(map.size());
+      map.resize(map.size() + bvh.geometries.at(t.geometry).triangleCount, kNoLightEntry);
+    }
+    map.at(map[geometrySlot] + t.primitive) = uint32_t(light);
+  }
+  return map;
 }
 
 }  // namespace bounce

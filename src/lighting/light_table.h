@@ -25,6 +25,12 @@ struct LightTable {
   std::vector<float> materialLightAreaPdf;   // per Scene::materials entry, see lighting_io.h
   std::vector<double> materialEmissiveArea;  // per Scene::materials entry: m^2 of its emitters
   double totalLocalPower = 0.0;              // W (luminance-weighted), the alias table's sum
+  // CPU-side facts updateLightTable() needs to recompute the entries in place: the instance of
+  // each emissive triangle, the Scene::lights index of each punctual light, and each
+  // material's sampled emitted luminance (0 for materials left out).
+  std::vector<uint32_t> emissiveTriangleInstance;
+  std::vector<uint32_t> punctualLightSource;
+  std::vector<float> materialLuminance;
 
   uint32_t localLightCount() const { return uint32_t(alias.size()); }
 };
@@ -54,7 +60,31 @@ std::vector<gpu::GpuLightAlias> buildAliasTable(std::span<const double> weights)
 // lights than MAX_DISTANT_LIGHTS. Materials flagged in `unsampledMaterials` (indexed
 // like Scene::materials; empty = none) are left out of the local lights: their triangles are
 // never picked and their materialLightAreaPdf is 0, so MIS counts BRDF hits on them in full.
+//
+// Every KHR point and spot light gets an entry, a switched-off one (intensity 0) too, with
+// power 0 (never picked): the table's layout (which entry is which light) depends on the scene
+// only, never on the lights' state, so updateLightTable() can rewrite it in place.
 LightTable buildLightTable(const Scene& scene, const rt::SceneBvh& bvh,
                            const std::vector<bool>& unsampledMaterials = {});
+
+// Rewrites `table` (built by buildLightTable for this scene) in place for the lights' current
+// state: emissive triangles moved with their instances' current transforms in `bvh`, punctual
+// lights from `lights` (the scene's lights, moved, dimmed or switched off; the same count and
+// types as Scene::lights), the alias table, the total power and materialLightAreaPdf. Every
+// entry keeps its index and no vector changes size. When every light is off the alias table is
+// all zeros and totalLocalPower 0: nothing is to be picked.
+void updateLightTable(LightTable& table, std::span<const PunctualLight> lights,
+                      const rt::SceneBvh& bvh);
+
+// The map from a ray hit to the light-table entry of the emissive triangle it hit, for
+// consumers that meet lights through BRDF-sampled rays (ReSTIR DI's BRDF candidate). One uint
+// array in three levels, all indices into the same array:
+//   [instance]                      first geometry slot of the instance, or kNoLightEntry
+//   [slot + local geometry]         first triangle slot of that geometry, or kNoLightEntry
+//   [triangle slot + primitive]     the emissive triangle's light-table index, or kNoLightEntry
+// Only instances and geometries with an entry get slots. Depends on the layout only (built
+// once per scene: updateLightTable keeps it valid).
+inline constexpr uint32_t kNoLightEntry = 0xFFFFFFFFu;
+std::vector<uint32_t> buildEmissiveHitMap(const LightTable& table, const rt::SceneBvh& bvh);
 
 }  // namespace bounce

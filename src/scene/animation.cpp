@@ -72,6 +72,18 @@ float SceneAnimation::transformDuration() const {
   return d;
 }
 
+float SceneAnimation::lightDuration() const {
+  float d = 0.0f;
+  for (const LightTrack& track : lights)
+    for (const std::vector<float>* times : {&track.position.times, &track.intensityScale.times})
+      if (!times->empty()) d = std::max(d, times->back());
+  return d;
+}
+
+float sampleChannel(const Channel<float>& channel, float t, float rest) {
+  return sample(channel, t, rest, [](float a, float b, float u) { return a + (b - a) * u; });
+}
+
 glm::vec3 sampleChannel(const Channel<glm::vec3>& channel, float t, const glm::vec3& rest) {
   return sample(channel, t, rest,
                 [](const glm::vec3& a, const glm::vec3& b, float u) { return glm::mix(a, b, u); });
@@ -98,6 +110,18 @@ void evaluateTransforms(const SceneAnimation& animation, float t,
   for (const TransformTrack& track : animation.transforms)
     if (track.instance < transforms.size())
       transforms[track.instance] = evaluateTrack(track, local);
+}
+
+void evaluateLights(const SceneAnimation& animation, float t,
+                    const std::vector<PunctualLight>& rest, std::vector<PunctualLight>& lights) {
+  float local = animation.loop ? wrap(t, animation.lightDuration()) : t;
+  for (const LightTrack& track : animation.lights) {
+    if (track.light >= lights.size() || track.light >= rest.size()) continue;
+    const PunctualLight& r = rest[track.light];
+    PunctualLight& l = lights[track.light];
+    l.position = sampleChannel(track.position, local, r.position);
+    l.intensity = r.intensity * std::max(0.0f, sampleChannel(track.intensityScale, local, 1.0f));
+  }
 }
 
 Camera evaluateCameraPath(const CameraPath& path, float t) {

@@ -18,6 +18,7 @@
 namespace bounce {
 
 struct Camera;
+struct PunctualLight;
 struct Sun;
 
 enum class Interpolation { Linear, Step };
@@ -42,6 +43,16 @@ struct TransformTrack {
   Channel<glm::vec3> translation;
   Channel<glm::quat> rotation;
   Channel<glm::vec3> scale;
+};
+
+// A KHR punctual light's animation (Scene::lights[light]): its position in world space and a
+// factor on its rest intensity (STEP keys of 0 and 1 switch it off and on). A missing channel
+// keeps the rest value. Light tracks loop with the transform tracks (SceneAnimation::loop), at
+// the end of their own last key.
+struct LightTrack {
+  uint32_t light = 0;
+  Channel<glm::vec3> position;
+  Channel<float> intensityScale;
 };
 
 struct CameraKeyframe {
@@ -73,24 +84,34 @@ struct TimeOfDayTrack {
 
 struct SceneAnimation {
   std::vector<TransformTrack> transforms;
+  std::vector<LightTrack> lights;
   std::optional<CameraPath> camera;
   std::optional<TimeOfDayTrack> timeOfDay;
   bool loop = true;  // transform tracks wrap at duration()
 
-  bool empty() const { return transforms.empty() && !camera && !timeOfDay; }
+  bool empty() const { return transforms.empty() && lights.empty() && !camera && !timeOfDay; }
   // The end of the last transform key (0 without transform tracks).
   float transformDuration() const;
+  // The end of the last light key (0 without light tracks).
+  float lightDuration() const;
 };
 
 // Evaluates one channel at t (glTF rules above; rotations slerp along the shorter arc).
 glm::vec3 sampleChannel(const Channel<glm::vec3>& channel, float t, const glm::vec3& rest);
 glm::quat sampleChannel(const Channel<glm::quat>& channel, float t, const glm::quat& rest);
+float sampleChannel(const Channel<float>& channel, float t, float rest);
 // parent x T x R x S at t.
 glm::mat4 evaluateTrack(const TransformTrack& track, float t);
 // Writes the object-to-world transform of every instance at time t into `transforms` (sized to
 // the scene's instance count by the caller; untracked instances keep their value).
 void evaluateTransforms(const SceneAnimation& animation, float t,
                         std::vector<glm::mat4>& transforms);
+
+// Writes the state of every animated light at time t into `lights` (a copy of Scene::lights,
+// the rest state, made by the caller; untracked lights keep their value). `rest` is
+// Scene::lights, whose intensities the tracks scale.
+void evaluateLights(const SceneAnimation& animation, float t,
+                    const std::vector<PunctualLight>& rest, std::vector<PunctualLight>& lights);
 
 // The camera on the path at t (looping paths wrap at duration()). `up` is +Y.
 Camera evaluateCameraPath(const CameraPath& path, float t);

@@ -188,6 +188,39 @@ void addWallLights(Scene& scene, Pcg32& rng, int axis, bool maxSide, const char*
     }
 }
 
+// The lights' animation (--animate; the light-animation tests): over a 4 s loop, every third wall
+// light blinks (off for a second, each at its own phase), the next of each three bobs up and
+// down by 0.4 m, and the four middle ceiling lights pulse between 0.2 and 2 times their
+// intensity. The other 28 stay as they are.
+void animateLights(Scene& scene) {
+  constexpr float kLoopSeconds = 4.0f;
+  constexpr uint32_t kCeilingLights = 16;
+  for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+    LightTrack track;
+    track.light = i;
+    const float phase = 0.25f + 2.5f * float(i % 7) / 7.0f;  // in [0.25, 2.4] s
+    if (i < kCeilingLights) {
+      const uint32_t row = i / 4, col = i % 4;
+      if (row < 1 || row > 2 || col < 1 || col > 2) continue;
+      track.intensityScale.times = {0.0f, 1.0f, 2.0f, 3.0f, kLoopSeconds};
+      track.intensityScale.values = {1.0f, 2.0f, 1.0f, 0.2f, 1.0f};
+    } else if ((i - kCeilingLights) % 3 == 0) {
+      // Off from `phase` for a second.
+      track.intensityScale.interpolation = Interpolation::Step;
+      track.intensityScale.times = {0.0f, phase, phase + 1.0f, kLoopSeconds};
+      track.intensityScale.values = {1.0f, 0.0f, 1.0f, 1.0f};
+    } else if ((i - kCeilingLights) % 3 == 1) {
+      const glm::vec3 p = scene.lights[i].position;
+      const glm::vec3 up{0.0f, 0.4f, 0.0f};
+      track.position.times = {0.0f, 1.0f, 2.0f, 3.0f, kLoopSeconds};
+      track.position.values = {p, p + up, p, p - up, p};
+    } else {
+      continue;
+    }
+    scene.animation.lights.push_back(std::move(track));
+  }
+}
+
 }  // namespace
 
 Scene makeManyLightsScene() {
@@ -203,6 +236,7 @@ Scene makeManyLightsScene() {
   addWallLights(scene, rng, 2, true, "south");
   addWallLights(scene, rng, 0, false, "west");  // x = min
   addWallLights(scene, rng, 0, true, "east");
+  animateLights(scene);
 
   // Night: no sun, no sky; the closed room would hide them anyway.
   scene.sun.irradiance = 0.0f;
