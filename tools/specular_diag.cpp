@@ -48,7 +48,7 @@ struct Options {
   uint32_t spp = 256;
   std::string imagesDir;
   std::string testImage;  // compare this EXR instead of rendering
-  std::string views;  // debug views whose per-row means are printed
+  std::string views;      // debug views whose per-row means are printed
   bool interior = false;
   bool noSun = false;
   bool lambert = false;
@@ -70,8 +70,9 @@ std::vector<std::string> splitList(const std::string& text, char separator) {
 
 // A configuration name is a '+'-separated list of parts: the GI mode (none, cache, evolve),
 // dN (reflection divisor N), maxrX (maxTracedRoughness X), mirrorX (mirrorRoughness X),
-// regX (hitRegularization X), ambientX (skyAmbientStrength X), full-mip (reflection textures at full resolution), mobile,
-// no-reuse, no-denoise (the reflection chain's stages off), no-di (ReSTIR DI off).
+// regX (hitRegularization X), ambientX (skyAmbientStrength X), full-mip (reflection textures at
+// full resolution), mobile, no-reuse, no-denoise (the reflection chain's stages off), no-di (ReSTIR
+// DI off).
 HybridSettings configurationSettings(const std::string& name, uint32_t width, uint32_t height) {
   HybridSettings settings = presetSettings(Preset::Desktop);
   for (const std::string& part : splitList(name, '+'))
@@ -369,10 +370,11 @@ int main(int argc, char** argv) {
   CLI::App app{"specular-diag: spheres' composite against the reference per sphere"};
   app.add_option("--scene", o.scene, "Built-in scene or glTF path with spheres named sphere_R_C");
   app.add_option("--res", o.resolution, "Image size WxH");
-  app.add_option("--configs", o.configs,
-                 "Comma-separated configurations: '+'-joined parts none|cache|evolve, dN "
-                 "(reflection divisor), maxrX, mirrorX, regX, ambientX, full-mip, mobile, no-reuse, "
-                 "no-denoise, no-di");
+  app.add_option(
+      "--configs", o.configs,
+      "Comma-separated configurations: '+'-joined parts none|cache|evolve, dN "
+      "(reflection divisor), maxrX, mirrorX, regX, ambientX, full-mip, mobile, no-reuse, "
+      "no-denoise, no-di");
   app.add_option("--sun", o.sun, "Sun override, as bounce render's --sun");
   app.add_option("--sky", o.sky, "Sky override, as bounce render's --sky");
   app.add_option("--frames", o.frames, "Frames per configuration")->check(CLI::Range(1, 100000));
