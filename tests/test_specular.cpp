@@ -368,7 +368,14 @@ double rowMeanRatio(const SpheresComparison& c, int row) {
 }
 
 // Issue 19's static test: relMSE at most 0.05 (less the reference's own noise share, measured
-// from its batches), the image's mean within 3 %, each metal row's mean within 5 %.
+// from its batches), the image's mean within 3 %, each metal row's mean within 5 %. Disabled:
+// it fails. Measured (lavapipe, 96x54): relMSE 1.208 (reference noise share 0.004), mean
+// 0.996, metal rows 1.090 / 1.003; five pixels hold 0.82 of the relMSE: one glint on the white
+// metal row (150 against 4.9) and the lower halves of the roughness-0.02 balls (5-9 against
+// 0.2-0.3), where the desktop preset's half-resolution mirror rays, upsampled across normals
+// that turn ~15 degrees a pixel, show a neighbour's reflection (specular-diag at 128x72: 0.78
+// with half-resolution rays, 0.14 with full-resolution ones; docs/reflections.md, "`spheres`
+// against the reference"). 194 s on this machine under load: too slow for CI once enabled.
 TEST(SpecularSpheres, DISABLED_StaticFramesMatchTheReference) {
   const SpheresComparison c = compareSpheres();
   EXPECT_EQ(c.validationErrors, 0u);
