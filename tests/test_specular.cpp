@@ -6,8 +6,8 @@
 //     must match the reference path tracer's render of the same view within 2 %, i.e. show the
 //     BRDF's directional albedo, whatever carries the specular light;
 //   - the same spheres with every material Lambert show their albedo exactly as before;
-//   - `spheres` (desktop preset, ReSTIR GI, traced reflections) against the reference of the
-//     same view: the metal rows' mean radiance.
+//   - `spheres` (desktop preset, ReSTIR GI, traced reflections), the 64th static frame against
+//     the reference of the same view: relMSE, the mean, the metal rows' means (issue 19).
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -23,6 +23,7 @@
 #include "lighting/light_table.h"
 #include "lighting/specular_albedo.h"
 #include "reference/path_tracer.h"
+#include "restir_gi_common.h"
 #include "rt/gpu_scene.h"
 #include "scene/load.h"
 #include "scene/procedural/builtin_scenes.h"
@@ -267,121 +268,131 @@ TEST(SpecularFurnace, LambertSpheresShowTheirAlbedo) {
 
 // ---- the spheres scene against the reference ---------------------------------------------------
 
-constexpr uint32_t kSpheresWidth = 192, kSpheresHeight = 108;
+// Issue 19: `spheres`, 64 static frames, desktop preset (ReSTIR GI with the clipmap cache,
+// half-resolution reflections with reuse and the denoiser), the 64th frame's composite (what
+// `bounce render --frames 64 --out x.exr` writes) against `bounce reference --pixel-centre` of
+// the same view. Small enough for CI: the spheres are 4-6 pixels across.
+constexpr uint32_t kSpheresWidth = 96, kSpheresHeight = 54;
+constexpr int kSpheresFrames = 64;
+// The reference in independent batches (seeds), so that its own noise is measured per pixel.
+constexpr int kReferenceBatches = 4;
+constexpr uint32_t kReferenceBatchSpp = 64;
 
-struct SpheresRender {
-  ImageRGBA32F composite;  // the mean of frames 9-16
+struct SpheresComparison {
+  Scene scene;
+  ImageRGBA32F composite;  // the last frame's
   std::vector<glm::uvec4> ids;
+  ImageRGBA32F reference;       // the mean of the batches
+  double referenceNoise = 0.0;  // the relMSE the reference's own noise adds, expected
+  uint32_t validationErrors = 0;
 };
 
-// `spheres` through the hybrid frame, desktop preset with ReSTIR GI, reflections traced at
-// 1 / reflectionDivisor (0: none).
-SpheresRender renderSpheres(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
-                            uint32_t reflectionDivisor) {
-  constexpr int kFrames = 16, kAveraged = 8;
+// The expected relMSE share of the reference's noise: the mean over pixels and channels of the
+// variance of the batches' mean over (reference^2 + epsilon), the variance the sample variance
+// of the batches over their count. relMSE against a noisy reference is, in expectation, the
+// relMSE against the converged one plus this share (the hybrid frame is independent of it).
+double referenceNoiseShare(const std::vector<ImageRGBA32F>& batches, const ImageRGBA32F& mean) {
+  const double n = double(batches.size());
+  double total = 0.0;
+  for (size_t i = 0; i < mean.pixelCount(); ++i)
+    for (size_t c = 0; c < 3; ++c) {
+      const size_t k = 4 * i + c;
+      double sumSq = 0.0;
+      for (const ImageRGBA32F& b : batches) sumSq += double(b.pixels[k]) * b.pixels[k];
+      const double m = mean.pixels[k];
+      const double variance = std::max(sumSq - n * m * m, 0.0) / (n - 1.0);
+      total += variance / n / (m * m + kRelMseEpsilon);
+    }
+  return total / double(3 * mean.pixelCount());
+}
+
+SpheresComparison compareSpheres() {
+  SpheresComparison out{*makeBuiltinScene("spheres"), {}, {}, {}, 0.0, 0};
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, out.scene);
+  const Camera& camera = *out.scene.camera;
   HybridSettings settings = presetSettings(Preset::Desktop);
   settings.width = kSpheresWidth;
   settings.height = kSpheresHeight;
   settings.gi = GiMode::Evolve;
-  settings.reflections.divisor = reflectionDivisor;
-  HybridFrame frame(context, gpuScene, scene, settings);
+  HybridFrame frame(context, gpuScene, out.scene, settings);
   frame.requestDebugView("composite");
   frame.requestDebugView("vbuffer.ids");
-  SpheresRender out{ImageRGBA32F(kSpheresWidth, kSpheresHeight, glm::vec4(0.0f)), {}};
-  for (int i = 0; i < kFrames; ++i) {
-    frame.render(*scene.camera);
-    if (i < kFrames - kAveraged) continue;
-    ImageRGBA32F composite = frame.debugViewImage("composite");
-    for (size_t k = 0; k < out.composite.pixels.size(); ++k)
-      out.composite.pixels[k] += composite.pixels[k] / float(kAveraged);
-  }
+  for (int i = 0; i < kSpheresFrames; ++i) frame.render(camera);
+  out.composite = frame.debugViewImage("composite");
   const graph::DebugView& view = frame.graph().readDebugView("vbuffer.ids");
   out.ids.resize(view.bytes.size() / sizeof(glm::uvec4));
   std::memcpy(out.ids.data(), view.bytes.data(), out.ids.size() * sizeof(glm::uvec4));
-  EXPECT_EQ(countNonFinitePixels(out.composite), 0u);
-  return out;
-}
 
-// Mean luminance of a row's spheres, composite over reference.
-double rowMeanRatio(const Scene& scene, const SpheresRender& hybrid, const ImageRGBA32F& reference,
-                    int row) {
-  std::set<uint32_t> instances;
-  for (uint32_t i = 0; i < scene.instances.size(); ++i)
-    if (scene.instances[i].name.rfind(fmt::format("sphere_{}_", row), 0) == 0) instances.insert(i);
-  EXPECT_EQ(instances.size(), size_t(kSpheresColumns));
-  double sumHybrid = 0.0, sumReference = 0.0;
-  for (int y = 0; y < reference.height; ++y)
-    for (int x = 0; x < reference.width; ++x) {
-      if (!instances.count(hybrid.ids[size_t(y * reference.width + x)].x)) continue;
-      sumHybrid += luminance(glm::vec3(hybrid.composite.at(x, y)));
-      sumReference += luminance(glm::vec3(reference.at(x, y)));
-    }
-  return sumHybrid / sumReference;
-}
-
-// `spheres` at 192 x 108, desktop preset (half-res reflections and GI), the mean of frames 9-16
-// against 64 reference samples through pixel centres, with and without reflection rays.
-struct SpheresComparison {
-  Scene scene;
-  SpheresRender traced, fallback;
-  ImageRGBA32F reference;
-  uint32_t validationErrors = 0;
-};
-
-SpheresComparison compareSpheres() {
-  SpheresComparison out{*makeBuiltinScene("spheres"), {}, {}, {}, 0};
-  vk::Context context(vk::contextOptionsFromEnvironment());
-  GpuScene gpuScene(context, out.scene);
-  out.traced = renderSpheres(context, gpuScene, out.scene, 2);
-  out.fallback = renderSpheres(context, gpuScene, out.scene, 0);
   ReferencePathTracer tracer(context, gpuScene, out.scene);
   ReferenceOptions options;
   options.width = kSpheresWidth;
   options.height = kSpheresHeight;
-  options.samplesPerPixel = 64;
+  options.samplesPerPixel = kReferenceBatchSpp;
   options.pixelCentre = true;
-  out.reference = tracer.render(*out.scene.camera, options).image;
+  std::vector<ImageRGBA32F> batches;
+  out.reference = ImageRGBA32F(kSpheresWidth, kSpheresHeight, glm::vec4(0.0f));
+  for (int b = 0; b < kReferenceBatches; ++b) {
+    options.seed = uint32_t(b + 1);
+    batches.push_back(tracer.render(camera, options).image);
+    for (size_t k = 0; k < out.reference.pixels.size(); ++k)
+      out.reference.pixels[k] += batches.back().pixels[k] / float(kReferenceBatches);
+  }
+  out.referenceNoise = referenceNoiseShare(batches, out.reference);
   if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES")) {
-    writeImage(std::string(dir) + "/spheres-hybrid.exr", out.traced.composite);
+    writeImage(std::string(dir) + "/spheres-hybrid.exr", out.composite);
     writeImage(std::string(dir) + "/spheres-reference.exr", out.reference);
-    writePng(std::string(dir) + "/spheres-hybrid.png", out.traced.composite, 1.0f / 32.0f);
-    writePng(std::string(dir) + "/spheres-no-reflections.png", out.fallback.composite,
-             1.0f / 32.0f);
+    writePng(std::string(dir) + "/spheres-hybrid.png", out.composite, 1.0f / 32.0f);
     writePng(std::string(dir) + "/spheres-reference.png", out.reference, 1.0f / 32.0f);
   }
+  EXPECT_EQ(countNonFinitePixels(out.composite), 0u);
   out.validationErrors = context.validationErrorCount();
   return out;
 }
 
-// The traced reflections must show what the fallback (the diffuse GI as every surface's specular
-// light) cannot: the mirrors' images of floor, sky, panels and neighbours. Disabled: it fails
-// intermittently. One fresh-clone CI run measured relMSE 21.7 traced against 1.9 without rays,
-// where other runs give 0.32: a rare firefly (a sun glint kept by reflection reuse and history)
-// on a dark reference pixel decides relMSE (docs/reflections.md, "What is missing or doubtful").
-TEST(SpecularSpheres, DISABLED_TracedReflectionsBringTheImageTowardsTheReference) {
-  const SpheresComparison c = compareSpheres();
-  EXPECT_EQ(c.validationErrors, 0u);
-  const double tracedError = relativeMeanSquaredError(c.traced.composite, c.reference);
-  const double fallbackError = relativeMeanSquaredError(c.fallback.composite, c.reference);
-  std::printf("spheres %ux%u: relMSE %.4f traced, %.4f without reflection rays; mean %.4f\n",
-              kSpheresWidth, kSpheresHeight, tracedError, fallbackError,
-              test::meanLuminance(c.traced.composite) / test::meanLuminance(c.reference));
-  EXPECT_LT(tracedError, 0.5 * fallbackError);
+// Mean luminance of a row's spheres, composite over reference.
+double rowMeanRatio(const SpheresComparison& c, int row) {
+  std::set<uint32_t> instances;
+  for (uint32_t i = 0; i < c.scene.instances.size(); ++i)
+    if (c.scene.instances[i].name.rfind(fmt::format("sphere_{}_", row), 0) == 0)
+      instances.insert(i);
+  EXPECT_EQ(instances.size(), size_t(kSpheresColumns));
+  double sumHybrid = 0.0, sumReference = 0.0;
+  for (int y = 0; y < c.reference.height; ++y)
+    for (int x = 0; x < c.reference.width; ++x) {
+      if (!instances.count(c.ids[size_t(y * c.reference.width + x)].x)) continue;
+      sumHybrid += luminance(glm::vec3(c.composite.at(x, y)));
+      sumReference += luminance(glm::vec3(c.reference.at(x, y)));
+    }
+  return sumHybrid / sumReference;
 }
 
-// Each metal row's mean within 5 % of the reference's (issue 19). Disabled: it fails since reuse,
-// the reflection denoiser and ReSTIR DI joined the frame (0.93 / 0.94; docs/reflections.md, "What
-// is missing or doubtful"). Per sphere the near-mirror columns (roughness 0.02, 0.1) swing by
-// -40 % to +200 % between configurations and reference seeds (glints of the sun in neighbouring
-// spheres), so the row means are not yet a measure of bias; before the merge the rows measured
-// 0.95-1.02 over five reference seeds.
-TEST(SpecularSpheres, DISABLED_MetalRowsWithinFivePercentOfTheReference) {
+// Issue 19's static test: relMSE at most 0.05 (less the reference's own noise share, measured
+// from its batches), the image's mean within 3 %, each metal row's mean within 5 %. Disabled:
+// it fails. Measured (lavapipe, 96x54): relMSE 1.208 (reference noise share 0.004), mean
+// 0.996, metal rows 1.090 / 1.003; five pixels hold 0.82 of the relMSE: one glint on the white
+// metal row (150 against 4.9) and the lower halves of the roughness-0.02 balls (5-9 against
+// 0.2-0.3), where the desktop preset's half-resolution mirror rays, upsampled across normals
+// that turn ~15 degrees a pixel, show a neighbour's reflection (specular-diag at 128x72: 0.78
+// with half-resolution rays, 0.14 with full-resolution ones; docs/reflections.md, "`spheres`
+// against the reference"). 194 s on this machine under load: too slow for CI once enabled.
+TEST(SpecularSpheres, DISABLED_StaticFramesMatchTheReference) {
   const SpheresComparison c = compareSpheres();
+  EXPECT_EQ(c.validationErrors, 0u);
+  const double relMse = relativeMeanSquaredError(c.composite, c.reference);
+  const double meanRatio = test::meanLuminance(c.composite) / test::meanLuminance(c.reference);
+  std::printf(
+      "spheres %ux%u, frame %d: relMSE %.4f (reference noise share %.4f, %d x %u spp), mean "
+      "ratio %.4f\n",
+      kSpheresWidth, kSpheresHeight, kSpheresFrames, relMse, c.referenceNoise, kReferenceBatches,
+      kReferenceBatchSpp, meanRatio);
+  test::printWorstPixels(c.composite, c.reference, 5);
+  EXPECT_LE(relMse - c.referenceNoise, 0.05);
+  EXPECT_NEAR(meanRatio, 1.0, 0.03);
   for (int row = 0; row < procedural::kSpheresRows; ++row) {
-    double ratio = rowMeanRatio(c.scene, c.traced, c.reference, row);
-    std::printf("spheres row %d (%s): mean composite/reference %.4f traced, %.4f without\n", row,
-                row < procedural::kSpheresMetalRows ? "metal" : "dielectric", ratio,
-                rowMeanRatio(c.scene, c.fallback, c.reference, row));
+    const double ratio = rowMeanRatio(c, row);
+    std::printf("spheres row %d (%s): mean composite/reference %.4f\n", row,
+                row < procedural::kSpheresMetalRows ? "metal" : "dielectric", ratio);
     if (row < procedural::kSpheresMetalRows) EXPECT_NEAR(ratio, 1.0, 0.05) << "metal row " << row;
   }
 }

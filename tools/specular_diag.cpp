@@ -47,7 +47,8 @@ struct Options {
   int averaged = 8;
   uint32_t spp = 256;
   std::string imagesDir;
-  std::string views;  // debug views whose per-row means are printed
+  std::string testImage;  // compare this EXR instead of rendering
+  std::string views;      // debug views whose per-row means are printed
   bool interior = false;
   bool noSun = false;
   bool lambert = false;
@@ -69,8 +70,9 @@ std::vector<std::string> splitList(const std::string& text, char separator) {
 
 // A configuration name is a '+'-separated list of parts: the GI mode (none, cache, evolve),
 // dN (reflection divisor N), maxrX (maxTracedRoughness X), mirrorX (mirrorRoughness X),
-// ambientX (skyAmbientStrength X), full-mip (reflection textures at full resolution), mobile,
-// no-reuse, no-denoise (the reflection chain's stages off), no-di (ReSTIR DI off).
+// regX (hitRegularization X), ambientX (skyAmbientStrength X), full-mip (reflection textures at
+// full resolution), mobile, no-reuse, no-denoise (the reflection chain's stages off), no-di (ReSTIR
+// DI off).
 HybridSettings configurationSettings(const std::string& name, uint32_t width, uint32_t height) {
   HybridSettings settings = presetSettings(Preset::Desktop);
   for (const std::string& part : splitList(name, '+'))
@@ -87,6 +89,8 @@ HybridSettings configurationSettings(const std::string& name, uint32_t width, ui
       settings.reflections.divisor = uint32_t(number("d"));
     } else if (part.rfind("maxr", 0) == 0) {
       settings.reflections.maxTracedRoughness = number("maxr");
+    } else if (part.rfind("reg", 0) == 0) {
+      settings.reflections.hitRegularization = number("reg");
     } else if (part.rfind("mirror", 0) == 0) {
       settings.reflections.mirrorRoughness = number("mirror");
     } else if (part.rfind("ambient", 0) == 0) {
@@ -174,6 +178,33 @@ void printInstancePixels(const std::vector<glm::uvec4>& ids, uint32_t instance,
               pixels.size(), sumT, sumR);
   for (size_t i = 0; i < std::min<size_t>(pixels.size(), 10); ++i)
     std::printf(" (%d,%d) %.1f vs %.1f", pixels[i].x, pixels[i].y, pixels[i].t, pixels[i].r);
+  std::printf("\n");
+}
+
+// The `count` pixels that contribute most to relMSE(test, reference): position, instance, share
+// of relMSE, luminance of both.
+void printWorstPixels(const std::vector<glm::uvec4>& ids, const ImageRGBA32F& test,
+                      const ImageRGBA32F& reference, size_t count) {
+  std::vector<std::pair<double, size_t>> errors;
+  for (size_t i = 0; i < test.pixelCount(); ++i) {
+    double e = 0.0;
+    for (size_t c = 0; c < 3; ++c) {
+      const double r = reference.pixels[4 * i + c], d = test.pixels[4 * i + c] - r;
+      e += d * d / (r * r + kRelMseEpsilon) / 3.0;
+    }
+    errors.push_back({e / double(test.pixelCount()), i});
+  }
+  count = std::min(count, errors.size());
+  std::partial_sort(errors.begin(), errors.begin() + long(count), errors.end(),
+                    [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::printf("  largest shares of relMSE:");
+  for (size_t k = 0; k < count; ++k) {
+    const size_t i = errors[k].second;
+    const int x = int(i % size_t(test.width)), y = int(i / size_t(test.width));
+    std::printf(" (%d,%d id %u) %.4f [%.1f vs %.1f]", x, y, ids.empty() ? 0u : ids[i].x,
+                errors[k].first, luminance(glm::vec3(test.at(x, y))),
+                luminance(glm::vec3(reference.at(x, y))));
+  }
   std::printf("\n");
 }
 
@@ -267,6 +298,14 @@ int run(const Options& o) {
   const ImageRGBA32F reference = setup.reference(context, gpuScene);
   const uint32_t w = setup.size.width, h = setup.size.height;
   const std::vector<std::string> views = splitList(o.views, ',');
+  if (!o.testImage.empty()) {  // a saved composite against the reference, nothing rendered
+    const ImageRGBA32F test = readImage(o.testImage);
+    std::printf("%s: relMSE %.4f, mean ratio %.4f (reference %u spp)\n", o.testImage.c_str(),
+                relativeMeanSquaredError(test, reference),
+                meanLuminance(test) / meanLuminance(reference), o.spp);
+    printWorstPixels({}, test, reference, 12);
+    return 0;
+  }
   for (const std::string& name : splitList(o.configs, ',')) {
     HybridSettings settings = configurationSettings(name, w, h);
     settings.lambert = o.lambert;
@@ -295,6 +334,7 @@ int run(const Options& o) {
                 relativeMeanSquaredError(mean, reference),
                 meanLuminance(mean) / meanLuminance(reference), first + 1, o.frames, o.spp);
     printSphereTable(setup.scene, instanceSums(ids, mean, reference, o.interior), "composite/ref");
+    printWorstPixels(ids, mean, reference, 12);
     if (!o.sphere.empty()) {
       int r = 0, c = 0;
       if (std::sscanf(o.sphere.c_str(), "%d,%d", &r, &c) != 2) fail("--sphere: expected R,C");
@@ -330,10 +370,11 @@ int main(int argc, char** argv) {
   CLI::App app{"specular-diag: spheres' composite against the reference per sphere"};
   app.add_option("--scene", o.scene, "Built-in scene or glTF path with spheres named sphere_R_C");
   app.add_option("--res", o.resolution, "Image size WxH");
-  app.add_option("--configs", o.configs,
-                 "Comma-separated configurations: '+'-joined parts none|cache|evolve, dN "
-                 "(reflection divisor), maxrX, mirrorX, ambientX, full-mip, mobile, no-reuse, "
-                 "no-denoise, no-di");
+  app.add_option(
+      "--configs", o.configs,
+      "Comma-separated configurations: '+'-joined parts none|cache|evolve, dN "
+      "(reflection divisor), maxrX, mirrorX, regX, ambientX, full-mip, mobile, no-reuse, "
+      "no-denoise, no-di");
   app.add_option("--sun", o.sun, "Sun override, as bounce render's --sun");
   app.add_option("--sky", o.sky, "Sky override, as bounce render's --sky");
   app.add_option("--frames", o.frames, "Frames per configuration")->check(CLI::Range(1, 100000));
@@ -347,6 +388,8 @@ int main(int argc, char** argv) {
   app.add_option("--seed", o.seed, "The reference's random seed");
   app.add_option("--sphere", o.sphere, "R,C: print that sphere's most different pixels");
   app.add_flag("--interior", o.interior, "Leave silhouette pixels out");
+  app.add_option("--test-image", o.testImage,
+                 "Compare this EXR (a saved composite) with the reference instead of rendering");
   app.add_option("--images", o.imagesDir, "Write the mean composite and the reference as EXR here");
   CLI11_PARSE(app, argc, argv);
   if (o.averaged > o.frames) {

@@ -16,6 +16,7 @@
 // directional albedo at every roughness and metalness.
 #version 460
 #include "common/brdf.glsl"
+#include "lighting/regularize.glsl"
 #include "lighting/specular_albedo.glsl"
 #include "passes/hybrid_frame.glsl"
 #include "shared/lighting_io.h"
@@ -110,7 +111,11 @@ vec3 surfaceRadiance(FrameConstants f, ivec2 pixel) {
                                     emissiveRoughness.w, lambert);
 
   float sunVisibility = imageLoad(shadows, pixel).x;
-  vec3 sun = brdfEvaluate(m, n, wo, f.towardSun) * max(dot(n, f.towardSun), 0.0) * f.sunIrradiance;
+  // The sun at its centre direction, its disc folded into the lobe (lighting/regularize.glsl):
+  // a near-mirror then shows the disc's radiance, not a point glint of D(0) x E.
+  BrdfMaterial sunLobe = m;
+  sunLobe.alpha = sunDiscAlpha(m.alpha, f.sunCosHalfAngle);
+  vec3 sun = brdfEvaluate(sunLobe, n, wo, f.towardSun) * max(dot(n, f.towardSun), 0.0) * f.sunIrradiance;
   bool restirDi = (f.flags & FRAME_FLAG_DI_LIGHTS) != 0u;
   vec3 lights = restirDi ? imageLoad(directLight, pixel).rgb : localLights(f, m, position, n, wo);
   return sun * sunVisibility + lights +

@@ -20,6 +20,7 @@
 #include "lighting/frame_sun.glsl"
 #include "lighting/light_tables.glsl"
 #include "lighting/path_vertex.glsl"
+#include "lighting/regularize.glsl"
 #include "lighting/specular_albedo.glsl"
 #include "passes/hybrid_frame.glsl"
 #include "shared/specular_io.h"
@@ -50,8 +51,9 @@ ivec2 fullResPixel(FrameConstants f, ivec2 tracedPixel) {
 // Direct light at the hit x2 towards x1: the sun, every KHR directional light and one local
 // light, each one sample with a shadow ray at full weight (the path ends here: no BRDF ray
 // competes; light the samples miss, such as the large emitters the tables leave to rays, comes
-// from the cache).
-vec3 hitDirectLight(FrameConstants f, Surface s, vec3 wo, uvec4 key) {
+// from the cache). x2's lobe is regularized to at least minAlpha (lighting/regularize.glsl).
+vec3 hitDirectLight(FrameConstants f, Surface s, vec3 wo, uvec4 key, float minAlpha) {
+  s.brdf = regularizedMaterial(s.brdf, minAlpha);
   // One loop with a single lightContribution call: each call inlines a BVH traversal, and a CPU
   // driver compiles every copy (docs/startup.md).
   vec3 sum = vec3(0.0);
@@ -83,8 +85,9 @@ vec3 hitCacheLight(Surface s, vec3 wo, uint seed) {
 
 // Radiance arriving at x1 along `dir`; `hitDistance` is set to the hit's distance (or the miss
 // distance), `hitSample` to the hit x2 as a reservoir sample (position, kind, normal facing x1).
-vec3 incomingRadiance(FrameConstants f, vec3 origin, vec3 dir, uvec4 key, out float hitDistance,
-                      inout Reservoir hitSample) {
+// `alpha`: the reflecting lobe's, which sets the hit's regularization.
+vec3 incomingRadiance(FrameConstants f, vec3 origin, vec3 dir, float alpha, uvec4 key,
+                      out float hitDistance, inout Reservoir hitSample) {
   TraceHit hit = traceClosest(origin, dir, 0.0, NO_HIT, true);
   if (!traceHitFound(hit)) {
     hitDistance = REFLECTION_MISS_DISTANCE;
@@ -102,7 +105,7 @@ vec3 incomingRadiance(FrameConstants f, vec3 origin, vec3 dir, uvec4 key, out fl
   // ReSTIR DI lights x1 from the emitters the light tables sample, specular lobe included
   // (FRAME_FLAG_DI_LIGHTS): their emission seen in a reflection would count twice.
   bool diLit = (f.flags & FRAME_FLAG_DI_LIGHTS) != 0u && lightTablesSampleMaterial(s.material);
-  return (diLit ? vec3(0.0) : s.emission) + hitDirectLight(f, s, -dir, key) + hitCacheLight(s, -dir, key.x ^ RANDOM_REFLECTION_CACHE);
+  return (diLit ? vec3(0.0) : s.emission) + hitDirectLight(f, s, -dir, key, pc.hitRegularization * alpha) + hitCacheLight(s, -dir, key.x ^ RANDOM_REFLECTION_CACHE);
 }
 
 // The demodulated reflection signal at a full-res pixel (w: hit distance or
@@ -150,7 +153,7 @@ vec4 reflectionSample(FrameConstants f, ivec2 pixel, ivec2 tracedPixel, out Rese
 
   uvec4 key = pcg4d(uvec4(tracedPixel, seed, RANDOM_REFLECTION_HIT));
   float hitDistance;
-  vec3 radiance = incomingRadiance(f, candidate.origin, dir, key, hitDistance, candidate);
+  vec3 radiance = incomingRadiance(f, candidate.origin, dir, alpha, key, hitDistance, candidate);
   candidate.radiance = radiance;
   candidate.W = pdf > 0.0 ? 1.0 / pdf : 0.0;
   return vec4(radiance * weight, hitDistance);

@@ -45,7 +45,7 @@ struct ReflectionPassConstants {
   float maxTracedRoughness;      // above: no ray (composite takes the diffuse light instead)
   uint materialTextureSide;      // textures at the hit read at mips at most this wide; 0 = full
   uint seed;                     // mixed into the random numbers (ReflectionSettings::seed)
-  uint pad0;
+  float hitRegularization;       // the hit's lobe for light samples >= this x the pixel's alpha
 };
 BOUNCE_CHECK_SIZE(ReflectionPassConstants, 64);
 

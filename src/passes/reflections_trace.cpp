@@ -18,6 +18,8 @@ void validate(const ReflectionSettings& s) {
   if (!(s.mirrorRoughness >= 0.0f && s.mirrorRoughness <= s.maxTracedRoughness))
     fail("reflection mirror roughness {}: expected 0 to the max traced roughness ({})",
          s.mirrorRoughness, s.maxTracedRoughness);
+  if (!(s.hitRegularization >= 0.0f && s.hitRegularization <= 16.0f))
+    fail("reflection hit regularization {}: expected 0 (none) to 16", s.hitRegularization);
   if (s.materialTextureSide > 16384)
     fail("reflection material texture side {}: expected 0 (full resolution) to 16384",
          s.materialTextureSide);
@@ -59,6 +61,7 @@ gpu::ReflectionPassConstants ReflectionsTracePass::constants(const FrameContext&
   c.maxTracedRoughness = settings_.maxTracedRoughness;
   c.materialTextureSide = settings_.materialTextureSide;
   c.seed = settings_.seed;
+  c.hitRegularization = settings_.hitRegularization;
   return c;
 }
 

@@ -42,6 +42,15 @@ struct ReflectionSettings {
   // as the GI's rays read them (RestirGiSettings::materialTextureSide): incoherent hits, and a
   // glossy reflection blurs texel detail anyway; mirrors show the coarse mip's blur.
   uint32_t materialTextureSide = 16;
+  // Path regularization at the hit (lighting/regularize.glsl; docs/reflections.md "Accuracy"):
+  // the hit's light samples (the sun's above all) see its specular lobe at least this many
+  // times as wide (GGX alpha) as the reflecting pixel's own lobe. Sun -> near-mirror -> glossy
+  // -> eye is a caustic path that one ray per pixel finds once in thousands of samples, with a
+  // weight of thousands (fireflies that reuse and the denoiser's history keep for many frames);
+  // widening the mirror's lobe by about what the glossy lobe blurs anyway spreads that spot
+  // over more of the mirror. Higher: fewer fireflies, blurrier glints of the sun seen in glossy
+  // reflections. 0 = none (unbiased). 0 to 16.
+  float hitRegularization = 1.0f;
 
   // ReSTIR-style reuse of the glossy samples (reflections-temporal, reflections-spatial,
   // reflections-resolve; docs/reflections.md "Reuse"): each traced pixel resamples its own

@@ -16,6 +16,7 @@
 #include "gi/evolve/cache/cache_lookup.glsl"
 #include "passes/hybrid_frame.glsl"
 #include "lighting/lights.glsl"
+#include "lighting/regularize.glsl"
 #include "lighting/specular_albedo.glsl"
 #include "lighting/surface.glsl"
 
@@ -33,7 +34,10 @@ vec3 cacheLightContribution(Surface s, vec3 wo, LightSample l, vec3 origin, bool
   if (!l.valid) return vec3(0.0);
   float cosine = dot(s.shadingNormal, l.direction);
   if (cosine <= 0.0 || dot(s.geometricNormal, l.direction) <= 0.0) return vec3(0.0);
-  vec3 contribution = brdfEvaluate(s.brdf, s.shadingNormal, wo, l.direction) * cosine * l.radianceOverPdf;
+  // The lobe regularized as at ReSTIR GI's hits (lighting/regularize.glsl): a cache ray is a
+  // diffuse ray, and the sun's peak on a near-mirror it hits is a caustic it samples rarely.
+  BrdfMaterial lobe = regularizedMaterial(s.brdf, DIFFUSE_RAY_HIT_MIN_ALPHA);
+  vec3 contribution = brdfEvaluate(lobe, s.shadingNormal, wo, l.direction) * cosine * l.radianceOverPdf;
   if (!any(greaterThan(contribution, vec3(0.0)))) return vec3(0.0);
   vec3 shadowDirection = l.distant ? l.direction : l.shadowTarget - origin;
   float shadowEnd = l.distant ? CACHE_RAY_FAR : 1.0;

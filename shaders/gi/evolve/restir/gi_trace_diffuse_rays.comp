@@ -6,6 +6,7 @@
 #version 460
 #include "gi/evolve/restir/restir_gi_second_vertex.glsl"
 #include "gi/evolve/cache/cache_radiance.glsl"
+#include "lighting/regularize.glsl"
 
 layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
@@ -79,7 +80,12 @@ void main() {
     bool continues = gi.secondVertex == RESTIR_GI_SECOND_VERTEX_PATH;
     bool addsCache = gi.secondVertex == RESTIR_GI_SECOND_VERTEX_CACHE && gi.maxPathBounces > 2u;
     if (l.valid && dot(l.direction, s.geometricNormal) > 0.0) {
-      vec3 brdf = brdfEvaluate(s.brdf, s.shadingNormal, wo, l.direction);
+      // With the cache at x2 (already approximate), a glossy x2's lobe is regularized for its
+      // light sample (lighting/regularize.glsl): the sun's peak on a near-mirror hit by a
+      // diffuse ray made rare, huge samples that reuse spread into blotches. The continued path
+      // (the unbiased configuration) keeps the true lobe.
+      BrdfMaterial lobe = continues ? s.brdf : regularizedMaterial(s.brdf, DIFFUSE_RAY_HIT_MIN_ALPHA);
+      vec3 brdf = brdfEvaluate(lobe, s.shadingNormal, wo, l.direction);
       neeRadiance = brdf * max(dot(s.shadingNormal, l.direction), 0.0) * l.radianceOverPdf;
       // MIS against the continued path's BRDF ray, which can hit the same emitter. The cache
       // never counts the emitters NEE samples (cache_radiance.glsl): no weight with it.
