@@ -458,8 +458,8 @@ TEST(RestirDi, CityStreetLightsLightTheNightAsInTheReference) {
 // draws candidates from the lights near a point is the missing piece. Too slow for the suite
 // too (576 frames of the city).
 TEST(RestirDi, DISABLED_ReuseLowersVarianceTenfoldOnCityByNight) {
-  const uint32_t width = 32, height = 18;
-  const int runs = 64;
+  const uint32_t width = 24, height = 14;
+  const int runs = 32;
   Scene scene = cityAtNight(true);
   const Camera camera = cityStreetCamera();
   vk::Context context(vk::contextOptionsFromEnvironment());

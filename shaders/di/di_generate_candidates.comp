@@ -1,11 +1,13 @@
 // di-generate-candidates: each pixel's initial reservoir by resampled importance sampling
 // (Talbot 2005; Bitterli et al. 2020, Alg. 3) over DiConstants::lightCandidates light candidates
-// drawn by power (the alias table; distant lights uniformly): candidate i gets the weight
-// p_hat(y_i) / (M p(y_i)), the kept one y has W = (sum of weights) / p_hat(y) and M = 1.
+// drawn by power (the alias table; distant lights uniformly) or, with the light grid, most of
+// them from the pixel's grid cell (di/light_grid.glsl): candidate i gets the weight
+// p_hat(y_i) m_i(y_i) W_i (with the alias table alone: p_hat(y_i) / (M p(y_i))), the kept one y
+// has W = (sum of weights) / p_hat(y) and M = 1.
 // Then one shadow ray for y (RTXDI's initial visibility): an occluded y keeps M but W = 0, so
 // that reuse does not spread a light this pixel cannot see.
 #version 460
-#include "di/di_common.glsl"
+#include "di/light_grid.glsl"
 
 layout(local_size_x = DI_GROUP_SIZE, local_size_y = DI_GROUP_SIZE) in;
 
@@ -16,15 +18,15 @@ DiReservoir resampleCandidates(FrameConstants f, DiConstants di, DiSurface s, iv
   DiReservoir r = emptyDiReservoir();
   float weightSum = 0.0;
   target = 0.0;
-  float count = float(di.lightCandidates);
+  DiGridLookup grid = diLightGridLookup(f, di, s.position, diRandom(key).xyz);
   [[dont_unroll]] for (uint i = 0u; i < di.lightCandidates; ++i) {
     vec4 a = diRandom(key);
     vec4 b = diRandom(key);
     vec2 u;
-    uint light = sampleDiLight(a, b.xy, u);
-    float pdf = diSelectionPdf(light);
-    float pHat = light != DI_NO_LIGHT && pdf > 0.0 ? diTarget(evaluateDiLight(s, light, u)) : 0.0;
-    float w = pHat > 0.0 ? pHat / (count * pdf) : 0.0;
+    float sourceWeight;
+    uint light = diSampleLightCandidate(grid, i, a, b.xy, u, sourceWeight);
+    float pHat = sourceWeight > 0.0 ? diTarget(evaluateDiLight(s, light, u)) : 0.0;
+    float w = pHat * sourceWeight;
     if (diStream(r, weightSum, light, u, w, 0.0, b.z)) target = pHat;
   }
   r.M = 1.0;

@@ -1,6 +1,7 @@
 // What the passes of the ReSTIR DI chain share: the pass shape, this frame's facts and the
 // GBuffer inputs every pass binds (shared/restir_di_io.h).
 #pragma once
+#include <optional>
 #include <string>
 
 #include "passes/frame_context.h"
@@ -31,6 +32,9 @@ struct DiFrame {
   FrameContext frame;
   GBuffer gbuffer;
   VkDeviceAddress constants = 0;  // gpu::DiConstants
+  // di-light-grid's slots (DiConstants::lightGrid's), which di-generate-candidates reads; none
+  // without the grid.
+  std::optional<graph::BufferHandle> lightGrid;
 
   gpu::DiPassConstants passConstants(bool historyValid = false) const {
     return {frame.constantsAddress, constants, historyValid ? 1u : 0u, 0u};

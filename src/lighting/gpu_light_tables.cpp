@@ -56,6 +56,8 @@ GpuLightTables::GpuLightTables(vk::Context& context, const GpuScene& gpuScene, c
   block.localLightCount = lights.localLightCount();
   block.distantLightCount = uint32_t(distant.size());
   block_ = upload(context, std::span<const gpu::LightTables>(&block, 1), "gi.lights");
+  localLightCount_ = block.localLightCount;
+  distantLightCount_ = block.distantLightCount;
 }
 
 }  // namespace bounce

@@ -39,8 +39,12 @@ class GpuLightTables {
 
   // The gpu::LightTables block (shared/lighting_io.h).
   VkDeviceAddress address() const { return block_.address(); }
+  // Emissive triangles and punctual lights; distant lights without the sun.
+  uint32_t localLightCount() const { return localLightCount_; }
+  uint32_t distantLightCount() const { return distantLightCount_; }
 
  private:
+  uint32_t localLightCount_ = 0, distantLightCount_ = 0;
   vk::Buffer emissiveTriangles_, punctualLights_, lightAlias_, distantLights_,
       materialLightAreaPdf_;
   vk::Buffer block_;
