@@ -125,7 +125,8 @@ TEST(DiLightGrid, Rgb9e5KeepsPositiveChannelsPositive) {
 }
 
 // Issue 20's unbiased test with the grid as the candidate source: manylights (64 point lights in
-// a room), threshold 0 so the grid is on, cells of 0.5 m (the room is ~10 m: cells differ), the
+// a room), threshold 0 so the grid is on, 16^3 cells of 0.5 m with 8 slots (the room is ~10 m:
+// cells differ, and points beyond the 8 m grid take the alias table's candidates only), the
 // unbiased configuration, 16 independent runs x 4 frames against the reference with one
 // scattering event in 8 batches of 128 spp. A wrong MIS weight between grid and alias
 // candidates, or a slot's W taken for a pdf, shifts block means by many standard errors.
@@ -139,7 +140,8 @@ TEST(DiLightGrid, UnbiasedWithTheGridMatchesDirectLightReference) {
   DiSettings di = DiSettings::unbiasedConfiguration();
   di.lightGridThreshold = 0;
   di.lightGridCellSize = 0.5f;
-  di.lightGridCellsX = di.lightGridCellsY = di.lightGridCellsZ = 24;
+  di.lightGridCellsX = di.lightGridCellsY = di.lightGridCellsZ = 16;
+  di.lightGridSlots = 8;
   HybridFrame frame(context, gpuScene, scene, diSettings(width, height, di));
   frame.requestDebugView("di-shade");
   BlockMeans hybrid;
