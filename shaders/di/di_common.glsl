@@ -140,18 +140,28 @@ float diSelectionPdf(uint light) {
   return local * LightAliasArray(lightTables.lightAlias).v[light].pmf;
 }
 
-// One light candidate from a, its u (quantised as the reservoir stores it) from b; DI_NO_LIGHT
+// One light candidate from a, its u (quantised as the reservoir stores it) from b, and the
+// probability diSelectionPdf gives it (without a second load of its alias entry); DI_NO_LIGHT
 // when the scene has no lights.
-uint sampleDiLight(vec4 a, vec2 b, out vec2 u) {
+uint sampleDiLight(vec4 a, vec2 b, out vec2 u, out float pdf) {
   u = unpackUnorm2x16(packUnorm2x16(b));
+  pdf = 0.0;
   float local = diLocalPick();
   if (a.x < local) {
     float pmf;
-    return pickLocalLight(a.yz, pmf);
+    uint light = pickLocalLight(a.yz, pmf);
+    pdf = local * pmf;
+    return light;
   }
   uint n = lightTables.distantLightCount;
   if (n == 0u) return DI_NO_LIGHT;
+  pdf = (1.0 - local) / float(n);
   return DI_LIGHT_DISTANT | min(uint(a.w * float(n)), n - 1u);
+}
+
+uint sampleDiLight(vec4 a, vec2 b, out vec2 u) {
+  float pdf;
+  return sampleDiLight(a, b, u, pdf);
 }
 
 // A sample's integrand at a shading point (restir_di_io.h): f cos L G |dy/du|, unshadowed, and
@@ -177,8 +187,13 @@ DiLight noDiLight() {
 }
 
 // The light's radiance times the geometry term and |dy/du| (before the BRDF), filling in the
-// direction; zero where the light does not reach x.
-vec3 diIncidentLight(uint light, vec2 u, vec3 x, inout DiLight l) {
+// direction; zero where the light does not reach x. An emissive triangle's radiance is, when
+// `exact`, its emissive texture at the point with its alpha test (di-shade's integrand), else its
+// material's mean emission (GpuEmissiveTriangle::meanEmission): the target functions use that,
+// which spares every candidate the geometry, material, vertex and texture fetches. A target only
+// has to be positive wherever the integrand is (the mean of an emitter's emission is), so the
+// estimate stays unbiased; it is only less well matched on strongly textured emitters.
+vec3 diIncidentLight(uint light, vec2 u, vec3 x, bool exact, inout DiLight l) {
   if ((light & DI_LIGHT_DISTANT) != 0u) {
     uint k = light & ~DI_LIGHT_DISTANT;
     if (k >= lightTables.distantLightCount) return vec3(0.0);
@@ -213,26 +228,35 @@ vec3 diIncidentLight(uint light, vec2 u, vec3 x, inout DiLight l) {
   l.shadowTarget = offsetRayOrigin(y, e.frontNormal);
   float cosLight = -dot(e.frontNormal, l.direction);
   if (cosLight <= 0.0) return vec3(0.0);
-  GpuGeometry g = sceneGeometry(e.geometry);
-  GpuMaterial m = sceneMaterial(g.material);
-  // Cut-out parts of an alpha-tested emitter are not there (as lights.glsl).
-  if ((m.flags & (MATERIAL_ALPHA_MASK | MATERIAL_ALPHA_BLEND)) != 0u && !alphaAccepts(e.geometry, e.primitive, b))
-    return vec3(0.0);
-  vec3 radiance = materialEmission(m, interpolateUv(triangleVertices(g, e.primitive), b));
+  vec3 radiance = decodeRgb9e5(e.meanEmission);
+  if (exact) {
+    GpuGeometry g = sceneGeometry(e.geometry);
+    GpuMaterial m = sceneMaterial(g.material);
+    // Cut-out parts of an alpha-tested emitter are not there (as lights.glsl).
+    if ((m.flags & (MATERIAL_ALPHA_MASK | MATERIAL_ALPHA_BLEND)) != 0u && !alphaAccepts(e.geometry, e.primitive, b))
+      return vec3(0.0);
+    radiance = materialEmission(m, interpolateUv(triangleVertices(g, e.primitive), b));
+  }
   // Area measure to u: |dy/du| = area.
   l.solidAngleToU = cosLight * e.area / distanceSq;
   return radiance * l.solidAngleToU;
 }
 
-DiLight evaluateDiLight(DiSurface s, uint light, vec2 u) {
+DiLight evaluateDiLightAs(DiSurface s, uint light, vec2 u, bool exact) {
   DiLight l = noDiLight();
   if (light == DI_NO_LIGHT || !s.valid) return l;
-  vec3 incident = diIncidentLight(light, u, s.position, l);
+  vec3 incident = diIncidentLight(light, u, s.position, exact, l);
   if (!any(greaterThan(incident, vec3(0.0))) || dot(l.direction, s.geometricNormal) <= 0.0) return l;
   vec3 f = brdfEvaluate(s.brdf, s.normal, s.wo, l.direction);
   l.contribution = f * max(dot(s.normal, l.direction), 0.0) * incident;
   return l;
 }
+
+// What the target functions see (the emitters' mean emission, above).
+DiLight evaluateDiLight(DiSurface s, uint light, vec2 u) { return evaluateDiLightAs(s, light, u, false); }
+
+// The integrand itself (di-shade).
+DiLight evaluateDiLightExact(DiSurface s, uint light, vec2 u) { return evaluateDiLightAs(s, light, u, true); }
 
 // The target function p_hat: the luminance of the unshadowed integrand.
 float diTarget(DiLight l) {

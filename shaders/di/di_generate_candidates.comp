@@ -1,14 +1,18 @@
 // di-generate-candidates: each pixel's initial reservoir by resampled importance sampling
 // (Talbot 2005; Bitterli et al. 2020, Alg. 3) over DiConstants::lightCandidates light candidates
-// drawn by power (the alias table; distant lights uniformly) and DiConstants::brdfCandidates
-// BRDF-sampled candidates (di_brdf_candidate.glsl): candidate i gets the balance-heuristic weight
-// p_hat(y_i) / (M_L p_L(y_i) + M_B p_B(y_i)), the kept one y has W = (sum of weights) / p_hat(y)
-// and M = 1.
+// drawn by power (the alias table; distant lights uniformly) or, with the light grid, most of
+// them from the pixel's grid cell (di/light_grid.glsl): candidate i gets the weight
+// p_hat(y_i) m_i(y_i) W_i (with the alias table alone: p_hat(y_i) / (M p(y_i))). Without the
+// grid, DiConstants::brdfCandidates BRDF-sampled candidates join (di_brdf_candidate.glsl), and
+// every candidate gets the balance-heuristic weight p_hat(y_i) / (M_L p_L(y_i) + M_B p_B(y_i)).
+// (With the grid the light strategy's density is not known, only each slot's RIS weight, so the
+// host turns the BRDF candidate off there: RestirDi's makeConstants.) The kept one y has
+// W = (sum of weights) / p_hat(y) and M = 1.
 // Then one shadow ray for y (RTXDI's initial visibility): an occluded y keeps M but W = 0, so
 // that reuse does not spread a light this pixel cannot see.
 #version 460
 #include "di/di_brdf_candidate.glsl"
-#include "di/di_common.glsl"
+#include "di/light_grid.glsl"
 
 layout(local_size_x = DI_GROUP_SIZE, local_size_y = DI_GROUP_SIZE) in;
 
@@ -19,18 +23,31 @@ DiReservoir resampleCandidates(FrameConstants f, DiConstants di, DiSurface s, iv
   DiReservoir r = emptyDiReservoir();
   float weightSum = 0.0;
   target = 0.0;
-  float count = float(di.lightCandidates);
-  [[dont_unroll]] for (uint i = 0u; i < di.lightCandidates; ++i) {
-    vec4 a = diRandom(key);
-    vec4 b = diRandom(key);
-    vec2 u;
-    uint light = sampleDiLight(a, b.xy, u);
-    float pdf = diSelectionPdf(light);
-    DiLight l = light != DI_NO_LIGHT && pdf > 0.0 ? evaluateDiLight(s, light, u) : noDiLight();
-    if (diStream(r, weightSum, light, u, diCandidateWeight(di, s, l, count * pdf), 0.0, b.z))
-      target = diTarget(l);
-  }
-  if (di.brdfCandidates > 0u) {
+  if (di.brdfCandidates == 0u) {
+    // Light candidates only: from the grid's cell where there is a grid, else the alias table.
+    DiGridLookup grid = diLightGridLookup(f, di, s.position, diRandom(key).xyz);
+    [[dont_unroll]] for (uint i = 0u; i < di.lightCandidates; ++i) {
+      vec4 a = diRandom(key);
+      vec4 b = diRandom(key);
+      vec2 u;
+      float sourceWeight;
+      uint light = diSampleLightCandidate(grid, i, a, b.xy, u, sourceWeight);
+      float pHat = sourceWeight > 0.0 ? diTarget(evaluateDiLight(s, light, u)) : 0.0;
+      if (diStream(r, weightSum, light, u, pHat * sourceWeight, 0.0, b.z)) target = pHat;
+    }
+  } else {
+    // Alias-table and BRDF candidates, weighted by the balance heuristic over both strategies.
+    float count = float(di.lightCandidates);
+    [[dont_unroll]] for (uint i = 0u; i < di.lightCandidates; ++i) {
+      vec4 a = diRandom(key);
+      vec4 b = diRandom(key);
+      vec2 u;
+      uint light = sampleDiLight(a, b.xy, u);
+      float pdf = diSelectionPdf(light);
+      DiLight l = light != DI_NO_LIGHT && pdf > 0.0 ? evaluateDiLight(s, light, u) : noDiLight();
+      if (diStream(r, weightSum, light, u, diCandidateWeight(di, s, l, count * pdf), 0.0, b.z))
+        target = diTarget(l);
+    }
     vec2 u;
     uint light = sampleDiBrdfCandidate(di, s, diRandom(key), u);
     DiLight l = evaluateDiLight(s, light, u);

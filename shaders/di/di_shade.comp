@@ -1,6 +1,7 @@
 // di-shade: the direct light of every sampled light at each pixel (DESIGN.md §4 step 3): the
 // chain's last reservoir's sample y, its unshadowed integrand with the full glTF BRDF (diffuse
-// and specular lobes, common/brdf.glsl) times its contribution weight W, times one final shadow
+// and specular lobes, common/brdf.glsl) and the emitter's exact (textured, alpha-tested)
+// emission, where the targets took its mean (di_common.glsl), times its contribution weight W, times one final shadow
 // ray (RTXDI's final visibility). Writes di.radiance, which composite adds, and
 // di.reservoir-info for the debug views.
 #version 460
@@ -24,7 +25,7 @@ void main() {
   vec3 radiance = vec3(0.0);
   float visibility = -1.0;
   if (s.valid && r.W > 0.0) {
-    DiLight l = evaluateDiLight(s, r.light, r.u);
+    DiLight l = evaluateDiLightExact(s, r.light, r.u);
     if (any(greaterThan(l.contribution, vec3(0.0)))) {
       bool visible = diVisible(s, l);
       visibility = visible ? 1.0 : 0.0;

@@ -29,12 +29,18 @@ ivec2 neighbourPixel(ivec2 pixel, float radius, vec2 u) {
 }
 
 // Z of the kept sample: the M of every input whose target at its own pixel is positive for it.
+// The input the sample came from (`kept`, -1: this pixel's own) needs no evaluation in the basic
+// correction: its reservoir holds the sample with W > 0, so its target there was positive.
 float normalisation(FrameConstants f, DiConstants di, DiReservoir r, float ownM, ivec2 neighbours[MAX_DI_SPATIAL_SAMPLES],
-                    float neighbourM[MAX_DI_SPATIAL_SAMPLES], uint count) {
+                    float neighbourM[MAX_DI_SPATIAL_SAMPLES], uint count, int kept) {
   float Z = ownM;
   bool traced = (di.flags & DI_FLAG_UNBIASED) != 0u;
   [[dont_unroll]] for (uint i = 0u; i < count; ++i) {
     if (!(neighbourM[i] > 0.0)) continue;
+    if (!traced && int(i) == kept) {
+      Z += neighbourM[i];
+      continue;
+    }
     DiSurface q = loadDiSurface(f, neighbours[i]);
     DiLight l = evaluateDiLight(q, r.light, r.u);
     if (diTarget(l) > 0.0 && (!traced || diVisible(q, l))) Z += neighbourM[i];
@@ -54,6 +60,7 @@ void main() {
   if (s.valid) {
     uvec4 key = diRandomKey(f, di, pixel, RANDOM_DI_SPATIAL);
     float weightSum = 0.0, target = 0.0;
+    int kept = -1;
     float ownTarget = diTarget(evaluateDiLight(s, own.light, own.u));
     if (diStream(r, weightSum, own.light, own.u, ownTarget * own.W * own.M, own.M, diRandom(key).x))
       target = ownTarget;
@@ -70,9 +77,12 @@ void main() {
       DiReservoir n = unpackDiReservoir(imageLoad(reservoirs, neighbours[i]));
       neighbourM[i] = n.M;
       float t = diTarget(evaluateDiLight(s, n.light, n.u));
-      if (diStream(r, weightSum, n.light, n.u, t * n.W * n.M, n.M, u.z)) target = t;
+      if (diStream(r, weightSum, n.light, n.u, t * n.W * n.M, n.M, u.z)) {
+        target = t;
+        kept = int(i);
+      }
     }
-    float Z = r.light == DI_NO_LIGHT ? 0.0 : normalisation(f, di, r, own.M, neighbours, neighbourM, count);
+    float Z = r.light == DI_NO_LIGHT ? 0.0 : normalisation(f, di, r, own.M, neighbours, neighbourM, count, kept);
     r.W = diContributionWeight(weightSum, target, Z);
   }
   imageStore(reservoirOut, pixel, packDiReservoir(r));

@@ -41,6 +41,13 @@ uint pickLocalLight(vec2 u, out float pmf) {
   return chosen;
 }
 
+// GpuEmissiveTriangle::meanEmission (RGB9E5: three 9-bit mantissas, a 5-bit exponent biased by
+// 15; EXT_texture_shared_exponent; encoded by src/lighting/light_table.cpp).
+vec3 decodeRgb9e5(uint bits) {
+  float scale = exp2(float(int(bits >> 27u) - 24));
+  return vec3(uvec3(bits, bits >> 9u, bits >> 18u) & uvec3(511u)) * scale;
+}
+
 // A uniform point on the triangle (Shirley's square-root warp; Pharr et al., PBRT 3rd ed.
 // §13.6.4): barycentrics (b1, b2) of v1 and v2.
 vec2 uniformTriangleBarycentrics(vec2 u) {

@@ -20,7 +20,10 @@ BOUNCE_BEGIN_SHARED
 // (glTF front face; instances that mirror are accounted for), so the triangle emits towards a
 // point x when dot(frontNormal, x - p0) > 0. geometry (global) and primitive locate the
 // triangle's vertices for the emissive texture; a point p0 + b1 edge1 + b2 edge2 has the
-// barycentric weights (b1, b2) of v1 and v2 as the tracer reports them.
+// barycentric weights (b1, b2) of v1 and v2 as the tracer reports them. meanEmission is its
+// material's mean emitted radiance (emissive factor x the mean of its emissive texture, what
+// selection weighs it by) as RGB9E5 (shared exponent, decodeRgb9e5 in lighting/lights.glsl): a
+// light's cheap estimate for target functions that must not fetch its texture (ReSTIR DI).
 struct GpuEmissiveTriangle {
   vec3 p0;
   uint geometry;
@@ -29,7 +32,7 @@ struct GpuEmissiveTriangle {
   vec3 edge2;
   float area;
   vec3 frontNormal;
-  float pad0;
+  uint meanEmission;
 };
 BOUNCE_CHECK_SIZE(GpuEmissiveTriangle, 64);
 

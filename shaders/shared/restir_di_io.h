@@ -49,10 +49,11 @@ struct DiConstants {
   uint spatialSamples;       // di-spatial: neighbours per pixel
   uint disocclusionSamples;  // ... where the temporal reservoir's M is below disocclusionM
   float disocclusionM;
-  float spatialRadius;  // pixels
-  uint seed;            // mixed into every random number of the chain
+  float spatialRadius;      // pixels
+  uint seed;                // mixed into every random number of the chain
+  DeviceAddress lightGrid;  // DiLightGrid (shared/di_light_grid_io.h); 0: no grid
 };
-BOUNCE_CHECK_SIZE(DiConstants, 64);
+BOUNCE_CHECK_SIZE(DiConstants, 72);
 
 // Push constants of every DI pass.
 struct DiPassConstants {

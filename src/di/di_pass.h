@@ -1,6 +1,7 @@
 // What the passes of the ReSTIR DI chain share: the pass shape, this frame's facts and the
 // GBuffer inputs every pass binds (shared/restir_di_io.h).
 #pragma once
+#include <optional>
 #include <string>
 
 #include "passes/frame_context.h"
@@ -33,6 +34,9 @@ struct DiFrame {
   VkDeviceAddress constants = 0;  // gpu::DiConstants
   graph::BufferHandle lights;     // di.lights: the light tables every pass reads
   bool dropHistory = false;       // di-temporal ignores its history (a light switched on)
+  // di-light-grid's slots (DiConstants::lightGrid's), which di-generate-candidates reads; none
+  // without the grid.
+  std::optional<graph::BufferHandle> lightGrid;
 
   gpu::DiPassConstants passConstants(bool historyValid = false) const {
     return {frame.constantsAddress, constants, historyValid ? 1u : 0u, 0u};

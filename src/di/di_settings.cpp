@@ -34,6 +34,24 @@ void validate(const DiSettings& s) {
     fail("DI disocclusion M {}: must be >= 0", s.disocclusionM);
   if (!(s.spatialRadius >= 1.0f && s.spatialRadius <= 256.0f))
     fail("DI spatial radius {} pixels: expected 1 to 256", s.spatialRadius);
+  for (uint32_t cells : {s.lightGridCellsX, s.lightGridCellsY, s.lightGridCellsZ})
+    if (cells < 1 || cells > 128)
+      fail("DI light grid: {} cells along an axis: expected 1 to 128", cells);
+  if (!(s.lightGridCellSize >= 0.0f) || !std::isfinite(s.lightGridCellSize))
+    fail("DI light grid cell size {}: must be >= 0 (0: automatic)", s.lightGridCellSize);
+  if (s.lightGridSlots < 1 || s.lightGridSlots > 1024)
+    fail("DI light grid slots {}: expected 1 to 1024", s.lightGridSlots);
+  if (uint64_t(s.lightGridCellsX) * s.lightGridCellsY * s.lightGridCellsZ * s.lightGridSlots >
+      (uint64_t(1) << 22))
+    fail("DI light grid: {}x{}x{} cells of {} slots: at most 4,194,304 slots", s.lightGridCellsX,
+         s.lightGridCellsY, s.lightGridCellsZ, s.lightGridSlots);
+  if (s.lightGridBuildCandidates < 1 || s.lightGridBuildCandidates > 64)
+    fail("DI light grid build candidates {}: expected 1 to 64", s.lightGridBuildCandidates);
+  if (s.lightGridCandidates >= s.lightCandidates && s.lightCandidates > 1)
+    fail(
+        "DI light grid candidates {}: at most {} (one of the {} light candidates stays the alias "
+        "table's)",
+        s.lightGridCandidates, s.lightCandidates - 1, s.lightCandidates);
   if (s.unbiased && !s.candidateVisibility)
     fail(
         "DI unbiased configuration without candidate visibility: the ray-traced correction "

@@ -52,6 +52,32 @@ struct DiSettings {
   uint32_t disocclusionSamples = 3;
   float disocclusionM = 4.0f;
   float spatialRadius = 32.0f;
+  // The world-space light grid (ReGIR; di-light-grid, shaders/di/light_grid.glsl, docs/di.md):
+  // the candidate source from lightGridThreshold local lights on (the power alias table alone
+  // below it, e.g. manylights' 64: a power-proportional draw already finds a room's lights, and
+  // the grid's build would cost more than it saves). Above it, a point sees a few of many lights
+  // (city by night: 3,072), which the grid's cells find. 0: always the grid; a huge value:
+  // never.
+  uint32_t lightGridThreshold = 512;
+  // Cells along x, y and z (glTF's y is up: fewer cells), 1 to 128 each; a camera-centred box
+  // of cubic cells of lightGridCellSize world units (0: the scene bounds' largest extent / 128,
+  // so the grid spans a quarter of the scene across and the cells are 5 m in `city`). Outside it
+  // every candidate comes from the alias table. More or smaller cells: closer to each point's
+  // own lights, more build work (cells x slots x build candidates target evaluations).
+  uint32_t lightGridCellsX = 32;
+  uint32_t lightGridCellsY = 16;
+  uint32_t lightGridCellsZ = 32;
+  float lightGridCellSize = 0.0f;
+  // Light reservoirs per cell (RTXDI 512, GI-1.0 64; 1 to 1024): each is one light chosen by RIS
+  // over lightGridBuildCandidates (1 to 64) power-drawn lights with the cell's target. More
+  // slots: more distinct lights per cell; more build candidates: each slot closer to the cell's
+  // target.
+  uint32_t lightGridSlots = 16;
+  uint32_t lightGridBuildCandidates = 8;
+  // Of the lightCandidates, how many come from the pixel's cell; the rest from the alias table,
+  // which reaches every light, so the estimate stays unbiased where the cell's bound misses one
+  // (ReGIR's fallback; light_grid.glsl). At least one candidate always stays the alias table's.
+  uint32_t lightGridCandidates = 6;
   // Ray-traced bias correction in di-spatial (--di-unbiased): a shadow ray per neighbour to
   // count only the neighbours that could have produced the kept sample (Bitterli et al. 2020,
   // Alg. 6). Off (default, RTXDI's "basic"): no rays; slightly dark near shadow edges.

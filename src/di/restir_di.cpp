@@ -6,12 +6,17 @@ namespace bounce {
 
 namespace {
 
-gpu::DiConstants makeConstants(const DiSettings& s, const GpuLightTables& lights) {
+gpu::DiConstants makeConstants(const DiSettings& s, const GpuLightTables& lights,
+                               VkDeviceAddress lightGrid) {
   gpu::DiConstants c{};
   c.lights = lights.address();
   c.hitMap = lights.emissiveHitMap();
-  // A BRDF ray can only meet emissive triangles: none, no ray.
-  c.brdfCandidates = lights.table().emissiveTriangles.empty() ? 0 : s.brdfCandidates;
+  c.lightGrid = lightGrid;
+  // A BRDF ray can only meet emissive triangles: none, no ray. With the light grid the light
+  // candidates' density, which the BRDF candidate's MIS weight needs, is unknown: no ray either
+  // (di_generate_candidates.comp).
+  c.brdfCandidates =
+      lights.table().emissiveTriangles.empty() || lightGrid != 0 ? 0 : s.brdfCandidates;
   c.flags = 0;
   if (s.reuses()) c.flags |= gpu::DI_FLAG_TEMPORAL;
   if (s.reuses() && (s.spatialSamples > 0 || s.disocclusionSamples > 0))
@@ -34,20 +39,22 @@ gpu::DiConstants makeConstants(const DiSettings& s, const GpuLightTables& lights
 
 RestirDi::RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& scene,
                    const DiSettings& settings)
-    : settings_(settings),
-      lights_(context, gpuScene, scene, /*updatable=*/true),
-      candidates_(context, gpuScene),
-      shade_(context, gpuScene) {
+    : settings_(settings), lights_(context, gpuScene, scene, /*updatable=*/true) {
   if (!settings.enabled()) fail("ReSTIR DI: built with --di off");
   validate(settings);
-  const gpu::DiConstants c = makeConstants(settings, lights_);
+  lightState_ = scene.lights;
+  if (lights_.localLightCount() == 0 && lights_.distantLightCount() == 0) return;
+  if (lights_.localLightCount() >= settings.lightGridThreshold)
+    grid_.emplace(context, gpuScene, settings, gpuScene.bounds());
+  candidates_.emplace(context, gpuScene);
+  shade_.emplace(context, gpuScene);
+  const gpu::DiConstants c = makeConstants(settings, lights_, grid_ ? grid_->address() : 0);
   constants_ = vk::uploadBuffer(context, std::as_bytes(std::span(&c, 1)),
                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "di.constants");
   if (settings.reuses()) {
     temporal_.emplace(context, gpuScene);
     if (c.flags & gpu::DI_FLAG_SPATIAL) spatial_.emplace(context, gpuScene);
   }
-  lightState_ = scene.lights;
 }
 
 void RestirDi::setLights(std::span<const PunctualLight> lights) {
@@ -67,25 +74,30 @@ void RestirDi::instancesMoved() {
 }
 
 uint32_t RestirDi::pipelineCount() const {
-  return 2 + (temporal_ ? 1 : 0) + (spatial_ ? 1 : 0);
+  if (!hasLights()) return 0;
+  return 2 + (grid_ ? 1 : 0) + (temporal_ ? 1 : 0) + (spatial_ ? 1 : 0);
 }
 
 // The chain, top to bottom (see the header).
 DirectLight RestirDi::declare(graph::FrameGraph& graph, const FrameContext& frame,
                               const GBuffer& gbuffer) {
+  if (!hasLights()) fail("ReSTIR DI: the scene has no lights; the frame runs no DI pass");
   DiFrame f{frame, gbuffer, constants_.address()};
   f.lights = graph.importBuffer("di.lights", graph::ImportedBuffer::from(lights_.buffer()));
   f.dropHistory = dropHistory_;
-  dropHistory_ = false;
+  // The flag is cleared when the frame runs, not here: a frame may be declared and never run
+  // (the pass names for --view).
   graph.addPass("di-lights-update", graph::QueueKind::Compute)
       .write(f.lights, graph::Access::TransferDst)
       .record([this](VkCommandBuffer cmd, const graph::PassResources&) {
         lights_.recordUpload(cmd);  // nothing when no light changed
+        dropHistory_ = false;
       });
-  graph::ImageHandle reservoirs = candidates_.declare(graph, f);
+  if (grid_) f.lightGrid = grid_->declare(graph, f);
+  graph::ImageHandle reservoirs = candidates_->declare(graph, f);
   if (temporal_) reservoirs = temporal_->declare(graph, f, reservoirs);
   if (spatial_) reservoirs = spatial_->declare(graph, f, reservoirs);
-  return shade_.declare(graph, f, reservoirs);
+  return shade_->declare(graph, f, reservoirs);
 }
 
 }  // namespace bounce

@@ -1,15 +1,18 @@
 // ReSTIR DI (seed 002's "ReSTIR Direct"; DESIGN.md §4 step 3; docs/di.md): every light of the
 // scene's light tables (KHR point, spot and directional lights, emissive triangles) sampled and
-// shadowed at the primary vertex by resampling, a straight chain of four passes:
+// shadowed at the primary vertex by resampling, a straight chain of passes:
 //
+//   di-light-grid           (many lights only) the world-space light grid around the camera
 //   di-generate-candidates  RIS over DiSettings::lightCandidates candidates + 1 shadow ray
 //   di-temporal             + last frame's reservoir at the reprojected pixel (M <= 20)
 //   di-spatial              + 1-3 neighbours within 32 px, bias correction
 //   di-shade                the final sample with the full BRDF and a shadow ray: di.radiance
 //
-// DiMode::Uniform declares only the first and the last (no reuse). The sun is not among the
-// lights: its dedicated soft-shadow pass (shadows-trace, shadows-denoise) shades it with one
-// cone sample per pixel and a denoiser, which one light does not need resampling for.
+// DiMode::Uniform declares only the candidates and the shade (no reuse). The sun is not among
+// the lights: its dedicated soft-shadow pass (shadows-trace, shadows-denoise) shades it with one
+// cone sample per pixel and a denoiser, which one light does not need resampling for. A scene
+// without any of these lights runs no DI pass at all (hasLights(); the frame then drops its
+// RestirDi and composite reads no DI).
 //
 // The GI and reflection rays of the frame skip the emission of every emitter DI samples
 // (FRAME_FLAG_DI_LIGHTS: the light tables' materials with materialLightAreaPdf > 0), so that
@@ -31,6 +34,7 @@
 #include <vector>
 
 #include "di/di_generate_candidates.h"
+#include "di/di_light_grid.h"
 #include "di/di_settings.h"
 #include "di/di_shade.h"
 #include "di/di_spatial.h"
@@ -41,9 +45,15 @@ namespace bounce {
 
 class RestirDi {
  public:
-  // `settings` must be enabled() and valid.
+  // `settings` must be enabled() and valid. Compiles no pipeline when the scene has no lights.
   RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& scene,
            const DiSettings& settings);
+
+  // Whether the light tables hold any light (local or distant; the sun is not DI's): without,
+  // every pass would find nothing, so the frame runs none (and declare() must not be called).
+  bool hasLights() const { return candidates_.has_value(); }
+  // Whether di-light-grid runs (at least DiSettings::lightGridThreshold local lights).
+  bool usesLightGrid() const { return grid_.has_value(); }
 
   DirectLight declare(graph::FrameGraph& graph, const FrameContext& frame, const GBuffer& gbuffer);
 
@@ -63,12 +73,13 @@ class RestirDi {
   DiSettings settings_;
   GpuLightTables lights_;
   std::vector<PunctualLight> lightState_;  // the lights as last set
-  bool dropHistory_ = false;               // for the next frame
+  bool dropHistory_ = false;               // for the next frame that runs
   vk::Buffer constants_;                   // gpu::DiConstants
-  DiGenerateCandidatesPass candidates_;
+  std::optional<DiLightGridPass> grid_;    // from lightGridThreshold local lights on
+  std::optional<DiGenerateCandidatesPass> candidates_;
   std::optional<DiTemporalPass> temporal_;  // DiMode::Restir only
   std::optional<DiSpatialPass> spatial_;    // DiMode::Restir with spatial samples
-  DiShadePass shade_;
+  std::optional<DiShadePass> shade_;
 };
 
 }  // namespace bounce

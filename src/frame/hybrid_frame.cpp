@@ -91,7 +91,12 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
   nearPlane_ = std::max(1e-4f, 1e-4f * radius);
 
   gi_ = makeDiffuseGi(context, gpuScene, scene, settings);
-  if (settings.di.enabled()) di_.emplace(context, gpuScene, scene, settings.di);
+  if (settings.di.enabled()) {
+    di_.emplace(context, gpuScene, scene, settings.di);
+    // No light for DI: no DI pass runs and composite reads none (as with --di off, whose
+    // unshadowed loop then has no light either).
+    if (!di_->hasLights()) di_.reset();
+  }
   if (settings.autoExposure) autoExposure_.emplace(context, gpuScene, settings.exposure);
   if (settings.reflections.reuseEnabled())
     reflectionsReuse_.emplace(context, gpuScene, specularAlbedo_, settings.reflections);

@@ -170,7 +170,7 @@ class HybridFrame {
   TonemapPass tonemap_;
   vk::GpuTimer timer_;
   std::unique_ptr<DiffuseGi> gi_;  // nullptr for --gi none
-  std::optional<RestirDi> di_;     // DiSettings::enabled()
+  std::optional<RestirDi> di_;     // DiSettings::enabled() and RestirDi::hasLights()
   graph::FrameGraph graph_;        // after what it imports: destroyed first
 
   gpu::FrameConstants constants_{};

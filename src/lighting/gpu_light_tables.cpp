@@ -76,6 +76,8 @@ GpuLightTables::GpuLightTables(vk::Context& context, const GpuScene& gpuScene, c
   hitMap_ = buildEmissiveHitMap(table_, gpuScene.bvh());
   const Layout layout = layoutOf(table_, distantWithoutSun(table_, scene).size(), hitMap_.size());
   hitMapOffset_ = layout.hitMap;
+  localLightCount_ = table_.localLightCount();
+  distantLightCount_ = uint32_t(distantWithoutSun(table_, scene).size());
   tables_ = vk::Buffer(context, layout.size,
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                        vk::MemoryUse::DeviceOnly, "gi.lights");

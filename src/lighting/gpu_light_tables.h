@@ -53,6 +53,9 @@ class GpuLightTables {
   // The one buffer holding the block and every array (for the frame graph).
   const vk::Buffer& buffer() const { return tables_; }
   const LightTable& table() const { return table_; }
+  // Emissive triangles and punctual lights; distant lights without the sun.
+  uint32_t localLightCount() const { return localLightCount_; }
+  uint32_t distantLightCount() const { return distantLightCount_; }
 
   // Updatable tables only: the lights' state from now on (the scene's lights, moved, dimmed or
   // switched; emissive triangles follow their instances' current transforms in the GpuScene's
@@ -78,6 +81,7 @@ class GpuLightTables {
   vk::Buffer tables_;
   vk::Buffer staging_;  // updatable tables only
   bool uploadPending_ = false;
+  uint32_t localLightCount_ = 0, distantLightCount_ = 0;
 };
 
 }  // namespace bounce

@@ -1,5 +1,6 @@
 #include "lighting/light_table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -66,6 +67,7 @@ gpu::GpuEmissiveTriangle placeEmissiveTriangle(const rt::SceneBvh& bvh,
 
 // Every emissive triangle of every instance, in world space.
 LocalLights gatherEmissiveTriangles(const Scene& scene, const rt::SceneBvh& bvh,
+                                    const std::vector<glm::vec3>& materialEmission,
                                     const std::vector<float>& materialLuminance) {
   LocalLights out;
   for (uint32_t i = 0; i < bvh.instances.size(); ++i) {
@@ -79,6 +81,7 @@ LocalLights gatherEmissiveTriangles(const Scene& scene, const rt::SceneBvh& bvh,
       for (uint32_t primitive = 0; primitive < g.triangleCount; ++primitive) {
         gpu::GpuEmissiveTriangle t = placeEmissiveTriangle(bvh, instance, global, primitive);
         if (!(t.area > 0.0f)) continue;  // no ray can hit it
+        t.meanEmission = encodeRgb9e5(materialEmission.at(g.material));
         out.triangles.push_back(t);
         out.trianglePower.push_back(kPi * double(t.area) * double(emittedLuminance));
         out.triangleInstance.push_back(i);
@@ -156,6 +159,35 @@ void setLocalPower(LightTable& table, const std::vector<double>& power) {
 
 }  // namespace
 
+// EXT_texture_shared_exponent's encoding (9-bit mantissas, a 5-bit exponent biased by 15). A
+// colour with a positive channel keeps a non-zero mantissa there, so that a light's estimate is
+// never 0 where the light emits (a target function must be positive wherever light arrives).
+uint32_t encodeRgb9e5(const glm::vec3& rgb) {
+  constexpr int kMantissaBits = 9, kBias = 15, kMaxExponent = 31;
+  const float largest = 511.0f / 512.0f * std::ldexp(1.0f, kMaxExponent - kBias);
+  glm::vec3 c = glm::clamp(rgb, glm::vec3(0.0f), glm::vec3(largest));
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(rgb[k])) c[k] = rgb[k] > 0.0f ? largest : 0.0f;
+  const float m = std::max(c.x, std::max(c.y, c.z));
+  if (!(m > 0.0f)) return 0u;
+  int exponent = std::max(-kBias - 1, int(std::floor(std::log2(m)))) + 1 + kBias;
+  float scale = std::ldexp(1.0f, exponent - kBias - kMantissaBits);
+  if (std::floor(m / scale + 0.5f) >= 512.0f) scale *= 2.0f, ++exponent;
+  uint32_t bits = uint32_t(exponent) << 27;
+  for (int k = 0; k < 3; ++k) {
+    uint32_t mantissa = uint32_t(std::min(std::floor(c[k] / scale + 0.5f), 511.0f));
+    if (c[k] > 0.0f) mantissa = std::max(mantissa, 1u);
+    bits |= mantissa << (9 * k);
+  }
+  return bits;
+}
+
+glm::vec3 decodeRgb9e5(uint32_t bits) {
+  const float scale = std::ldexp(1.0f, int(bits >> 27) - 15 - 9);
+  return glm::vec3(float(bits & 511u), float((bits >> 9) & 511u), float((bits >> 18) & 511u)) *
+         scale;
+}
+
 float luminance(const glm::vec3& rgb) {
   return 0.2126f * rgb.x + 0.7152f * rgb.y + 0.0722f * rgb.z;
 }
@@ -214,13 +246,15 @@ LightTable buildLightTable(const Scene& scene, const rt::SceneBvh& bvh,
                            const std::vector<bool>& unsampledMaterials) {
   LightTable table;
   std::vector<float> materialLuminance;
+  std::vector<glm::vec3> materialEmission;
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     bool unsampled = m < unsampledMaterials.size() && unsampledMaterials[m];
-    materialLuminance.push_back(unsampled ? 0.0f
-                                          : luminance(meanEmission(scene, scene.materials[m])));
+    materialEmission.push_back(unsampled ? glm::vec3(0.0f)
+                                         : meanEmission(scene, scene.materials[m]));
+    materialLuminance.push_back(luminance(materialEmission.back()));
   }
 
-  LocalLights emissive = gatherEmissiveTriangles(scene, bvh, materialLuminance);
+  LocalLights emissive = gatherEmissiveTriangles(scene, bvh, materialEmission, materialLuminance);
   table.emissiveTriangleInstance = std::move(emissive.triangleInstance);
   table.materialEmissiveArea.assign(scene.materials.size(), 0.0);
   for (const gpu::GpuEmissiveTriangle& t : emissive.triangles)
@@ -247,8 +281,10 @@ void updateLightTable(LightTable& table, std::span<const PunctualLight> lights,
   power.reserve(table.localLightCount());
   for (size_t i = 0; i < table.emissiveTriangles.size(); ++i) {
     gpu::GpuEmissiveTriangle& t = table.emissiveTriangles[i];
+    const uint32_t meanEmission = t.meanEmission;  // the material's: unchanged by a move
     t = placeEmissiveTriangle(bvh, bvh.instances.at(table.emissiveTriangleInstance[i]), t.geometry,
                               t.primitive);
+    t.meanEmission = meanEmission;
     const float emitted = table.materialLuminance.at(bvh.geometries.at(t.geometry).material);
     power.push_back(kPi * double(t.area) * double(emitted));
   }

@@ -35,6 +35,11 @@ struct LightTable {
   uint32_t localLightCount() const { return uint32_t(alias.size()); }
 };
 
+// Shared-exponent RGB (RGB9E5, EXT_texture_shared_exponent) in one word, as
+// GpuEmissiveTriangle::meanEmission stores it; a positive channel stays positive.
+uint32_t encodeRgb9e5(const glm::vec3& rgb);
+glm::vec3 decodeRgb9e5(uint32_t bits);
+
 // Rec. 709 luminance of linear RGB.
 float luminance(const glm::vec3& rgb);
 
