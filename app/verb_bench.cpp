@@ -298,7 +298,10 @@ nlohmann::json reportRun(const BenchOptions& o, const BenchRun& run, const RunRe
                            isCpuDevice(context) ? " (CPU: emulated GPU times)" : "");
   plot.xLabel = dayLabel(r.hours);
   plot.yLabel = fmt::format("GPU ms ({}-frame rolling average)", window);
-  plot.height = std::max(480, 90 + 16 * int(r.passes.size()));
+  plot.height = std::max(480, 110 + 16 * int(r.passes.size()));
+  // Night: the sun below the horizon (time_of_day.h: sunrise 6 h, sunset 18 h).
+  for (double h : r.hours) plot.shaded.push_back(h < 6.0 || h > 18.0);
+  plot.shadedLabel = "night (sun below the horizon)";
   nlohmann::json j = {{"preset", run.preset},
                       {"gi", run.gi},
                       {"width", settings.width},

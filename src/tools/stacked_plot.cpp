@@ -62,6 +62,9 @@ Layout layoutOf(const StackedPlot& plot) {
     if (s.values.size() != l.samples)
       fail("stacked plot '{}': series '{}' has {} samples, expected {}", plot.title, s.name,
            s.values.size(), l.samples);
+  if (!plot.shaded.empty() && plot.shaded.size() != l.samples)
+    fail("stacked plot '{}': {} shaded flags for {} samples", plot.title, plot.shaded.size(),
+         l.samples);
   l.right = plot.width - 250.0;  // the legend's column
   l.bottom = plot.height - 44.0;
   l.cumulative.assign(plot.series.size() + 1, std::vector<double>(l.samples, 0.0));
@@ -85,6 +88,20 @@ std::vector<size_t> xTicks(size_t samples) {
 }
 
 constexpr int kYTicks = 5;
+constexpr uint32_t kShadeColour = 0xdddddd;
+
+// Sample i's shaded flag covers x from halfway to its left neighbour to halfway to its right.
+bool shadedAt(const StackedPlot& plot, const Layout& l, double sample) {
+  if (plot.shaded.empty()) return false;
+  return plot.shaded[std::min(l.samples - 1, size_t(std::max(0.0, std::round(sample))))];
+}
+
+std::vector<std::string> legendNames(const StackedPlot& plot) {
+  std::vector<std::string> names;
+  for (size_t k = plot.series.size(); k-- > 0;) names.push_back(plot.series[k].name);
+  if (!plot.shaded.empty()) names.push_back(plot.shadedLabel);
+  return names;
+}
 
 // ---- SVG ----
 
@@ -118,6 +135,14 @@ std::string stackedPlotSvg(const StackedPlot& plot) {
       "{1}\" font-family=\"sans-serif\" font-size=\"12\">\n"
       "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
       plot.width, plot.height);
+  for (size_t i = 0; i < plot.shaded.size(); ++i)
+    if (plot.shaded[i]) {
+      const double x0 = std::max(l.left, l.x(double(i) - 0.5));
+      const double x1 = std::min(l.right, l.x(double(i) + 0.5));
+      svg += fmt::format(
+          "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\"/>\n", x0,
+          l.top, x1 - x0, l.bottom - l.top, hex(kShadeColour));
+    }
   // One polygon per series: along its upper curve, back along the lower one.
   for (size_t k = 0; k < plot.series.size(); ++k) {
     std::string points;
@@ -150,15 +175,16 @@ std::string stackedPlotSvg(const StackedPlot& plot) {
   svg +=
       fmt::format("<text x=\"{:.1f}\" y=\"18\" text-anchor=\"middle\" font-size=\"14\">{}</text>\n",
                   (l.left + l.right) / 2, escapeXml(plot.title));
-  // The legend reads top to bottom as the stack does.
-  for (size_t row = 0; row < plot.series.size(); ++row) {
+  // The legend reads top to bottom as the stack does, the shading last.
+  const std::vector<std::string> names = legendNames(plot);
+  for (size_t row = 0; row < names.size(); ++row) {
     const size_t k = plot.series.size() - 1 - row;
     const double y = l.top + 16.0 * double(row);
     svg += fmt::format(
         "<rect x=\"{0:.1f}\" y=\"{1:.1f}\" width=\"12\" height=\"12\" fill=\"{2}\"/>"
         "<text x=\"{3:.1f}\" y=\"{4:.1f}\">{5}</text>\n",
-        l.right + 12, y, hex(seriesColour(k)), l.right + 30, y + 10,
-        escapeXml(plot.series[k].name));
+        l.right + 12, y, hex(row < plot.series.size() ? seriesColour(k) : kShadeColour),
+        l.right + 30, y + 10, escapeXml(names[row]));
   }
   svg += "</svg>\n";
   return svg;
@@ -211,6 +237,8 @@ ImageRGBA32F stackedPlotImage(const StackedPlot& plot) {
     const double s = l.samples < 2 ? 0.0 : (px - l.left) / (l.right - l.left) * (l.samples - 1);
     const size_t i0 = std::min(size_t(s), l.samples - 1), i1 = std::min(i0 + 1, l.samples - 1);
     const double f = s - double(i0);
+    if (shadedAt(plot, l, s))
+      fillRect(image, px, l.top, px + 1, l.bottom, linearColour(kShadeColour));
     for (size_t k = 0; k < plot.series.size(); ++k) {
       const double lo = (1 - f) * l.cumulative[k][i0] + f * l.cumulative[k][i1];
       const double hi = (1 - f) * l.cumulative[k + 1][i0] + f * l.cumulative[k + 1][i1];
@@ -233,11 +261,13 @@ ImageRGBA32F stackedPlotImage(const StackedPlot& plot) {
   drawText(image, (l.left + l.right) / 2, plot.height - 16, plot.xLabel, 0.5);
   drawText(image, 8, l.top - 20, plot.yLabel);
   drawText(image, (l.left + l.right) / 2, 8, plot.title, 0.5);
-  for (size_t row = 0; row < plot.series.size(); ++row) {
+  const std::vector<std::string> names = legendNames(plot);
+  for (size_t row = 0; row < names.size(); ++row) {
     const size_t k = plot.series.size() - 1 - row;
     const double y = l.top + 16.0 * double(row);
-    fillRect(image, l.right + 12, y, l.right + 24, y + 12, linearColour(seriesColour(k)));
-    drawText(image, l.right + 30, y + 2, plot.series[k].name);
+    fillRect(image, l.right + 12, y, l.right + 24, y + 12,
+             linearColour(row < plot.series.size() ? seriesColour(k) : kShadeColour));
+    drawText(image, l.right + 30, y + 2, names[row]);
   }
   return image;
 }

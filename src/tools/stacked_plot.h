@@ -19,7 +19,11 @@ struct StackedPlot {
   std::string xLabel;  // the x axis runs over the sample index 0 .. n-1
   std::string yLabel;
   std::vector<PlotSeries> series;  // bottom to top; all of the same length (>= 1)
-  int width = 960;                 // pixels (SVG user units)
+  // Samples drawn on a grey background (the bench's night: the sun below the horizon); empty or
+  // of the series' length.
+  std::vector<bool> shaded;
+  std::string shadedLabel;  // its legend entry
+  int width = 960;          // pixels (SVG user units)
   int height = 480;
 };
 
