@@ -86,7 +86,8 @@ void checkArguments(const BenchOptions& o) {
   if (o.window < 1 || o.window > 1000) fail("--window {}: expected 1 to 1000 frames", o.window);
   if (o.contactFrames < 1 || o.contactFrames > 64)
     fail("--contact-frames {}: expected 1 to 64", o.contactFrames);
-  o.common.given.refuseTogether("--time-of-day", "--sun", "the day cycle sets the sun");
+  if (o.common.given.has("--sun"))
+    fail("bench: --sun cannot be used: the day cycle sets the sun (--time-of-day, --day-cycle)");
   requireWritableDirectory("--out", o.out);
 }
 

@@ -2,6 +2,8 @@
 // with every pass's series, the stacked plot (PNG and SVG) and the contact sheet.
 #include <filesystem>
 #include <fstream>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -74,6 +76,25 @@ TEST(Bench, SunroomWritesReportPlotAndContactSheet) {
   EXPECT_EQ(sheet.width, 4 * 160);
   EXPECT_EQ(sheet.height, 2 * 90);
   EXPECT_GT(test::meanLuminance(sheet), 0.01);
+}
+
+// Usage errors name the option and exit 1 before any scene is loaded or frame rendered.
+TEST(Bench, UsageErrorsAreRefusedBeforeAnyWork) {
+  const std::string dir = test::tempDir("bench-usage");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--preset mobile,desk", "did you mean desktop?"},
+      {"--gi evolve,cach", "did you mean cache?"},
+      {"--frames 0", "--frames 0"},
+      {"--sun 0,-1,0:3", "--sun cannot be used"},
+      {"--contact-frames 0", "--contact-frames"},
+  };
+  for (const auto& [args, message] : cases) {
+    const test::CommandResult r =
+        test::runCommand(test::bounceExe() + " bench " + args + " --out " + dir, 30);
+    EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+  }
+  EXPECT_FALSE(fs::exists(fs::path(dir) / "bench.json"));
 }
 
 }  // namespace
