@@ -228,8 +228,11 @@ RunRecord runFrames(const BenchOptions& o, const BenchRun& run, const Scene& sce
     record.frameWallMs.push_back(1e3 * secondsSince(frameStart));
     record.hours.push_back(day.hoursAt(t));
     const auto& picks = record.contactFrameIndices;
-    if (std::find(picks.begin(), picks.end(), i) != picks.end())
+    if (std::find(picks.begin(), picks.end(), i) != picks.end()) {
       record.contactTiles.push_back(contactTile(frame.debugViewImage("tonemap")));
+      drawLabel(record.contactTiles.back(), 2, 2,
+                fmt::format("frame {}, {:.1f} h", i, record.hours.back()));
+    }
     const double elapsed = secondsSince(start), perFrame = elapsed / double(i + 1);
     progress.draw(double(i + 1) / frames,
                   fmt::format("{} {}: {}/{} frames", run.preset, run.gi, i + 1, frames), elapsed,

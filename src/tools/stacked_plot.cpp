@@ -272,4 +272,11 @@ ImageRGBA32F stackedPlotImage(const StackedPlot& plot) {
   return image;
 }
 
+void drawLabel(ImageRGBA32F& image, int x, int y, const std::string& text) {
+  std::vector<char> chars(text.begin(), text.end());
+  chars.push_back('\0');
+  fillRect(image, x, y, x + stb_easy_font_width(chars.data()) + 4, y + 12, glm::vec4(1.0f));
+  drawText(image, x + 2, y + 2, text);
+}
+
 }  // namespace bounce

@@ -34,4 +34,9 @@ std::string stackedPlotSvg(const StackedPlot& plot);
 // cumulative curves, linearly interpolated between samples; text from stb_easy_font.
 ImageRGBA32F stackedPlotImage(const StackedPlot& plot);
 
+// A one-line label on an image (stb_easy_font's 6-pixel-wide letters), black on a white box so
+// that it reads on any picture; (x, y) is the box's top-left corner. For the bench's contact
+// sheet.
+void drawLabel(ImageRGBA32F& image, int x, int y, const std::string& text);
+
 }  // namespace bounce
