@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -50,6 +51,7 @@ struct BenchOptions {
   int64_t window = 9;             // seed 000's rolling average
   int64_t contactFrames = 8;
   std::string out = "out/bench";
+  std::string runsFile;  // JSON list of runs instead of the --preset x --gi product
 };
 
 // One preset x GI mode.
@@ -58,7 +60,33 @@ struct BenchRun {
   std::string gi;
 };
 
+// --runs FILE: {"runs": [{"preset": "mobile", "gi": "cache"}, ...]}, each field checked as the
+// options are.
+std::vector<BenchRun> runsFromFile(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) fail("--runs '{}': cannot open the file", path);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(file);
+  } catch (const nlohmann::json::exception& e) {
+    fail("--runs '{}': not valid JSON: {}", path, e.what());
+  }
+  if (!j.is_object() || !j.contains("runs") || !j["runs"].is_array() || j["runs"].empty())
+    fail("--runs '{}': expected {{\"runs\": [{{\"preset\": ..., \"gi\": ...}}, ...]}}", path);
+  std::vector<BenchRun> runs;
+  for (const nlohmann::json& run : j["runs"]) {
+    if (!run.is_object() || !run.value("preset", nlohmann::json()).is_string() ||
+        !run.value("gi", nlohmann::json()).is_string())
+      fail("--runs '{}': run {}: expected string fields \"preset\" and \"gi\"", path, runs.size());
+    runs.push_back({run["preset"].get<std::string>(), run["gi"].get<std::string>()});
+    requireOneOf("--runs preset", runs.back().preset, splitNames(presetNames()));
+    requireOneOf("--runs gi", runs.back().gi, splitNames(giModeNames()));
+  }
+  return runs;
+}
+
 std::vector<BenchRun> runsFrom(const BenchOptions& o) {
+  if (!o.runsFile.empty()) return runsFromFile(o.runsFile);
   std::vector<BenchRun> runs;
   const std::vector<std::string> presets = splitNames(o.presets), gis = splitNames(o.gis);
   if (presets.empty()) fail("--preset '{}': expected one or more of {}", o.presets, presetNames());
@@ -75,6 +103,8 @@ std::vector<BenchRun> runsFrom(const BenchOptions& o) {
 
 void checkArguments(const BenchOptions& o) {
   o.common.checkArguments();
+  o.common.given.refuseTogether("--runs", "--preset", "the file lists each run's preset");
+  o.common.given.refuseTogether("--runs", "--gi", "the file lists each run's GI mode");
   runsFrom(o);
   if (o.frames < 1 || o.frames > kMaxFrames)
     fail("--frames {}: expected 1 to {} frames", o.frames, kMaxFrames);
@@ -388,6 +418,9 @@ void addBenchVerb(CLI::App& app, VerbAction& action) {
          "--gi", options->gis,
          std::string("Comma-separated GI modes, one run per preset and mode: ") + giModeNames())
       ->capture_default_str();
+  cmd->add_option("--runs", options->runsFile,
+                  "JSON file of runs instead of --preset x --gi: {\"runs\": [{\"preset\": "
+                  "\"mobile\", \"gi\": \"cache\"}, ...]}");
   cmd->add_option("--frames", options->frames, "Frames per run")->capture_default_str();
   cmd->add_option("--fps", options->fps, "Animation time step: frame i is at i / fps seconds")
       ->capture_default_str();

@@ -87,6 +87,8 @@ TEST(Bench, UsageErrorsAreRefusedBeforeAnyWork) {
       {"--frames 0", "--frames 0"},
       {"--sun 0,-1,0:3", "--sun cannot be used"},
       {"--contact-frames 0", "--contact-frames"},
+      {"--runs " + dir + "/missing.json", "missing.json"},
+      {"--runs " + dir + "/runs.json --gi cache", "--runs and --gi cannot be used together"},
   };
   for (const auto& [args, message] : cases) {
     const test::CommandResult r =
