@@ -3,6 +3,8 @@
 // preset x GI mode given; per-pass GPU times with a 9-frame rolling average and frame times in
 // a JSON report, a stacked-area plot of the pass times (PNG and SVG), a table per run, and a
 // contact sheet of tone-mapped frames along the path (docs/benchmarks.md).
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -394,6 +396,10 @@ int runBench(const BenchOptions& o) {
   if (isCpuDevice(*context))
     std::printf("note: %s is a CPU device: the GPU times measure its emulation of a GPU\n",
                 context->info().name.c_str());
+  // Host memory: the peak resident set of the whole process (all runs), for growth checks.
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  report["host_peak_rss_bytes"] = int64_t(usage.ru_maxrss) * 1024;  // Linux: kilobytes
   const std::string json = (fs::path(o.out) / "bench.json").string();
   // Paths are bytes, not always UTF-8: replace an invalid sequence rather than throw.
   writeTextFile(json, report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
