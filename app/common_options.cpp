@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "scene/animation.h"
 #include "scene/default_light.h"
 #include "scene/load.h"
 #include "suggest.h"
@@ -100,6 +101,13 @@ int exitCodeFor(const vk::Context& context) {
   std::fprintf(stderr, "bounce: error: %u Vulkan validation error(s)\n",
                context.validationErrorCount());
   return kValidationFailedExit;
+}
+
+SceneAnimation playedAnimation(const Scene& scene, bool cameraGiven) {
+  SceneAnimation animation = scene.animation;
+  if (!animation.camera || cameraGiven)
+    animation.camera = swayCameraPath(effectiveCamera(scene), 4.0f, 0.3f, 8.0f);
+  return animation;
 }
 
 bool isCpuDevice(const vk::Context& context) {

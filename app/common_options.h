@@ -59,6 +59,11 @@ void requireOneOf(const std::string& option, const std::string& value,
 constexpr int kValidationFailedExit = 4;
 int exitCodeFor(const vk::Context& context);
 
+// What --animate plays (render, bench): the scene's own animation, with the default camera
+// motion, a slow sway and dolly, where the scene has no camera path or `cameraGiven` (a
+// --camera on the command line is where the sway starts, rather than being overridden).
+SceneAnimation playedAnimation(const Scene& scene, bool cameraGiven);
+
 // True on a CPU implementation (lavapipe), where GPU timestamps measure the emulation.
 bool isCpuDevice(const vk::Context& context);
 

@@ -103,6 +103,7 @@ int main(int argc, char** argv) {
   bounce::app::VerbAction action;
   bounce::app::addInfoVerb(app, action);
   bounce::app::addRenderVerb(app, action);
+  bounce::app::addBenchVerb(app, action);
   bounce::app::addBenchRaysVerb(app, action);
   bounce::app::addReferenceVerb(app, action);
   bounce::app::addCompareVerb(app, action);

@@ -380,13 +380,7 @@ void writeTimingsJson(const RenderOptions& o, const RenderRecord& record, const 
 // the sun. Empty when none is given: a still frame, as before.
 SceneAnimation animationFrom(const RenderOptions& options, const Scene& scene) {
   SceneAnimation animation;
-  if (options.animate) {
-    animation = scene.animation;
-    // A --camera given on the command line is where the default sway starts, rather than being
-    // overridden by the scene's own path.
-    if (!animation.camera || !options.common.camera.empty())
-      animation.camera = swayCameraPath(effectiveCamera(scene), 4.0f, 0.3f, 8.0f);
-  }
+  if (options.animate) animation = playedAnimation(scene, !options.common.camera.empty());
   if (!options.cameraPath.empty()) animation.camera = loadCameraPath(options.cameraPath);
   if (options.timeOfDay || options.dayCycle > 0.0f)
     animation.timeOfDay = TimeOfDayTrack{options.timeOfDay.value_or(12.0f), options.dayCycle};

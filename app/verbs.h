@@ -12,6 +12,7 @@ using VerbAction = std::function<int()>;
 
 void addInfoVerb(CLI::App& app, VerbAction& action);
 void addRenderVerb(CLI::App& app, VerbAction& action);
+void addBenchVerb(CLI::App& app, VerbAction& action);
 void addBenchRaysVerb(CLI::App& app, VerbAction& action);
 void addCompareVerb(CLI::App& app, VerbAction& action);
 void addReferenceVerb(CLI::App& app, VerbAction& action);
