@@ -290,9 +290,10 @@ TEST(SpecularMotion, DISABLED_MovingGlossyBallLeavesNoGhostTrail) {
 
 // The camera dollies 1 m towards its target, low over the lacquered floor, in 16 frames and
 // stops: every reflection on the floor moves across the screen with the view.
-// Disabled: it fails (lavapipe: static error 0.0094, after the stop 12.9x falling to 5.0x at the
+// Disabled: it fails (lavapipe: static error 0.0094, after the stop 10.1x falling to 4.0x at the
 // 8th frame). The trail is the denoiser's history: with --reflection-denoise off the 8th frame is
-// at 0.96x of that configuration's static error, with reuse off (denoiser on) at 7.9x
+// at 0.96x of that configuration's static error, with reuse off (denoiser on, before the
+// fast-history clamp) at 7.9x
 // (docs/reflections.md, "Motion").
 TEST(SpecularMotion, DISABLED_CameraDollyOverGlossyFloorLeavesNoGhostTrail) {
   Scene scene = *makeBuiltinScene("sunroom-glossy");

@@ -14,7 +14,8 @@
 //   - Length. At most maxHistoryFrames(roughness) frames: short for mirrors, long for glossy.
 //   - Lag. A fast history (at most fastHistoryFrames) is kept beside the slow one; where the
 //     neighbours' slow histories differ from their fast ones beyond their noise, this pixel's
-//     slow history restarts from its fast one (slowHistoryLags).
+//     slow history restarts from its fast one (slowHistoryLags); where the history was
+//     reprojected from elsewhere, it is clamped into the neighbourhood's fast range.
 //   - Ghosts. History is cut to responsiveFrames where the 8 neighbours' fresh samples differ
 //     from the 8 neighbours' histories by more than ghostSigma standard errors: what the
 //     reflection shows has changed. The pixel's own sample and history take no part in the
@@ -293,6 +294,30 @@ bool slowHistoryLags(FrameConstants f, ivec2 tracedPixel, vec2 screen) {
   return abs(mean) > pc.lagSigma * spread / sqrt(n) && abs(mean) > 0.01 * level / n;
 }
 
+// Where the view or the surface moved (the history was reprojected), the slow history's
+// luminance is clamped into the range of the 3 x 3 neighbourhood's fast histories around where
+// it was: reprojection under motion misplaces a little light every frame, which a long running
+// mean collects into a trail that the lag test's noise hides; the fast histories forget it
+// within a few frames (NRD ReBLUR's fast-history clamp). A static view is never clamped, so its
+// running mean stays unbiased.
+vec3 clampedToFastNeighbourhood(FrameConstants f, ivec2 tracedPixel, vec2 screen, History h) {
+  ivec2 centre = ivec2(floor(tracedCoordinates(screen) + 0.5));
+  float lo = 1e30, hi = 0.0;
+  for (int k = 0; k < 9; ++k) {
+    ivec2 d = ivec2(k % 3 - 1, k / 3 - 1);
+    ivec2 q = tracedPixel + d;
+    if (!insideTraced(q)) continue;
+    History n = historyAt(loadSurface(f, q), centre + d);
+    if (n.weight <= 0.0) continue;
+    float fast = brdfLuminance(n.fast);
+    lo = min(lo, fast);
+    hi = max(hi, fast);
+  }
+  float l = brdfLuminance(h.signal);
+  if (lo > hi || l <= 0.0) return h.signal;
+  return h.signal * (clamp(l, lo, hi) / l);
+}
+
 struct Accumulated {
   vec4 value;    // reflections.temporal
   vec4 moments;  // reflections.temporal-moments
@@ -315,6 +340,8 @@ Accumulated accumulate(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here)
       h.signal = h.fast;
       h.frames = min(h.frames, pc.fastHistoryFrames);
     }
+    bool moved = distance(previous, vec2(fullResPixel(f, tracedPixel)) + 0.5) > 0.01;
+    if (h.weight > 0.0 && moved) h.signal = clampedToFastNeighbourhood(f, tracedPixel, previous, h);
     if (h.weight > 0.0 && neighbourhoodChanged(f, tracedPixel, previous))
       h.frames = min(h.frames, pc.responsiveFrames - 1.0);
   }
