@@ -266,9 +266,9 @@ Camera lerpCamera(const Camera& a, const Camera& b, float t) {
 // trucks back to the scene's camera over 16 frames (7.5 cm per frame: reflections and
 // surfaces slide across the glossy spheres and floor), and stops.
 //
-// DISABLED: it fails (measured on lavapipe with the fast history's lag test: static error 0.65
-// against an independent run, after the pan 25.6 at frame 4 falling to 15.8 at frame 8, ratio
-// 24). The error is a ghost on the glossy floor: pixels that reflect the spheres' dark
+// DISABLED: it fails (measured on lavapipe with the fast history's lag test and clamp: static
+// error 0.65 against an independent run, after the pan 33.9 at frame 1 falling to 15.3 at frame
+// 8, ratio 23.5). The error is a ghost on the glossy floor: pixels that reflect the spheres' dark
 // undersides (reference 0) keep light from history that slid in during the pan (the floor's
 // roughness 0.3 takes 60 % of its history from the surface reprojection). docs/reflections.md,
 // "Motion".
