@@ -1,18 +1,21 @@
-// Specular shading in motion (issue 19, docs/reflections.md): the whole frame (composite) over
-// `sunroom-glossy`'s lacquered floor, desktop preset, ReSTIR GI and traced reflections.
+// Specular shading in motion (issue 19, docs/reflections.md): `sunroom-glossy`'s lacquered
+// floor, desktop preset, traced reflections with reuse and the denoiser.
 //   - no ghost trail: after a glossy steel ball rolls over the floor and stops, or after the
 //     camera dollies over the floor and stops, each frame's error against the static converged
 //     image of the final view must be back within 1.5x of the static error within 8 frames.
-//     The converged image and the static error come from a run that starts at the final state.
-//     Every temporal history of the frame (shadows, GI, the reflection denoiser when it lands)
-//     is in the chain, so stale history anywhere shows. Each run also checks that its metric
-//     sees a ghost: the same frames with 15 % of a frame from the middle of the motion blended
-//     in must fail the bound;
+//     Measured on the reflection signal (reflections-upsample), GI off: the reflection chain's
+//     histories (reservoirs, the denoiser's slow and fast histories) are under test, not the
+//     GI's. The converged image comes from a static run at the final state, the static error
+//     from a second, independent one (another noise seed); the ball's error is measured around
+//     its path. Each run also checks that its metric sees a ghost: the same frames with 15 % of
+//     a frame from the middle of the motion blended in must fail the bound;
 //   - 1,000 animated frames (the ball, the cube, the swinging panel, a moving camera and sun)
-//     stay finite with the validation layers silent.
+//     stay finite with the validation layers silent (ReSTIR GI on).
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include <fmt/format.h>
@@ -45,11 +48,17 @@ constexpr double kGhostBound = 1.5;
 // the frames after it (what a history that keeps 15 % of stale light looks like).
 constexpr float kProbeGhostWeight = 0.15f;
 
-HybridSettings motionSettings() {
+// Each run draws its own noise (HybridSettings::noiseSeed): the converged image, the static
+// run and the moving run are independent, so the static error is the error between two
+// independent converged runs of the final view, which the moving run is held to.
+constexpr uint32_t kConvergedSeed = 0, kStaticSeed = 7919, kMovingSeed = 15877;
+
+HybridSettings motionSettings(uint32_t noiseSeed = 0, GiMode gi = GiMode::Evolve) {
   HybridSettings settings = presetSettings(Preset::Desktop);
   settings.width = kWidth;
   settings.height = kHeight;
-  settings.gi = GiMode::Evolve;
+  settings.gi = gi;
+  settings.noiseSeed = noiseSeed;
   EXPECT_EQ(settings.reflections.divisor, 2u);
   return settings;
 }
@@ -64,6 +73,18 @@ uint32_t instanceNamed(const Scene& scene, const std::string& name) {
 // What changes over a run: the state at s in [0, 1] (0 start, 1 final) is applied to the frame
 // and gives the camera.
 using StateAt = std::function<Camera(HybridFrame& frame, float s)>;
+
+// The image the ghost tests measure: the reflection signal at full resolution (what composite
+// multiplies by the split-sum reflectance), so that the diffuse GI's own lag after a camera move
+// (its camera-centred cache re-converging: docs/reflections.md, "Motion") does not decide a test
+// of the reflections.
+constexpr const char* kMeasuredView = "reflections-upsample";
+
+// The ghost tests' GI: none. The reflection chain (trace, reuse, denoise, upsample) is what they
+// test; with a GI mode the reflection hits add the clipmap cache's light, and the
+// camera-centred cache re-converging after a camera move (the GI's own lag, measured in
+// docs/reflections.md) would decide the dolly test; the frames are also 4x cheaper.
+constexpr GiMode kGhostGi = GiMode::None;
 
 // A ghost trail is light in the wrong place over many pixels; a frame's noise (one reflection
 // and GI sample per pixel) is pixel to pixel. The error is relMSE after a 4 x 4 box filter, so
@@ -81,8 +102,23 @@ ImageRGBA32F boxFiltered(const ImageRGBA32F& image) {
   return out;
 }
 
-double ghostError(const ImageRGBA32F& frame, const ImageRGBA32F& converged) {
-  return relativeMeanSquaredError(boxFiltered(frame), boxFiltered(converged));
+// The blocks (of the box-filtered image) where the error is measured: the whole frame, or a
+// rectangle around a small moving object's path, whose ghost would weigh little in the whole
+// frame.
+struct Region {
+  int x0 = 0, y0 = 0, x1 = int(kWidth) / kErrorBlock, y1 = int(kHeight) / kErrorBlock;
+};
+
+ImageRGBA32F cropped(const ImageRGBA32F& image, const Region& r) {
+  ImageRGBA32F out(r.x1 - r.x0, r.y1 - r.y0, glm::vec4(0.0f));
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x) out.set(x - r.x0, y - r.y0, image.at(x, y));
+  return out;
+}
+
+double ghostError(const ImageRGBA32F& frame, const ImageRGBA32F& converged, const Region& region) {
+  return relativeMeanSquaredError(cropped(boxFiltered(frame), region),
+                                  cropped(boxFiltered(converged), region));
 }
 
 ImageRGBA32F blend(const ImageRGBA32F& a, const ImageRGBA32F& b, float weightOfB) {
@@ -98,56 +134,118 @@ struct GhostRun {
   std::vector<double> probeErrors;   // the same with the probe ghost blended in
 };
 
-GhostRun runGhostTest(const Scene& scene, const StateAt& stateAt) {
+// Renders `frames` frames of the static final state; frames from `first` on are passed to `use`.
+void renderStatic(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                  const StateAt& stateAt, uint32_t seed, int frames, int first,
+                  const std::function<void(int, const ImageRGBA32F&)>& use) {
+  HybridFrame frame(context, gpuScene, scene, motionSettings(seed, kGhostGi));
+  frame.requestDebugView(kMeasuredView);
+  for (int i = 0; i < frames; ++i) {
+    frame.render(stateAt(frame, 1.0f));
+    if (i < first) continue;
+    ImageRGBA32F composite = frame.debugViewImage(kMeasuredView);
+    EXPECT_EQ(countNonFinitePixels(composite), 0u);
+    use(i, composite);
+  }
+}
+
+// The region around a moving object's path: the blocks where the object is seen in any frame
+// of the motion or after it, extended downwards by as much again (its mirror image in the floor
+// lies below it on screen) and by one block on every side.
+class PathRegion {
+ public:
+  explicit PathRegion(uint32_t instance) : instance_(instance) {}
+  void add(const HybridFrame& frame) {
+    const graph::DebugView& view = frame.graph().readDebugView("vbuffer.ids");
+    std::vector<glm::uvec4> ids(view.bytes.size() / sizeof(glm::uvec4));
+    std::memcpy(ids.data(), view.bytes.data(), ids.size() * sizeof(glm::uvec4));
+    for (int y = 0; y < int(kHeight); ++y)
+      for (int x = 0; x < int(kWidth); ++x)
+        if (ids[size_t(y) * kWidth + x].x == instance_) {
+          seen_ = true;
+          box_.x0 = std::min(box_.x0, x / kErrorBlock);
+          box_.y0 = std::min(box_.y0, y / kErrorBlock);
+          box_.x1 = std::max(box_.x1, x / kErrorBlock + 1);
+          box_.y1 = std::max(box_.y1, y / kErrorBlock + 1);
+        }
+  }
+  Region region() const {
+    EXPECT_TRUE(seen_) << "the moving object is never seen";
+    const Region whole;
+    Region r = box_;
+    r.y1 += r.y1 - r.y0;
+    r.x0 = std::max(r.x0 - 1, 0);
+    r.y0 = std::max(r.y0 - 1, 0);
+    r.x1 = std::min(r.x1 + 1, whole.x1);
+    r.y1 = std::min(r.y1 + 1, whole.y1);
+    return r;
+  }
+
+ private:
+  uint32_t instance_;
+  bool seen_ = false;
+  Region box_{1 << 20, 1 << 20, 0, 0};
+};
+
+// `movingInstance`: where set, the error is measured around that instance's path (PathRegion),
+// else over the whole frame.
+GhostRun runGhostTest(const Scene& scene, const StateAt& stateAt,
+                      std::optional<uint32_t> movingInstance = std::nullopt) {
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
   GhostRun run;
 
-  // The static run at the final state: frames 17-32 average into the converged image, frames
-  // 33-40 (the history age of the moving run's frames after the stop) give the static error.
-  // Their history carries samples of the converged frames, which makes the static error, and
-  // so the bound, smaller than an independent run's would be: the test errs on the strict side.
-  ImageRGBA32F converged(kWidth, kHeight, glm::vec4(0.0f));
-  {
-    HybridFrame frame(context, gpuScene, scene, motionSettings());
-    frame.requestDebugView("composite");
-    for (int i = 0; i < kWarmFrames + kConvergedFrames + kSettleFrames; ++i) {
-      frame.render(stateAt(frame, 1.0f));
-      if (i < kWarmFrames) continue;
-      ImageRGBA32F composite = frame.debugViewImage("composite");
-      EXPECT_EQ(countNonFinitePixels(composite), 0u);
-      if (i < kWarmFrames + kConvergedFrames) {
-        for (size_t k = 0; k < converged.pixels.size(); ++k)
-          converged.pixels[k] += composite.pixels[k] / float(kConvergedFrames);
-      } else {
-        run.staticError += ghostError(composite, converged) / double(kSettleFrames);
-      }
-    }
-  }
-
   // The moving run: rest at the start, move, stop at the final state.
+  std::vector<ImageRGBA32F> settled;
+  ImageRGBA32F midMotion;
+  Region region;
   {
-    HybridFrame frame(context, gpuScene, scene, motionSettings());
-    frame.requestDebugView("composite");
-    ImageRGBA32F midMotion;
+    PathRegion path(movingInstance.value_or(0));
+    HybridFrame frame(context, gpuScene, scene, motionSettings(kMovingSeed, kGhostGi));
+    frame.requestDebugView(kMeasuredView);
+    if (movingInstance) frame.requestDebugView("vbuffer.ids");
     for (int i = 0; i < kRestFrames + kMotionFrames + kSettleFrames; ++i) {
       const int moving = i - kRestFrames;
       const float s = std::clamp(float(moving + 1) / float(kMotionFrames), 0.0f, 1.0f);
       frame.render(stateAt(frame, s));
-      ImageRGBA32F composite = frame.debugViewImage("composite");
+      if (moving < 0) continue;
+      if (movingInstance) path.add(frame);
+      ImageRGBA32F composite = frame.debugViewImage(kMeasuredView);
       EXPECT_EQ(countNonFinitePixels(composite), 0u);
       if (moving == kMotionFrames / 2) midMotion = composite;
-      if (moving < kMotionFrames) continue;
-      run.settleErrors.push_back(ghostError(composite, converged));
-      run.probeErrors.push_back(
-          ghostError(blend(composite, midMotion, kProbeGhostWeight), converged));
-      if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES"))
-        writeImage(
-            fmt::format("{}/ghost-{}-settle-{}.exr", dir, scene.name, moving - kMotionFrames),
-            composite);
+      if (moving >= kMotionFrames) settled.push_back(composite);
     }
+    if (movingInstance) region = path.region();
+  }
+  std::printf("error measured over blocks x %d-%d, y %d-%d (of %d x %d)\n", region.x0,
+              region.x1 - 1, region.y0, region.y1 - 1, int(kWidth) / kErrorBlock,
+              int(kHeight) / kErrorBlock);
+
+  // The converged image of the final state: the mean of frames 17-32 of a static run.
+  ImageRGBA32F converged(kWidth, kHeight, glm::vec4(0.0f));
+  renderStatic(context, gpuScene, scene, stateAt, kConvergedSeed, kWarmFrames + kConvergedFrames,
+               kWarmFrames, [&](int, const ImageRGBA32F& composite) {
+                 for (size_t k = 0; k < converged.pixels.size(); ++k)
+                   converged.pixels[k] += composite.pixels[k] / float(kConvergedFrames);
+               });
+  // The static error: frames 33-40 of an independent static run (the history age of the moving
+  // run's frames after the stop) against the converged image.
+  renderStatic(context, gpuScene, scene, stateAt, kStaticSeed,
+               kWarmFrames + kConvergedFrames + kSettleFrames, kWarmFrames + kConvergedFrames,
+               [&](int, const ImageRGBA32F& composite) {
+                 run.staticError += ghostError(composite, converged, region) / kSettleFrames;
+               });
+
+  for (size_t k = 0; k < settled.size(); ++k) {
+    run.settleErrors.push_back(ghostError(settled[k], converged, region));
+    run.probeErrors.push_back(
+        ghostError(blend(settled[k], midMotion, kProbeGhostWeight), converged, region));
     if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES"))
-      writeImage(fmt::format("{}/ghost-{}-converged.exr", dir, scene.name), converged);
+      writeImage(fmt::format("{}/ghost-{}-settle-{}.exr", dir, scene.name, k), settled[k]);
+  }
+  if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES")) {
+    writeImage(fmt::format("{}/ghost-{}-converged.exr", dir, scene.name), converged);
+    writeImage(fmt::format("{}/ghost-{}-mid.exr", dir, scene.name), midMotion);
   }
   EXPECT_EQ(context.validationErrorCount(), 0u);
   std::printf("static error %.4f; after the motion stops:", run.staticError);
@@ -169,9 +267,12 @@ void expectNoGhost(const GhostRun& run) {
 }
 
 // The steel ball rolls 1.2 m across the lacquered floor (through the sun patch) in 16 frames
-// and stops: its reflection in the floor, its shadow and its own reflections move with it.
-// Disabled until reflections-denoise lands and the numbers are understood: today the frames after
-// the stop stay at 1.9-2.5x the static error for all 8 frames (docs/reflections.md, "Motion").
+// and stops: its reflection in the floor and its own reflections move with it. The error is
+// measured around its path.
+// Disabled: the bound holds but the self-check does not (lavapipe, 64 x 36: static error 0.052,
+// the frames after the stop 1.78x falling to 0.89x at the 8th; the probe ghost only 1.05x
+// there): in the ball's region the reflection signal's noise hides a 15 % ghost, so a pass says
+// nothing yet (docs/reflections.md, "Motion").
 TEST(SpecularMotion, DISABLED_MovingGlossyBallLeavesNoGhostTrail) {
   Scene scene = *makeBuiltinScene("sunroom-glossy");
   const uint32_t ball = instanceNamed(scene, "ball_steel");
@@ -184,13 +285,16 @@ TEST(SpecularMotion, DISABLED_MovingGlossyBallLeavesNoGhostTrail) {
     frame.setInstanceTransforms(transforms);
     return camera;
   };
-  expectNoGhost(runGhostTest(scene, stateAt));
+  expectNoGhost(runGhostTest(scene, stateAt, ball));
 }
 
 // The camera dollies 1 m towards its target, low over the lacquered floor, in 16 frames and
 // stops: every reflection on the floor moves across the screen with the view.
-// Disabled until reflections-denoise lands and the numbers are understood: today the error after
-// the stop is 6-17x the static error and grows over the 8 frames (docs/reflections.md, "Motion").
+// Disabled: it fails (lavapipe: static error 0.0094, after the stop 10.1x falling to 4.0x at the
+// 8th frame). The trail is the denoiser's history: with --reflection-denoise off the 8th frame is
+// at 0.96x of that configuration's static error, with reuse off (denoiser on, before the
+// fast-history clamp) at 7.9x
+// (docs/reflections.md, "Motion").
 TEST(SpecularMotion, DISABLED_CameraDollyOverGlossyFloorLeavesNoGhostTrail) {
   Scene scene = *makeBuiltinScene("sunroom-glossy");
   const Camera start = *scene.camera;

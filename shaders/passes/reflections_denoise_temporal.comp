@@ -12,6 +12,10 @@
 //     agrees with this pixel's in plane, normal and roughness; where none does, history
 //     restarts (disocclusion).
 //   - Length. At most maxHistoryFrames(roughness) frames: short for mirrors, long for glossy.
+//   - Lag. A fast history (at most fastHistoryFrames) is kept beside the slow one; where the
+//     neighbours' slow histories differ from their fast ones beyond their noise, this pixel's
+//     slow history restarts from its fast one (slowHistoryLags); where the history was
+//     reprojected from elsewhere, it is clamped into the neighbourhood's fast range.
 //   - Ghosts. History is cut to responsiveFrames where the 8 neighbours' fresh samples differ
 //     from the 8 neighbours' histories by more than ghostSigma standard errors: what the
 //     reflection shows has changed. The pixel's own sample and history take no part in the
@@ -39,6 +43,8 @@ layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_SURFACE,
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT, rgba16f) uniform writeonly image2D current;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_MOMENTS, rgba32f) uniform writeonly image2D currentMoments;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_SURFACE, rgba32f) uniform writeonly image2D currentSurface;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_FAST, rgba16f) uniform readonly image2D previousFast;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_FAST, rgba16f) uniform writeonly image2D currentFast;
 
 // The surface a traced pixel stands for (its full-res GBuffer pixel).
 DenoiseSurface loadSurface(FrameConstants f, ivec2 tracedPixel) {
@@ -80,6 +86,7 @@ bool freshSample(FrameConstants f, ivec2 q, out vec4 value) {
 
 struct History {
   vec3 signal;
+  vec3 fast;  // the fast history's running mean (fastHistoryFrames)
   float hitDistance;
   float secondMoment;  // of luminance
   float parallax;      // hit distance / (surface distance + hit distance); a miss: 1
@@ -87,7 +94,7 @@ struct History {
   float weight;  // 0: no history
 };
 
-History noHistory() { return History(vec3(0.0), 0.0, 0.0, 0.0, 0.0, 0.0); }
+History noHistory() { return History(vec3(0.0), vec3(0.0), 0.0, 0.0, 0.0, 0.0, 0.0); }
 
 // Last frame's history at traced pixel q if it belongs to `here`'s surface (weight 1), else
 // none.
@@ -95,12 +102,14 @@ History historyAt(DenoiseSurface here, ivec2 q) {
   if (!insideTraced(q) || !sameSurface(here, imageLoad(previousSurface, q))) return noHistory();
   vec4 value = imageLoad(previous, q);
   vec4 moments = imageLoad(previousMoments, q);
-  if (!isFiniteVec(value) || !isFiniteVec(moments) || moments.y <= 0.0 || value.w < 0.0) return noHistory();
-  return History(max(value.rgb, vec3(0.0)), value.w, max(moments.x, 0.0), clamp(moments.z, 0.0, 1.0), moments.y, 1.0);
+  vec4 fast = imageLoad(previousFast, q);
+  if (!isFiniteVec(value) || !isFiniteVec(moments) || !isFiniteVec(fast) || moments.y <= 0.0 || value.w < 0.0) return noHistory();
+  return History(max(value.rgb, vec3(0.0)), max(fast.rgb, vec3(0.0)), value.w, max(moments.x, 0.0), clamp(moments.z, 0.0, 1.0), moments.y, 1.0);
 }
 
 void addHistory(inout History sum, History h, float weight) {
   sum.signal += weight * h.signal;
+  sum.fast += weight * h.fast;
   sum.hitDistance += weight * h.hitDistance;
   sum.secondMoment += weight * h.secondMoment;
   sum.parallax += weight * h.parallax;
@@ -111,7 +120,7 @@ void addHistory(inout History sum, History h, float weight) {
 History normalized(History sum) {
   if (sum.weight <= 1e-4) return noHistory();
   float w = sum.weight;
-  return History(sum.signal / w, sum.hitDistance / w, sum.secondMoment / w, sum.parallax / w, sum.frames / w, 1.0);
+  return History(sum.signal / w, sum.fast / w, sum.hitDistance / w, sum.secondMoment / w, sum.parallax / w, sum.frames / w, 1.0);
 }
 
 // Continuous traced-pixel coordinates of a full-res screen position (pixel centres at + 0.5):
@@ -252,13 +261,71 @@ bool neighbourhoodChanged(FrameConstants f, ivec2 tracedPixel, vec2 screen) {
   return difference > pc.ghostSigma * standardError && difference > 0.01 * level / n;
 }
 
+// The lag test: does the slow history trail what the reflection shows now? The fast history
+// (a running mean of at most fastHistoryFrames frames) follows a change within a few frames;
+// the slow one keeps stale light for up to glossyHistoryFrames. Each of the 8 neighbours, at
+// its offset around where this pixel was last frame and on its own surface, gives the paired
+// difference slow - fast of its histories: zero in expectation on a static view, whatever
+// varies across the neighbourhood. A Student-t test of their mean against their spread (7
+// degrees of freedom: all 8 must be on their surfaces; the curved small mirrors, whose
+// neighbourhoods are split, keep the ghost cut only) beyond lagSigma says the neighbourhood's
+// slow histories lag. The pixel's own histories take no part, so the decision is independent
+// of them and its running mean stays unbiased. NRD ReBLUR and gi-temporal-denoise keep a fast
+// history for the same reason (there as a clamp).
+bool slowHistoryLags(FrameConstants f, ivec2 tracedPixel, vec2 screen) {
+  if (pc.lagSigma <= 0.0) return false;
+  ivec2 centre = ivec2(floor(tracedCoordinates(screen) + 0.5));
+  float sum = 0.0, squares = 0.0, level = 0.0, n = 0.0;
+  for (int k = 0; k < 9; ++k) {
+    ivec2 d = ivec2(k % 3 - 1, k / 3 - 1);
+    ivec2 q = tracedPixel + d;
+    if (d == ivec2(0) || !insideTraced(q)) continue;
+    History h = historyAt(loadSurface(f, q), centre + d);
+    if (h.weight <= 0.0 || h.frames <= pc.fastHistoryFrames) continue;
+    float slow = brdfLuminance(h.signal), fast = brdfLuminance(h.fast);
+    sum += slow - fast;
+    squares += (slow - fast) * (slow - fast);
+    level += max(slow, fast);
+    n += 1.0;
+  }
+  if (n < 8.0) return false;
+  float mean = sum / n;
+  float spread = sqrt(max(squares - n * mean * mean, 0.0) / (n - 1.0));
+  return abs(mean) > pc.lagSigma * spread / sqrt(n) && abs(mean) > 0.01 * level / n;
+}
+
+// Where the view or the surface moved (the history was reprojected), the slow history's
+// luminance is clamped into the range of the 3 x 3 neighbourhood's fast histories around where
+// it was: reprojection under motion misplaces a little light every frame, which a long running
+// mean collects into a trail that the lag test's noise hides; the fast histories forget it
+// within a few frames (NRD ReBLUR's fast-history clamp). A static view is never clamped, so its
+// running mean stays unbiased.
+vec3 clampedToFastNeighbourhood(FrameConstants f, ivec2 tracedPixel, vec2 screen, History h) {
+  ivec2 centre = ivec2(floor(tracedCoordinates(screen) + 0.5));
+  float lo = 1e30, hi = 0.0;
+  for (int k = 0; k < 9; ++k) {
+    ivec2 d = ivec2(k % 3 - 1, k / 3 - 1);
+    ivec2 q = tracedPixel + d;
+    if (!insideTraced(q)) continue;
+    History n = historyAt(loadSurface(f, q), centre + d);
+    if (n.weight <= 0.0) continue;
+    float fast = brdfLuminance(n.fast);
+    lo = min(lo, fast);
+    hi = max(hi, fast);
+  }
+  float l = brdfLuminance(h.signal);
+  if (lo > hi || l <= 0.0) return h.signal;
+  return h.signal * (clamp(l, lo, hi) / l);
+}
+
 struct Accumulated {
   vec4 value;    // reflections.temporal
   vec4 moments;  // reflections.temporal-moments
+  vec4 fast;     // reflections.temporal-fast
 };
 
 Accumulated accumulate(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here) {
-  Accumulated a = Accumulated(vec4(0.0, 0.0, 0.0, REFLECTION_NO_SAMPLE), vec4(0.0));
+  Accumulated a = Accumulated(vec4(0.0, 0.0, 0.0, REFLECTION_NO_SAMPLE), vec4(0.0), vec4(0.0));
   if (!hasSurface(here) || !traceable(f, here.roughness)) return a;
   vec4 fresh;
   bool hasFresh = freshSample(f, tracedPixel, fresh);
@@ -267,7 +334,15 @@ Accumulated accumulate(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here)
     Reprojection r = reproject(f, tracedPixel, here, hasFresh ? fresh.w : -1.0);
     h = reprojectedHistory(here, r);
     bool virtualFirst = r.hasVirtual && virtualShare(here.roughness) >= 0.5;
-    if (h.weight > 0.0 && neighbourhoodChanged(f, tracedPixel, virtualFirst ? r.virtualPoint : r.surface))
+    vec2 previous = virtualFirst ? r.virtualPoint : r.surface;
+    if (h.weight > 0.0 && h.frames > pc.fastHistoryFrames && slowHistoryLags(f, tracedPixel, previous)) {
+      // Stale: restart from the fast history, which holds the last few frames only.
+      h.signal = h.fast;
+      h.frames = min(h.frames, pc.fastHistoryFrames);
+    }
+    bool moved = distance(previous, vec2(fullResPixel(f, tracedPixel)) + 0.5) > 0.01;
+    if (h.weight > 0.0 && moved) h.signal = clampedToFastNeighbourhood(f, tracedPixel, previous, h);
+    if (h.weight > 0.0 && neighbourhoodChanged(f, tracedPixel, previous))
       h.frames = min(h.frames, pc.responsiveFrames - 1.0);
   }
   float maxFrames = maxHistoryFrames(here.roughness);
@@ -276,12 +351,14 @@ Accumulated accumulate(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here)
     if (h.weight <= 0.0 || h.frames <= 0.0) return a;
     a.value = vec4(h.signal, h.hitDistance);
     a.moments = vec4(h.secondMoment, min(h.frames, maxFrames), h.parallax, 0.0);
+    a.fast = vec4(h.fast, 0.0);
     return a;
   }
   float frames = h.weight > 0.0 ? min(h.frames + 1.0, maxFrames) : 1.0;
   float blend = 1.0 / frames;
   float l = brdfLuminance(fresh.rgb);
   a.value = vec4(mix(h.signal, fresh.rgb, blend), mix(h.hitDistance, min(fresh.w, REFLECTION_MISS_DISTANCE), blend));
+  a.fast = vec4(mix(h.fast, fresh.rgb, 1.0 / min(frames, pc.fastHistoryFrames)), 0.0);
   // The parallax, not the hit distance, is what the spatial filter's footprint needs, and it
   // averages sensibly: a pixel whose rays mostly hit something near and sometimes miss gets a
   // small mean parallax, where its mean hit distance would be dominated by the misses.
@@ -298,11 +375,13 @@ void main() {
   DenoiseSurface here = loadSurface(f, tracedPixel);
   Accumulated a = accumulate(f, tracedPixel, here);
   // The last guard: whatever went wrong above, history stays finite.
-  if (!isFiniteVec(a.value) || !isFiniteVec(a.moments)) {
+  if (!isFiniteVec(a.value) || !isFiniteVec(a.moments) || !isFiniteVec(a.fast)) {
     a.value = vec4(0.0, 0.0, 0.0, REFLECTION_NO_SAMPLE);
     a.moments = vec4(0.0);
+    a.fast = vec4(0.0);
   }
   imageStore(current, tracedPixel, vec4(min(a.value.rgb, vec3(65000.0)), a.value.w));
   imageStore(currentMoments, tracedPixel, a.moments);
   imageStore(currentSurface, tracedPixel, encodeSurface(here));
+  imageStore(currentFast, tracedPixel, vec4(min(a.fast.rgb, vec3(65000.0)), 0.0));
 }

@@ -17,6 +17,8 @@
 //                                          (negative: no surface), w plane offset dot(n, x) in
 //                                          world units (32-bit: it grows with the distance from
 //                                          the world's origin)
+//   reflections.temporal-fast     RGBA16F  (history) the fast history: the signal's running mean
+//                                          over at most fastHistoryFrames frames in rgb
 //   reflections.denoised          RGBA16F  the spatial filter's output: what reflections-upsample
 //                                          reads
 #ifndef BOUNCE_SHARED_REFLECTIONS_DENOISE_IO_H
@@ -46,8 +48,10 @@ struct ReflectionDenoiseConstants {
   float spatialMaxRadius;  // traced pixels
   float spatialFootprintScale;
   uint flags;  // REFLECTION_DENOISE_FLAG_*
+  float fastHistoryFrames;
+  float lagSigma;
 };
-BOUNCE_CHECK_SIZE(ReflectionDenoiseConstants, 80);
+BOUNCE_CHECK_SIZE(ReflectionDenoiseConstants, 88);
 
 // Tests only: the temporal pass replaces every REFLECTION_DENOISE_POISON_PERIOD-th traced sample
 // by NaN or Inf before it sanitizes its input (ReflectionDenoiseSettings::poisonInput).
@@ -66,7 +70,9 @@ BOUNCE_CONST uint REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_SURFACE = 8u;
 BOUNCE_CONST uint REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT = 9u;
 BOUNCE_CONST uint REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_MOMENTS = 10u;
 BOUNCE_CONST uint REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_SURFACE = 11u;
-BOUNCE_CONST uint REFLECTIONS_DENOISE_TEMPORAL_BINDING_COUNT = 12u;
+BOUNCE_CONST uint REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_FAST = 12u;
+BOUNCE_CONST uint REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_FAST = 13u;
+BOUNCE_CONST uint REFLECTIONS_DENOISE_TEMPORAL_BINDING_COUNT = 14u;
 
 BOUNCE_CONST uint REFLECTIONS_DENOISE_SPATIAL_BINDING_TEMPORAL = 0u;
 BOUNCE_CONST uint REFLECTIONS_DENOISE_SPATIAL_BINDING_MOMENTS = 1u;

@@ -11,8 +11,9 @@
 //   reflections.candidate.*  written by reflections-trace (M = 1; M = 0 where nothing is traced)
 //   reflections.reservoir.*  reflections-temporal's output, history (fed back next frame)
 //   reflections.spatial.*    reflections-spatial's output (not fed back: no visibility test)
-// plus reflections.reservoir.roughness (R16F history): the perceptual roughness at x1, for the
-// temporal roughness test.
+// plus reflections.reservoir.lobe (RG32F history): x the perceptual roughness at x1, for the
+// temporal roughness test (negative: no reservoir), y the chosen sample's target p_hat at x1
+// (reflections-temporal's confidence under motion).
 //
 // Target function at a receiving pixel (x1, shading normal n, view v, GGX alpha):
 //   p_hat(l) = luminance(L) D(h) Vis(l, v) (n.l)     (the Fresnel-free GGX BRDF x cos x L)
@@ -56,6 +57,9 @@ BOUNCE_CONST float REFLECTION_REUSE_ROUGHNESS_TOLERANCE = 0.1f;
 // Reconnection shifts with a larger Jacobian are rejected, as in ReSTIR GI (grazing and
 // near-contact geometry: fireflies).
 BOUNCE_CONST float REFLECTION_REUSE_MAX_JACOBIAN = 10.0f;
+// reflections-temporal's check that a history sample is still there: a ray towards it must hit
+// within this fraction of its distance (a moving object's sample fails, a static one passes).
+BOUNCE_CONST float REFLECTION_REUSE_VALIDATION_TOLERANCE = 0.02f;
 // The smallest spatial radius, traced pixels: the spiral's first ring reaches the 8 neighbours.
 BOUNCE_CONST float REFLECTION_REUSE_MIN_RADIUS = 1.5f;
 // Most neighbours reflections-spatial merges (it keeps them for the 1/Z normalisation).
@@ -72,8 +76,8 @@ BOUNCE_CONST uint REFLECTIONS_TEMPORAL_BINDING_NORMALS = 12u;
 BOUNCE_CONST uint REFLECTIONS_TEMPORAL_BINDING_DEPTH = 13u;
 BOUNCE_CONST uint REFLECTIONS_TEMPORAL_BINDING_EMISSIVE = 14u;
 BOUNCE_CONST uint REFLECTIONS_TEMPORAL_BINDING_VELOCITY = 15u;
-BOUNCE_CONST uint REFLECTIONS_TEMPORAL_BINDING_PREVIOUS_ROUGHNESS = 16u;
-BOUNCE_CONST uint REFLECTIONS_TEMPORAL_BINDING_CURRENT_ROUGHNESS = 17u;
+BOUNCE_CONST uint REFLECTIONS_TEMPORAL_BINDING_PREVIOUS_LOBE = 16u;
+BOUNCE_CONST uint REFLECTIONS_TEMPORAL_BINDING_CURRENT_LOBE = 17u;
 BOUNCE_CONST uint REFLECTIONS_TEMPORAL_BINDING_COUNT = 18u;
 
 // reflections-spatial: reservoir in (0-3), reservoir out (4-7)

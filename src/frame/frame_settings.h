@@ -64,6 +64,9 @@ struct HybridSettings {
   DiSettings di;
   RestirGiSettings restirGi;   // --gi evolve
   ClipmapCacheSettings cache;  // --gi cache (and the cache ReSTIR GI reads)
+  // Added to the frame index that seeds every pass's random numbers: frames of two seeds draw
+  // independent noise (tests compare independent runs of one view). 0 by default.
+  uint32_t noiseSeed = 0;
 
   VkExtent2D resolution() const { return {width, height}; }
 };

@@ -128,7 +128,7 @@ gpu::FrameConstants HybridFrame::makeFrameConstants(const Camera& camera) const 
   c.skyScale = daylightSkyScale(sun_);
   c.skyAmbientStrength = settings_.skyAmbientStrength;
   c.exposure = std::exp2(settings_.exposureStops);
-  c.frameIndex = uint32_t(graph_.frameIndex());
+  c.frameIndex = uint32_t(graph_.frameIndex()) + settings_.noiseSeed;
   c.resolution = {settings_.width, settings_.height};
   c.shadowDivisor = settings_.shadows.divisor;
   const VkExtent2D shadowResolution = settings_.shadows.resolution(settings_.resolution());

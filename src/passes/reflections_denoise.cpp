@@ -39,6 +39,11 @@ void validate(const ReflectionDenoiseSettings& s) {
   if (!within(s.responsiveFrames, 1.0f, s.mirrorHistoryFrames))
     fail("reflection denoise responsive frames {}: expected 1 to the mirror history ({})",
          s.responsiveFrames, s.mirrorHistoryFrames);
+  if (!within(s.fastHistoryFrames, 1.0f, s.mirrorHistoryFrames))
+    fail("reflection denoise fast history frames {}: expected 1 to the mirror history ({})",
+         s.fastHistoryFrames, s.mirrorHistoryFrames);
+  if (!(s.lagSigma >= 0.0f && std::isfinite(s.lagSigma)))
+    fail("reflection denoise lag sigma {}: expected 0 (never) or more", s.lagSigma);
   if (!within(s.spatialMaxRadius, 0.0f, 16.0f))
     fail("reflection denoise spatial max radius {}: expected 0 (off) to 16 traced pixels",
          s.spatialMaxRadius);
@@ -76,6 +81,8 @@ gpu::ReflectionDenoiseConstants ReflectionsDenoisePass::constants(
   c.responsiveFrames = s.responsiveFrames;
   c.spatialMaxRadius = s.spatialMaxRadius;
   c.spatialFootprintScale = s.spatialFootprintScale;
+  c.fastHistoryFrames = s.fastHistoryFrames;
+  c.lagSigma = s.lagSigma;
   c.flags = s.poisonInput ? gpu::REFLECTION_DENOISE_FLAG_POISON_INPUT : 0u;
   return c;
 }
@@ -91,6 +98,7 @@ TracedReflections ReflectionsDenoisePass::declare(graph::FrameGraph& graph,
                                                          {VK_FORMAT_R32G32B32A32_SFLOAT, size});
   graph::HistoryImage surface = graph.createHistoryImage("reflections.temporal-surface",
                                                          {VK_FORMAT_R32G32B32A32_SFLOAT, size});
+  graph::HistoryImage fast = graph.createHistoryImage("reflections.temporal-fast", {rgba16f, size});
   TracedReflections out{graph.createImage("reflections.denoised", {rgba16f, size})};
   const gpu::ReflectionDenoiseConstants push = constants(trace);
   const VkExtent2D extent{trace.tracedResolution.x, trace.tracedResolution.y};
@@ -108,6 +116,8 @@ TracedReflections ReflectionsDenoisePass::declare(graph::FrameGraph& graph,
              gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_MOMENTS)
       .write(surface.current, Access::StorageWrite,
              gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_SURFACE)
+      .write(fast.current, Access::StorageWrite,
+             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_FAST)
       .read(traced.traced, Access::StorageRead, gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_TRACED)
       .read(gbuffer.normals, Access::StorageRead, gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_NORMALS)
       .read(gbuffer.depth.current, Access::StorageRead,
@@ -123,13 +133,15 @@ TracedReflections ReflectionsDenoisePass::declare(graph::FrameGraph& graph,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_MOMENTS)
       .read(surface.previous, Access::StorageRead,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_SURFACE)
-      .record([this, push, frame, temporal, moments, surface, dispatch](
+      .read(fast.previous, Access::StorageRead,
+            gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_FAST)
+      .record([this, push, frame, temporal, moments, surface, fast, dispatch](
                   VkCommandBuffer cmd, const graph::PassResources& r) {
         gpu::ReflectionDenoiseConstants c = push;
         // After a lighting cut the history holds the old light: start afresh (as the shadows
         // do); a camera cut or a resize resets every history of the graph.
         c.historyValid = !frame.lightingCut && r.historyValid(temporal) &&
-                         r.historyValid(moments) && r.historyValid(surface);
+                         r.historyValid(moments) && r.historyValid(surface) && r.historyValid(fast);
         temporal_.bind(cmd, c, r);
         dispatch(cmd);
       });

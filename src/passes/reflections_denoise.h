@@ -58,6 +58,17 @@ struct ReflectionDenoiseSettings {
   // cuts from noise alone. 0 = never cut (> 0 otherwise).
   float ghostSigma = 3.0f;
   float responsiveFrames = 2.0f;  // 1 to mirrorHistoryFrames
+  // The fast history: a running mean of at most fastHistoryFrames frames kept beside the slow
+  // one (reflections.temporal-fast). Where the 8 neighbours' slow histories differ from their
+  // fast ones by more than lagSigma standard errors (a paired Student-t test, 7 degrees of
+  // freedom; the default 5.4 is its two-sided 0.1 % level), the slow histories lag a change (a
+  // ghost left by motion) and this pixel's restarts from its fast one. The fast history
+  // follows a change within a few frames; longer: a more precise test, slower to notice. Lower
+  // lagSigma: ghosts leave sooner, more restarts from noise alone on static views (each a
+  // shorter, noisier history). 0 = never. fastHistoryFrames 1 to mirrorHistoryFrames; lagSigma
+  // 0 or more.
+  float fastHistoryFrames = 4.0f;
+  float lagSigma = 5.4f;
   // The spatial filter's radius in traced pixels: the reflection lobe's footprint on screen
   // (a lobe of half-angle ~2 alpha, seen at the hit distance through the surface) times
   // spatialFootprintScale, at most spatialMaxRadius. A mirror's footprint is 0: no spatial

@@ -48,8 +48,8 @@ ReflectionReservoirImages ReflectionsTemporalPass::declare(
     history[i] =
         graph.createHistoryImage(std::string("reflections.reservoir.") + kReservoirImageNames[i],
                                  reservoirImageDesc(i, f.size));
-  graph::HistoryImage roughness =
-      graph.createHistoryImage("reflections.reservoir.roughness", {VK_FORMAT_R16_SFLOAT, f.size});
+  graph::HistoryImage lobe =
+      graph.createHistoryImage("reflections.reservoir.lobe", {VK_FORMAT_R32G32_SFLOAT, f.size});
   graph::PassBuilder pass = graph.addPass("reflections-temporal", graph::QueueKind::Compute);
   pass.read(frame.constants, Access::StorageRead);
   // The first image written is the pass's debug view: the chosen sample's radiance, M in alpha.
@@ -67,21 +67,19 @@ ReflectionReservoirImages ReflectionsTemporalPass::declare(
       .read(gbuffer.depth.current, Access::StorageRead, gpu::REFLECTIONS_TEMPORAL_BINDING_DEPTH)
       .read(gbuffer.emissive, Access::StorageRead, gpu::REFLECTIONS_TEMPORAL_BINDING_EMISSIVE)
       .read(gbuffer.velocity, Access::StorageRead, gpu::REFLECTIONS_TEMPORAL_BINDING_VELOCITY)
-      .read(roughness.previous, Access::StorageRead,
-            gpu::REFLECTIONS_TEMPORAL_BINDING_PREVIOUS_ROUGHNESS)
-      .write(roughness.current, Access::StorageWrite,
-             gpu::REFLECTIONS_TEMPORAL_BINDING_CURRENT_ROUGHNESS);
+      .read(lobe.previous, Access::StorageRead, gpu::REFLECTIONS_TEMPORAL_BINDING_PREVIOUS_LOBE)
+      .write(lobe.current, Access::StorageWrite, gpu::REFLECTIONS_TEMPORAL_BINDING_CURRENT_LOBE);
   const bool lightingCut = frame.lightingCut;
-  pass.record([this, f, history, roughness, lightingCut](VkCommandBuffer cmd,
-                                                         const graph::PassResources& r) {
-    // No history in the first frame, after a reset or resize (the graph's), or after a lighting
-    // cut (the stored radiance is the old light's).
-    bool valid = !lightingCut && r.historyValid(roughness);
-    for (const graph::HistoryImage& image : history) valid = valid && r.historyValid(image);
-    gpu::ReflectionReuseConstants c = f.constants;
-    c.historyValid = valid ? 1u : 0u;
-    recordReflectionReuse(pass_, cmd, r, c, f.extent);
-  });
+  pass.record(
+      [this, f, history, lobe, lightingCut](VkCommandBuffer cmd, const graph::PassResources& r) {
+        // No history in the first frame, after a reset or resize (the graph's), or after a lighting
+        // cut (the stored radiance is the old light's).
+        bool valid = !lightingCut && r.historyValid(lobe);
+        for (const graph::HistoryImage& image : history) valid = valid && r.historyValid(image);
+        gpu::ReflectionReuseConstants c = f.constants;
+        c.historyValid = valid ? 1u : 0u;
+        recordReflectionReuse(pass_, cmd, r, c, f.extent);
+      });
   return {history[0].current, history[1].current, history[2].current, history[3].current};
 }
 

@@ -2,7 +2,8 @@
 // traced pixel's fresh reflection sample merged with last frame's reservoir of the same surface
 // and lobe, history M capped at ReflectionSettings::temporalMaxM. Writes this frame's
 // reservoir, reflections.reservoir.* (history, fed back next frame), and
-// reflections.reservoir.roughness (history: the roughness test's other side).
+// reflections.reservoir.lobe (history: the roughness test's other side and the chosen sample's
+// target, for the history's confidence under motion).
 #pragma once
 #include "passes/reflections_trace.h"
 #include "shared/reflections_reuse_io.h"
