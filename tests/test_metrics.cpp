@@ -327,6 +327,18 @@ TEST(ImageIo, BrokenExrHeaderIsAnError) {
   expectErrorMentioning([&] { readExrMetadata(path); }, {path});
 }
 
+// Found by fuzz/fuzz_image on the GPU machine's 16 cores: a "tiles" attribute of 2 bytes made
+// Debian's tinyexr assert, that is abort the process. The header's attributes are now checked
+// before tinyexr parses them.
+TEST(ImageIo, ExrAttributeOfTheWrongSizeIsAnErrorNotAnAbort) {
+  const unsigned char fuzzed[] = {0x76, 0x2f, 0x31, 0x01, 0x02, 0x02, 0x02, 0xce, 0x74, 0x69,
+                                  0x6c, 0x65, 0x73, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00, 0x00,
+                                  0x00, 0x00, 0x00, 0x00, 0x00, 0x02, 0x30, 0x01, 0x02, 0x02};
+  const std::string path = test::tempDir("metrics-fuzzed-tiles") + "/fuzzed.exr";
+  writeBytes(path, std::string(reinterpret_cast<const char*>(fuzzed), sizeof(fuzzed)));
+  expectErrorMentioning([&] { readImage(path); }, {path, "tiles"});
+}
+
 TEST(ImageIo, UnsupportedExtensionIsAnError) {
   const std::string path = test::tempDir("metrics-ext") + "/image.bmp";
   writeBytes(path, "BM");

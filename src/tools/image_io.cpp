@@ -83,6 +83,75 @@ std::string takeExrMessage(const char* message) {
   return text;
 }
 
+// The bytes of a file, at most `limit` of them.
+std::string readPrefix(const std::string& path, size_t limit) {
+  std::string bytes(limit, '\0');
+  FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) fail("{}: cannot open", path);
+  bytes.resize(std::fread(bytes.data(), 1, limit, file));
+  std::fclose(file);
+  return bytes;
+}
+
+// Walks a single-part scanline/tiled EXR header's attributes (name, type, size, value; an empty
+// name ends it) before tinyexr parses it: Debian's tinyexr asserts, that is aborts the process,
+// on some malformed attributes (a `tiledesc` of the wrong size, found by fuzz/fuzz_image), so
+// every attribute must lie inside the file and the fixed-size types must have their size.
+void checkExrAttributes(const std::string& path) {
+  constexpr size_t kMaxHeaderBytes = size_t(1) << 20;
+  const std::string bytes = readPrefix(path, kMaxHeaderBytes);
+  size_t at = 8;  // magic number and version
+  auto readName = [&](const char* what) {
+    const size_t end = bytes.find('\0', at);
+    if (end == std::string::npos || end - at > 255)
+      fail("{}: invalid EXR header: unterminated or too long attribute {} at byte {}", path, what,
+           at);
+    std::string name = bytes.substr(at, end - at);
+    at = end + 1;
+    return name;
+  };
+  struct FixedSize {
+    const char* type;  // or, in kStandard, the attribute's name
+    uint32_t bytes;
+  };
+  static const FixedSize kFixed[] = {
+      {"box2i", 16},   {"box2f", 16},   {"compression", 1},     {"lineOrder", 1}, {"tiledesc", 9},
+      {"int", 4},      {"float", 4},    {"double", 8},          {"v2i", 8},       {"v2f", 8},
+      {"v3i", 12},     {"v3f", 12},     {"m33f", 36},           {"m44f", 64},     {"envmap", 1},
+      {"rational", 8}, {"timecode", 8}, {"chromaticities", 32}, {"keycode", 28}};
+  static const FixedSize kStandard[] = {{"tiles", 9},
+                                        {"dataWindow", 16},
+                                        {"displayWindow", 16},
+                                        {"compression", 1},
+                                        {"lineOrder", 1},
+                                        {"pixelAspectRatio", 4},
+                                        {"screenWindowWidth", 4},
+                                        {"screenWindowCenter", 8},
+                                        {"chunkCount", 4}};
+  for (;;) {
+    const std::string name = readName("name");
+    if (name.empty()) return;
+    const std::string type = readName("type");
+    if (at + 4 > bytes.size()) fail("{}: invalid EXR header: attribute '{}' cut off", path, name);
+    uint32_t size = 0;
+    for (int k = 3; k >= 0; --k) size = (size << 8) | uint8_t(bytes[at + size_t(k)]);
+    at += 4;
+    if (size > bytes.size() - at)
+      fail("{}: invalid EXR header: attribute '{}' of {} bytes runs past the header", path, name,
+           size);
+    for (const FixedSize& f : kFixed)
+      if (type == f.type && size != f.bytes)
+        fail("{}: invalid EXR header: attribute '{}' of type {} has {} bytes, expected {}", path,
+             name, type, size, f.bytes);
+    // tinyexr reads the standard attributes by name, whatever type the file gives them.
+    for (const FixedSize& f : kStandard)
+      if (name == f.type && size != f.bytes)
+        fail("{}: invalid EXR header: attribute '{}' has {} bytes, expected {}", path, name, size,
+             f.bytes);
+    at += size;
+  }
+}
+
 void checkExrHeader(const std::string& path) {
   EXRVersion version;
   if (ParseEXRVersionFromFile(&version, path.c_str()) != TINYEXR_SUCCESS) {
@@ -91,6 +160,7 @@ void checkExrHeader(const std::string& path) {
   if (version.multipart || version.non_image) {
     fail("{}: multi-part and deep EXR files are not supported", path);
   }
+  checkExrAttributes(path);
   EXRHeader header;
   InitEXRHeader(&header);
   const char* message = nullptr;
