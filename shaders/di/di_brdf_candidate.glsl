@@ -36,6 +36,12 @@ vec2 triangleSampleOfBarycentrics(vec2 b) {
   return vec2(r * r, r > 0.0 ? b.y / r : 0.0);
 }
 
+// Whether this pixel draws the BRDF candidate (DiSettings::brdfCandidateMaxRoughness): only
+// glossy lobes, where light sampling misses the highlight. Elsewhere M_B = 0 at this pixel.
+bool diTracesBrdfCandidate(DiConstants di, DiSurface s) {
+  return di.brdfCandidates > 0u && !s.brdf.lambertOnly && s.brdf.alpha <= di.brdfCandidateMaxAlpha;
+}
+
 // p_B: the density with which the BRDF candidate produces the sample whose integrand is `l`,
 // over the light's u (0 for lights no ray can hit).
 float diBrdfCandidatePdf(DiSurface s, DiLight l) {

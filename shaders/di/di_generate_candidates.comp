@@ -3,7 +3,8 @@
 // drawn by power (the alias table; distant lights uniformly) or, with the light grid, most of
 // them from the pixel's grid cell (di/light_grid.glsl): candidate i gets the weight
 // p_hat(y_i) m_i(y_i) W_i (with the alias table alone: p_hat(y_i) / (M p(y_i))). Without the
-// grid, DiConstants::brdfCandidates BRDF-sampled candidates join (di_brdf_candidate.glsl), and
+// grid and on glossy pixels, DiConstants::brdfCandidates BRDF-sampled candidates join
+// (di_brdf_candidate.glsl: diTracesBrdfCandidate), and
 // every candidate gets the balance-heuristic weight p_hat(y_i) / (M_L p_L(y_i) + M_B p_B(y_i)).
 // (With the grid the light strategy's density is not known, only each slot's RIS weight, so the
 // host turns the BRDF candidate off there: RestirDi's makeConstants.) The kept one y has
@@ -23,7 +24,7 @@ DiReservoir resampleCandidates(FrameConstants f, DiConstants di, DiSurface s, iv
   DiReservoir r = emptyDiReservoir();
   float weightSum = 0.0;
   target = 0.0;
-  if (di.brdfCandidates == 0u) {
+  if (!diTracesBrdfCandidate(di, s)) {
     // Light candidates only: from the grid's cell where there is a grid, else the alias table.
     DiGridLookup grid = diLightGridLookup(f, di, s.position, diRandom(key).xyz);
     [[dont_unroll]] for (uint i = 0u; i < di.lightCandidates; ++i) {

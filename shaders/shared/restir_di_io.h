@@ -37,17 +37,17 @@ BOUNCE_CONST uint DI_FLAG_CANDIDATE_VISIBILITY = 8u;  // the chosen candidate's 
 // Constants of the whole chain, uploaded once (RestirDi's constructor; DiSettings documents
 // each field's unit and trade-off).
 struct DiConstants {
-  DeviceAddress lights;  // LightTables (shared/lighting_io.h): the GI's tables, sun left out
-  DeviceAddress hitMap;  // uint[]: emissive hit -> light index (light_table.h)
-  uint flags;            // DI_FLAG_*
-  uint lightCandidates;  // light candidates per pixel per frame
-  uint brdfCandidates;   // BRDF-sampled candidates per pixel per frame (0 or 1)
-  uint pad0;
-  float temporalMaxM;        // M cap of the history reservoir
-  float depthTolerance;      // reuse: |depth - depth'| / depth at most this
-  float normalTolerance;     // reuse: n . n' at least this
-  uint spatialSamples;       // di-spatial: neighbours per pixel
-  uint disocclusionSamples;  // ... where the temporal reservoir's M is below disocclusionM
+  DeviceAddress lights;         // LightTables (shared/lighting_io.h): the GI's tables, sun left out
+  DeviceAddress hitMap;         // uint[]: emissive hit -> light index (light_table.h)
+  uint flags;                   // DI_FLAG_*
+  uint lightCandidates;         // light candidates per pixel per frame
+  uint brdfCandidates;          // BRDF-sampled candidates per pixel per frame (0 or 1)
+  float brdfCandidateMaxAlpha;  // ... only where the GGX alpha is at most this
+  float temporalMaxM;           // M cap of the history reservoir
+  float depthTolerance;         // reuse: |depth - depth'| / depth at most this
+  float normalTolerance;        // reuse: n . n' at least this
+  uint spatialSamples;          // di-spatial: neighbours per pixel
+  uint disocclusionSamples;     // ... where the temporal reservoir's M is below disocclusionM
   float disocclusionM;
   float spatialRadius;      // pixels
   uint seed;                // mixed into every random number of the chain

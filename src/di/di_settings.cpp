@@ -21,6 +21,8 @@ void validate(const DiSettings& s) {
   if (s.lightCandidates < 1 || s.lightCandidates > 64)
     fail("DI light candidates {}: expected 1 to 64", s.lightCandidates);
   if (s.brdfCandidates > 1) fail("DI BRDF candidates {}: expected 0 or 1", s.brdfCandidates);
+  if (!(s.brdfCandidateMaxRoughness >= 0.0f && s.brdfCandidateMaxRoughness <= 1.0f))
+    fail("DI BRDF candidate max roughness {}: expected 0 to 1", s.brdfCandidateMaxRoughness);
   if (!(s.temporalMaxM >= 1.0f && s.temporalMaxM <= 1000.0f))
     fail("DI temporal M cap {}: expected 1 to 1000", s.temporalMaxM);
   if (!(s.depthTolerance > 0.0f) || !std::isfinite(s.depthTolerance))

@@ -30,6 +30,12 @@ struct DiSettings {
   // BRDF sampling the near-mirror highlight of an area light. Costs a ray per pixel in scenes
   // with emissive triangles (none without). 0 or 1.
   uint32_t brdfCandidates = 1;
+  // ... traced only where the surface's specular lobe is at most this rough (perceptual
+  // roughness; --lambert surfaces have none): on rougher and diffuse surfaces light sampling
+  // alone is good, and the ray cost 0.43 ms at 1080p on `cornell` (H200, docs/benchmarks.md)
+  // for no visible gain. The choice is the pixel's own, so each pixel's RIS stays unbiased
+  // (there M_B = 0). 0 to 1; 1 traces everywhere (RTXDI's default).
+  float brdfCandidateMaxRoughness = 0.5f;
   // One shadow ray for the kept candidate (RTXDI's initial visibility, on): an occluded sample
   // keeps its M with W = 0, so reuse does not hand it to neighbours. Off saves a ray per pixel
   // and shows as light leaking across shadow edges after reuse; the unbiased configuration

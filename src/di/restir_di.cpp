@@ -17,6 +17,7 @@ gpu::DiConstants makeConstants(const DiSettings& s, const GpuLightTables& lights
   // (di_generate_candidates.comp).
   c.brdfCandidates =
       lights.table().emissiveTriangles.empty() || lightGrid != 0 ? 0 : s.brdfCandidates;
+  c.brdfCandidateMaxAlpha = s.brdfCandidateMaxRoughness * s.brdfCandidateMaxRoughness;
   c.flags = 0;
   if (s.reuses()) c.flags |= gpu::DI_FLAG_TEMPORAL;
   if (s.reuses() && (s.spatialSamples > 0 || s.disocclusionSamples > 0))
