@@ -2,37 +2,20 @@
 // through tinyexr) on arbitrary bytes, as .exr when they start with the OpenEXR magic and as
 // .png otherwise (stb detects PNG and JPEG by content). A refused file is a bounce::Error;
 // anything else is a bug.
-#include <unistd.h>
-
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <string>
 
 #include "core/error.h"
+#include "fuzz_input.h"
 #include "tools/image_io.h"
-
-namespace {
-
-std::string inputPath(bool exr) {
-  static const std::string base = "/tmp/bounce-fuzz-image-" + std::to_string(getpid());
-  return base + (exr ? ".exr" : ".png");
-}
-
-bool writeFile(const std::string& path, const uint8_t* data, size_t size) {
-  FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file) return false;
-  const bool ok = std::fwrite(data, 1, size, file) == size;
-  return std::fclose(file) == 0 && ok;
-}
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const uint8_t kExrMagic[4] = {0x76, 0x2f, 0x31, 0x01};
   const bool exr = size >= 4 && std::memcmp(data, kExrMagic, 4) == 0;
-  const std::string path = inputPath(exr);
-  if (!writeFile(path, data, size)) return 0;
+  const std::string path = bounce::fuzz::writeInputFile("image", exr ? "exr" : "png", data, size);
+  if (path.empty()) return 0;
   try {
     bounce::ImageRGBA32F image = bounce::readImage(path);
     (void)image;
