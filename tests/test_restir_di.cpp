@@ -19,17 +19,14 @@
 
 #include <gtest/gtest.h>
 
+#include "di_test_common.h"
 #include "harness.h"
 
 #include "frame/hybrid_frame.h"
-#include "frame/presets.h"
-#include "reference/path_tracer.h"
 #include "rt/gpu_scene.h"
 #include "scene/animation.h"
 #include "scene/load.h"
-#include "scene/procedural/mesh_builder.h"
 #include "scene/scene_options.h"
-#include "scene/time_of_day.h"
 #include "tools/image_io.h"
 #include "tools/metrics.h"
 #include "vk/context.h"
@@ -37,68 +34,21 @@
 namespace bounce {
 namespace {
 
-double pixelLuminance(const ImageRGBA32F& image, size_t i) {
-  return 0.2126 * image.pixels[4 * i] + 0.7152 * image.pixels[4 * i + 1] +
-         0.0722 * image.pixels[4 * i + 2];
-}
-
-// The hybrid frame lit by DI alone: no GI, no reflection rays, full-resolution shadows.
-HybridSettings diSettings(uint32_t width, uint32_t height, const DiSettings& di) {
-  HybridSettings settings = presetSettings(Preset::Desktop);
-  settings.width = width;
-  settings.height = height;
-  settings.shadows.divisor = 1;
-  settings.reflections.divisor = 0;
-  settings.gi = GiMode::None;
-  settings.di = di;
-  return settings;
-}
-
-// A floor split by a wall along x = 0, taller than the point light on its -x side, seen from
-// above in the wall's plane: the image's right part (x > 0) sees only surfaces the light cannot
-// reach.
-Scene wallScene() {
-  using namespace procedural;
-  Scene scene;
-  scene.name = "wall";
-  uint32_t white = addMaterial(scene, lambertMaterial("white", glm::vec3(0.8f)));
-  MeshBuilder builder;
-  addBox(builder.geometry(white), Aabb{{-4.0f, -0.1f, -4.0f}, {4.0f, 0.0f, 4.0f}});
-  addBox(builder.geometry(white), Aabb{{-0.05f, 0.0f, -4.0f}, {0.05f, 2.0f, 4.0f}});
-  addMeshInstance(scene, builder.build("floor_and_wall"));
-  PunctualLight light;
-  light.type = PunctualLight::Type::Point;
-  light.name = "behind_the_wall";
-  light.position = {-1.0f, 0.5f, 0.0f};
-  light.intensity = 20.0f;
-  scene.lights.push_back(light);
-  scene.sun.irradiance = 0.0f;
-  scene.sky.radiance = glm::vec3(0.0f);
-  Camera camera;
-  camera.position = {0.0f, 8.0f, 4.0f};
-  camera.target = {0.0f, 0.0f, 0.0f};
-  camera.verticalFovDegrees = 60.0f;
-  scene.camera = camera;
-  return scene;
-}
-
-// Mean luminance of the columns [from, to).
-double meanOfColumns(const ImageRGBA32F& image, uint32_t from, uint32_t to) {
-  double sum = 0.0;
-  size_t n = 0;
-  for (uint32_t y = 0; y < image.height; ++y)
-    for (uint32_t x = from; x < to; ++x, ++n)
-      sum += pixelLuminance(image, size_t(y) * image.width + x);
-  return n ? sum / double(n) : 0.0;
-}
-
-double maxOfColumns(const ImageRGBA32F& image, uint32_t from, uint32_t to) {
-  double m = 0.0;
-  for (uint32_t y = 0; y < image.height; ++y)
-    for (uint32_t x = from; x < to; ++x)
-      m = std::max(m, pixelLuminance(image, size_t(y) * image.width + x));
-  return m;
-}
+using test::BlockComparison;
+using test::BlockStatistics;
+using test::blockStatistics;
+using test::cityAtNight;
+using test::cityStreetCamera;
+using test::compareBlocks;
+using test::directReference;
+using test::diSettings;
+using test::maxOfColumns;
+using test::meanImage;
+using test::meanOfColumns;
+using test::noiseRelMse;
+using test::PixelVariance;
+using test::runMeans;
+using test::wallScene;
 
 // The bug of issue 20: composite lit point lights unshadowed, through walls. With ReSTIR DI no
 // pixel right of the wall (beyond a 4-pixel margin for the wall's own width) gets any light,
@@ -132,73 +82,6 @@ TEST(RestirDi, PointLightBehindAWallLightsNothingBeyondIt) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
-// Per-block statistics over independent estimates of an image (runs of the hybrid frame, or
-// batches of reference samples): the mean of each 8x8 block's mean luminance and its standard
-// error.
-struct BlockStatistics {
-  std::vector<double> sum, sumSq;
-  int n = 0;
-  uint32_t blocksX = 0, blocksY = 0;
-
-  void add(const ImageRGBA32F& image) {
-    blocksX = image.width / 8;
-    blocksY = image.height / 8;
-    if (sum.empty()) sum.assign(blocksX * blocksY, 0.0), sumSq.assign(blocksX * blocksY, 0.0);
-    for (uint32_t by = 0; by < blocksY; ++by)
-      for (uint32_t bx = 0; bx < blocksX; ++bx) {
-        double m = 0.0;
-        for (uint32_t y = 0; y < 8; ++y)
-          for (uint32_t x = 0; x < 8; ++x)
-            m += pixelLuminance(image, size_t(by * 8 + y) * image.width + bx * 8 + x);
-        m /= 64.0;
-        sum[by * blocksX + bx] += m;
-        sumSq[by * blocksX + bx] += m * m;
-      }
-    ++n;
-  }
-  double mean(size_t b) const { return sum[b] / n; }
-  // Standard error of the mean over the n estimates (sample variance / n).
-  double standardError(size_t b) const {
-    double m = mean(b);
-    double variance = std::max(sumSq[b] - n * m * m, 0.0) / double(n - 1);
-    return std::sqrt(variance / n);
-  }
-};
-
-// The relMSE that noise alone gives, expected: the mean over pixels and channels of
-// (variance of the hybrid's mean + variance of the reference's mean) / (reference^2 + epsilon),
-// each variance the sample variance of independent estimates over their count. relMSE minus
-// this is the squared bias's share.
-double noiseRelMse(const std::vector<ImageRGBA32F>& hybrid,
-                   const std::vector<ImageRGBA32F>& reference, const ImageRGBA32F& referenceMean) {
-  auto varianceOfMean = [](const std::vector<ImageRGBA32F>& images, size_t k) {
-    double sum = 0.0, sumSq = 0.0;
-    for (const ImageRGBA32F& image : images) {
-      sum += image.pixels[k];
-      sumSq += double(image.pixels[k]) * image.pixels[k];
-    }
-    const double n = double(images.size()), m = sum / n;
-    return std::max(sumSq - n * m * m, 0.0) / (n - 1.0) / n;
-  };
-  double total = 0.0;
-  for (size_t i = 0; i < referenceMean.pixelCount(); ++i)
-    for (size_t c = 0; c < 3; ++c) {
-      const size_t k = 4 * i + c;
-      const double r = referenceMean.pixels[k];
-      total +=
-          (varianceOfMean(hybrid, k) + varianceOfMean(reference, k)) / (r * r + kRelMseEpsilon);
-    }
-  return total / double(3 * referenceMean.pixelCount());
-}
-
-ImageRGBA32F meanImage(const std::vector<ImageRGBA32F>& images) {
-  ImageRGBA32F mean = images.at(0);
-  for (size_t k = 1; k < images.size(); ++k)
-    for (size_t i = 0; i < mean.pixels.size(); ++i) mean.pixels[i] += images[k].pixels[i];
-  for (float& v : mean.pixels) v /= float(images.size());
-  return mean;
-}
-
 // Issue 20, "unbiased": the unbiased configuration's estimate of direct light, the mean of 64
 // frames (16 independent runs of 4 frames: runs are what the standard error needs, frames of one
 // run are correlated by reuse), against the reference path tracer with one scattering event
@@ -217,84 +100,28 @@ TEST(RestirDi, UnbiasedConfigurationMatchesDirectLightReference) {
   HybridFrame frame(context, gpuScene, scene,
                     diSettings(width, height, DiSettings::unbiasedConfiguration()));
   frame.requestDebugView("di-shade");
-  BlockStatistics hybrid;
-  std::vector<ImageRGBA32F> runMeans;
-  for (int run = 0; run < runs; ++run) {
-    frame.resetHistory();
-    std::vector<ImageRGBA32F> frames;
-    for (int i = 0; i < framesPerRun; ++i) {
-      frame.render(camera);
-      frames.push_back(frame.debugViewImage("di-shade"));
-    }
-    runMeans.push_back(meanImage(frames));
-    hybrid.add(runMeans.back());
-  }
-  ImageRGBA32F hybridMean = meanImage(runMeans);
+  const std::vector<ImageRGBA32F> hybridRuns = runMeans(frame, camera, runs, framesPerRun);
+  const ImageRGBA32F hybridMean = meanImage(hybridRuns);
+  const std::vector<ImageRGBA32F> referenceBatches =
+      directReference(context, gpuScene, scene, camera, width, height, batches, 128);
+  const ImageRGBA32F referenceMean = meanImage(referenceBatches);
 
-  ReferencePathTracer tracer(context, gpuScene, scene);
-  BlockStatistics reference;
-  std::vector<ImageRGBA32F> referenceBatches;
-  for (int b = 0; b < batches; ++b) {
-    ReferenceOptions options;
-    options.width = width;
-    options.height = height;
-    options.samplesPerPixel = 128;
-    options.maxBounces = 1;
-    options.pixelCentre = true;
-    options.seed = uint32_t(1 + b);
-    referenceBatches.push_back(tracer.render(camera, options).image);
-    reference.add(referenceBatches.back());
-  }
-  ImageRGBA32F referenceMean = meanImage(referenceBatches);
-
-  double worstZ = 0.0;
-  size_t outside = 0;
-  for (size_t b = 0; b < hybrid.sum.size(); ++b) {
-    double se = std::hypot(hybrid.standardError(b), reference.standardError(b));
-    double z = std::abs(hybrid.mean(b) - reference.mean(b)) / std::max(se, 1e-12);
-    worstZ = std::max(worstZ, z);
-    if (z > 3.0) {
-      ++outside;
-      std::printf("  block %zu: hybrid %.4f +- %.4f, reference %.4f +- %.4f (%.1f SE)\n", b,
-                  hybrid.mean(b), hybrid.standardError(b), reference.mean(b),
-                  reference.standardError(b), z);
-    }
-  }
+  const BlockStatistics hybrid = blockStatistics(hybridRuns);
+  const BlockComparison blocks =
+      compareBlocks(hybrid, blockStatistics(referenceBatches), 3.0, "hybrid");
   const double relMse = relativeMeanSquaredError(hybridMean, referenceMean);
-  const double noise = noiseRelMse(runMeans, referenceBatches, referenceMean);
+  const double noise = noiseRelMse(hybridRuns, referenceBatches, referenceMean);
   const double ratio = test::meanLuminance(hybridMean) / test::meanLuminance(referenceMean);
   std::printf(
       "manylights %ux%u, --di-unbiased, %d runs x %d frames: relMSE %.4f (noise's share %.4f), "
       "mean ratio %.4f, worst block %.2f SE (%zu of %zu beyond 3)\n",
-      width, height, runs, framesPerRun, relMse, noise, ratio, worstZ, outside, hybrid.sum.size());
-  EXPECT_EQ(outside, 0u);
+      width, height, runs, framesPerRun, relMse, noise, ratio, blocks.worstZ, blocks.outside,
+      hybrid.blockCount());
+  EXPECT_EQ(blocks.outside, 0u);
   EXPECT_LE(relMse - noise, 0.02);
   EXPECT_EQ(countNonFinitePixels(hybridMean), 0u);
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
-
-// Per-pixel variance (luminance) over independent images, averaged over the pixels.
-struct PixelVariance {
-  std::vector<double> sum, sumSq;
-  int n = 0;
-  void add(const ImageRGBA32F& image) {
-    if (sum.empty()) sum.assign(image.pixelCount(), 0.0), sumSq.assign(image.pixelCount(), 0.0);
-    for (size_t i = 0; i < image.pixelCount(); ++i) {
-      double v = pixelLuminance(image, i);
-      sum[i] += v;
-      sumSq[i] += v * v;
-    }
-    ++n;
-  }
-  double meanVariance() const {
-    double total = 0.0;
-    for (size_t i = 0; i < sum.size(); ++i) {
-      double m = sum[i] / n;
-      total += std::max(sumSq[i] - n * m * m, 0.0) / double(n - 1);
-    }
-    return total / double(sum.size());
-  }
-};
 
 // The variance of frame `frameOfRun` over `runs` independent runs.
 double frameVariance(HybridFrame& frame, const Camera& camera, int runs, int frameOfRun) {
@@ -364,30 +191,6 @@ TEST(RestirDi, MovingCameraRunStaysFinite) {
 
 // ---- city by night -----------------------------------------------------------------------------
 
-// `city` at 22 h (no sun, the dim night sky); without its lamps when `lamps` is false (no spot
-// lights, lamp covers that do not emit: the city before issue 20).
-Scene cityAtNight(bool lamps) {
-  Scene scene = loadScene("city");
-  const Sun daySun = scene.sun;
-  const Sky daySky = scene.sky;
-  applyTimeOfDay(22.0f, daySun, daySky, scene.sun, scene.sky);
-  if (!lamps) {
-    scene.lights.clear();
-    for (Material& m : scene.materials) m.emissive = glm::vec3(0.0f);
-  }
-  return scene;
-}
-
-// A view down the avenue at x = 0 from 5 m up, over a crossing: eight lamps on the avenue's two
-// sides and the crossing street's light pools, facades, little sky.
-Camera cityStreetCamera() {
-  Camera camera;
-  camera.position = {3.0f, 5.0f, 170.0f};
-  camera.target = {0.0f, 0.0f, 110.0f};
-  camera.verticalFovDegrees = 60.0f;
-  return camera;
-}
-
 // The mean luminance of the night street's direct light with and without the lamps: the frame
 // lit by DI alone (composite: DI, the covers' own emission and the sky where it is seen; no GI,
 // no sun at night), the mean of frames 9 to 16 of one run (reuse warmed up, its noise averaged),
@@ -410,14 +213,8 @@ NightMeans nightMeans(vk::Context& context, bool lamps, uint32_t width, uint32_t
   }
   NightMeans means;
   means.hybrid = test::meanLuminance(meanImage(frames));
-  ReferencePathTracer tracer(context, gpuScene, scene);
-  ReferenceOptions options;
-  options.width = width;
-  options.height = height;
-  options.samplesPerPixel = 64;
-  options.maxBounces = 1;
-  options.pixelCentre = true;
-  means.reference = test::meanLuminance(tracer.render(camera, options).image);
+  means.reference = test::meanLuminance(
+      directReference(context, gpuScene, scene, camera, width, height, 1, 64)[0]);
   return means;
 }
 

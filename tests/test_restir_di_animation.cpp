@@ -17,12 +17,11 @@
 
 #include <gtest/gtest.h>
 
+#include "di_test_common.h"
 #include "harness.h"
 
 #include "frame/animation_player.h"
 #include "frame/hybrid_frame.h"
-#include "frame/presets.h"
-#include "reference/path_tracer.h"
 #include "rt/gpu_scene.h"
 #include "scene/animation.h"
 #include "scene/load.h"
@@ -35,97 +34,18 @@
 namespace bounce {
 namespace {
 
-double pixelLuminance(const ImageRGBA32F& image, size_t i) {
-  return 0.2126 * image.pixels[4 * i] + 0.7152 * image.pixels[4 * i + 1] +
-         0.0722 * image.pixels[4 * i + 2];
-}
-
-// The hybrid frame lit by DI alone: no GI, no reflection rays, full-resolution shadows.
-HybridSettings diSettings(uint32_t width, uint32_t height, const DiSettings& di) {
-  HybridSettings settings = presetSettings(Preset::Desktop);
-  settings.width = width;
-  settings.height = height;
-  settings.shadows.divisor = 1;
-  settings.reflections.divisor = 0;
-  settings.gi = GiMode::None;
-  settings.di = di;
-  return settings;
-}
-
-ImageRGBA32F meanImage(const std::vector<ImageRGBA32F>& images) {
-  ImageRGBA32F mean = images.at(0);
-  for (size_t k = 1; k < images.size(); ++k)
-    for (size_t i = 0; i < mean.pixels.size(); ++i) mean.pixels[i] += images[k].pixels[i];
-  for (float& v : mean.pixels) v /= float(images.size());
-  return mean;
-}
-
-// Mean and standard error of each 8x8 block's mean luminance over independent images.
-struct BlockStatistics {
-  std::vector<double> sum, sumSq;
-  int n = 0;
-  void add(const ImageRGBA32F& image) {
-    const uint32_t bx = image.width / 8, by = image.height / 8;
-    if (sum.empty()) sum.assign(bx * by, 0.0), sumSq.assign(bx * by, 0.0);
-    for (uint32_t b = 0; b < bx * by; ++b) {
-      double m = 0.0;
-      for (uint32_t y = 0; y < 8; ++y)
-        for (uint32_t x = 0; x < 8; ++x)
-          m += pixelLuminance(image, size_t((b / bx) * 8 + y) * image.width + (b % bx) * 8 + x);
-      sum[b] += m / 64.0;
-      sumSq[b] += m * m / 4096.0;
-    }
-    ++n;
-  }
-  double mean(size_t b) const { return sum[b] / n; }
-  double standardError(size_t b) const {
-    const double m = mean(b);
-    return std::sqrt(std::max(sumSq[b] - n * m * m, 0.0) / double(n - 1) / n);
-  }
-};
-
-// Mean per-pixel variance of luminance over independent images.
-struct PixelVariance {
-  std::vector<double> sum, sumSq;
-  int n = 0;
-  void add(const ImageRGBA32F& image) {
-    if (sum.empty()) sum.assign(image.pixelCount(), 0.0), sumSq.assign(image.pixelCount(), 0.0);
-    for (size_t i = 0; i < image.pixelCount(); ++i) {
-      const double v = pixelLuminance(image, i);
-      sum[i] += v;
-      sumSq[i] += v * v;
-    }
-    ++n;
-  }
-  double meanVariance() const {
-    double total = 0.0;
-    for (size_t i = 0; i < sum.size(); ++i) {
-      const double m = sum[i] / n;
-      total += std::max(sumSq[i] - n * m * m, 0.0) / double(n - 1);
-    }
-    return total / double(sum.size());
-  }
-};
-
-// The reference path tracer limited to direct light (one scattering event, pixel centres) in
-// `batches` independent batches.
-std::vector<ImageRGBA32F> directReference(vk::Context& context, GpuScene& gpuScene,
-                                          const Scene& scene, const Camera& camera, uint32_t width,
-                                          uint32_t height, int batches, uint32_t spp) {
-  ReferencePathTracer tracer(context, gpuScene, scene);
-  std::vector<ImageRGBA32F> out;
-  for (int b = 0; b < batches; ++b) {
-    ReferenceOptions options;
-    options.width = width;
-    options.height = height;
-    options.samplesPerPixel = spp;
-    options.maxBounces = 1;
-    options.pixelCentre = true;
-    options.seed = uint32_t(1 + b);
-    out.push_back(tracer.render(camera, options).image);
-  }
-  return out;
-}
+using test::BlockComparison;
+using test::BlockStatistics;
+using test::blockStatistics;
+using test::compareBlocks;
+using test::directReference;
+using test::diSettings;
+using test::maxOfColumns;
+using test::meanImage;
+using test::meanOfColumns;
+using test::oneFrameVariance;
+using test::runMeans;
+using test::wallScene;
 
 // ---- the BRDF candidate ------------------------------------------------------------------------
 
@@ -179,47 +99,23 @@ TEST(RestirDiBrdfCandidate, UnbiasedOnAGlossyHighlightMatchesReference) {
   HybridFrame frame(context, gpuScene, scene,
                     diSettings(width, height, DiSettings::unbiasedConfiguration()));
   frame.requestDebugView("di-shade");
-  BlockStatistics hybrid;
-  std::vector<ImageRGBA32F> runMeans;
-  for (int run = 0; run < runs; ++run) {
-    frame.resetHistory();
-    std::vector<ImageRGBA32F> frames;
-    for (int i = 0; i < framesPerRun; ++i) {
-      frame.render(camera);
-      frames.push_back(frame.debugViewImage("di-shade"));
-    }
-    runMeans.push_back(meanImage(frames));
-    hybrid.add(runMeans.back());
-  }
-  const ImageRGBA32F hybridMean = meanImage(runMeans);
-  std::vector<ImageRGBA32F> batches =
+  const std::vector<ImageRGBA32F> hybridRuns = runMeans(frame, camera, runs, framesPerRun);
+  const ImageRGBA32F hybridMean = meanImage(hybridRuns);
+  const std::vector<ImageRGBA32F> batches =
       directReference(context, gpuScene, scene, camera, width, height, 8, 128);
-  BlockStatistics reference;
-  for (const ImageRGBA32F& b : batches) reference.add(b);
   const ImageRGBA32F referenceMean = meanImage(batches);
   writeImage("restir_di_glossy_hybrid.png", hybridMean);
   writeImage("restir_di_glossy_reference.png", referenceMean);
 
-  double worstZ = 0.0;
-  size_t outside = 0;
-  for (size_t b = 0; b < hybrid.sum.size(); ++b) {
-    const double se = std::hypot(hybrid.standardError(b), reference.standardError(b));
-    const double z = std::abs(hybrid.mean(b) - reference.mean(b)) / std::max(se, 1e-12);
-    worstZ = std::max(worstZ, z);
-    if (z > 3.0) {
-      ++outside;
-      std::printf("  block %zu: hybrid %.4f +- %.4f, reference %.4f +- %.4f (%.1f SE)\n", b,
-                  hybrid.mean(b), hybrid.standardError(b), reference.mean(b),
-                  reference.standardError(b), z);
-    }
-  }
+  const BlockStatistics hybrid = blockStatistics(hybridRuns);
+  const BlockComparison blocks = compareBlocks(hybrid, blockStatistics(batches), 3.0, "hybrid");
   const double relMse = relativeMeanSquaredError(hybridMean, referenceMean);
   const double ratio = test::meanLuminance(hybridMean) / test::meanLuminance(referenceMean);
   std::printf(
       "glossy floor %ux%u, --di-unbiased with the BRDF candidate: relMSE %.4f, mean ratio %.4f, "
       "worst block %.2f SE (%zu of %zu beyond 3)\n",
-      width, height, relMse, ratio, worstZ, outside, hybrid.sum.size());
-  EXPECT_EQ(outside, 0u);
+      width, height, relMse, ratio, blocks.worstZ, blocks.outside, hybrid.blockCount());
+  EXPECT_EQ(blocks.outside, 0u);
   EXPECT_LE(relMse, 0.02);
   EXPECT_EQ(countNonFinitePixels(hybridMean), 0u);
   EXPECT_EQ(context.validationErrorCount(), 0u);
@@ -244,12 +140,7 @@ TEST(RestirDiBrdfCandidate, LowersTheVarianceOfAGlossyHighlight) {
     di.brdfCandidates = brdf;
     HybridFrame frame(context, gpuScene, scene, diSettings(width, height, di));
     frame.requestDebugView("di-shade");
-    PixelVariance v;
-    for (int run = 0; run < runs; ++run) {
-      frame.render(camera);
-      v.add(frame.debugViewImage("di-shade"));
-    }
-    variance[brdf] = v.meanVariance();
+    variance[brdf] = oneFrameVariance(frame, camera, runs);
   }
   std::printf(
       "glossy floor %ux%u, one candidate frame: variance %.4g with 8 light candidates, %.4g "
@@ -260,48 +151,6 @@ TEST(RestirDiBrdfCandidate, LowersTheVarianceOfAGlossyHighlight) {
 }
 
 // ---- light animation ---------------------------------------------------------------------------
-
-// A floor split by a wall along x = 0 and a point light at x = -1 (test_restir_di.cpp's scene),
-// seen from above: the image's left part sees what the light reaches, the right part not.
-Scene wallScene() {
-  using namespace procedural;
-  Scene scene;
-  scene.name = "wall";
-  const uint32_t white = addMaterial(scene, lambertMaterial("white", glm::vec3(0.8f)));
-  MeshBuilder builder;
-  addBox(builder.geometry(white), Aabb{{-4.0f, -0.1f, -4.0f}, {4.0f, 0.0f, 4.0f}});
-  addBox(builder.geometry(white), Aabb{{-0.05f, 0.0f, -4.0f}, {0.05f, 2.0f, 4.0f}});
-  addMeshInstance(scene, builder.build("floor_and_wall"));
-  PunctualLight light;
-  light.type = PunctualLight::Type::Point;
-  light.name = "moving";
-  light.position = {-1.0f, 0.5f, 0.0f};
-  light.intensity = 20.0f;
-  scene.lights.push_back(light);
-  scene.sun.irradiance = 0.0f;
-  scene.sky.radiance = glm::vec3(0.0f);
-  Camera camera;
-  camera.position = {0.0f, 8.0f, 4.0f};
-  camera.target = {0.0f, 0.0f, 0.0f};
-  camera.verticalFovDegrees = 60.0f;
-  scene.camera = camera;
-  return scene;
-}
-
-double columnsMax(const ImageRGBA32F& image, uint32_t from, uint32_t to) {
-  double m = 0.0;
-  for (uint32_t y = 0; y < image.height; ++y)
-    for (uint32_t x = from; x < to; ++x)
-      m = std::max(m, pixelLuminance(image, size_t(y) * image.width + x));
-  return m;
-}
-
-double columnsMean(const ImageRGBA32F& image, uint32_t from, uint32_t to) {
-  double sum = 0.0;
-  for (uint32_t y = 0; y < image.height; ++y)
-    for (uint32_t x = from; x < to; ++x) sum += pixelLuminance(image, size_t(y) * image.width + x);
-  return sum / double(image.height * (to - from));
-}
 
 // Reservoirs name lights by index and re-evaluate them every pass, so a change shows in the
 // very next frame: after 8 frames lit from the wall's left, the light moved to its right lights
@@ -344,19 +193,19 @@ TEST(RestirDiAnimation, MovedAndSwitchedLightsShowInTheNextFrame) {
   std::printf(
       "wall: left mean %.4g before; moved right: left max %.4g, right mean %.4g (24 frames "
       "later %.4g); off: max %.4g; back on: left mean %.4g\n",
-      columnsMean(before, 0, leftEnd), columnsMax(moved, 0, leftEnd),
-      columnsMean(moved, rightStart, width), columnsMean(settled, rightStart, width),
-      columnsMax(off, 0, width), columnsMean(back, 0, leftEnd));
-  EXPECT_GT(columnsMean(before, 0, leftEnd), 0.0);
-  EXPECT_EQ(columnsMax(moved, 0, leftEnd), 0.0);
-  EXPECT_GT(columnsMean(moved, rightStart, width), 0.0);
+      meanOfColumns(before, 0, leftEnd), maxOfColumns(moved, 0, leftEnd),
+      meanOfColumns(moved, rightStart, width), meanOfColumns(settled, rightStart, width),
+      maxOfColumns(off, 0, width), meanOfColumns(back, 0, leftEnd));
+  EXPECT_GT(meanOfColumns(before, 0, leftEnd), 0.0);
+  EXPECT_EQ(maxOfColumns(moved, 0, leftEnd), 0.0);
+  EXPECT_GT(meanOfColumns(moved, rightStart, width), 0.0);
   // The scene is symmetric about the wall: settled, the right side is as bright as the left was.
-  EXPECT_NEAR(columnsMean(settled, rightStart, width), columnsMean(before, 0, leftEnd),
-              0.25 * columnsMean(before, 0, leftEnd));
-  EXPECT_EQ(columnsMax(off, 0, width), 0.0);
-  EXPECT_EQ(columnsMax(back, rightStart, width), 0.0);
-  EXPECT_NEAR(columnsMean(back, 0, leftEnd), columnsMean(before, 0, leftEnd),
-              0.25 * columnsMean(before, 0, leftEnd));
+  EXPECT_NEAR(meanOfColumns(settled, rightStart, width), meanOfColumns(before, 0, leftEnd),
+              0.25 * meanOfColumns(before, 0, leftEnd));
+  EXPECT_EQ(maxOfColumns(off, 0, width), 0.0);
+  EXPECT_EQ(maxOfColumns(back, rightStart, width), 0.0);
+  EXPECT_NEAR(meanOfColumns(back, 0, leftEnd), meanOfColumns(before, 0, leftEnd),
+              0.25 * meanOfColumns(before, 0, leftEnd));
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
