@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "frame/presets.h"
+#include "harness.h"
 #include "reference/path_tracer.h"
 #include "scene/load.h"
 #include "scene/procedural/mesh_builder.h"
@@ -117,6 +118,9 @@ std::vector<ImageRGBA32F> directReference(vk::Context& context, GpuScene& gpuSce
   return out;
 }
 
+namespace {
+
+// Each of `runs` independent runs' mean di-shade image (see compareWithDirectReference).
 std::vector<ImageRGBA32F> runMeans(HybridFrame& frame, const Camera& camera, int runs,
                                    int framesPerRun) {
   std::vector<ImageRGBA32F> means;
@@ -131,6 +135,17 @@ std::vector<ImageRGBA32F> runMeans(HybridFrame& frame, const Camera& camera, int
   }
   return means;
 }
+
+// Each 8x8 block's mean luminance in each of a set of independent images: its mean over the
+// images and the standard error of that mean (two-pass sample variance over the count).
+struct BlockStatistics {
+  std::vector<std::vector<double>> perImage;  // [image][block]
+
+  void add(const ImageRGBA32F& image);
+  size_t blockCount() const { return perImage.empty() ? 0 : perImage[0].size(); }
+  double mean(size_t b) const;
+  double standardError(size_t b) const;
+};
 
 void BlockStatistics::add(const ImageRGBA32F& image) {
   const uint32_t bx = image.width / 8, by = image.height / 8;
@@ -154,12 +169,14 @@ double BlockStatistics::standardError(size_t b) const {
   return std::sqrt(s / (n - 1.0) / n);
 }
 
+// The block statistics of each of `images`.
 BlockStatistics blockStatistics(const std::vector<ImageRGBA32F>& images) {
   BlockStatistics statistics;
   for (const ImageRGBA32F& image : images) statistics.add(image);
   return statistics;
 }
 
+// Compares block by block and prints each block beyond `maxZ`, the test's named `testName`.
 BlockComparison compareBlocks(const BlockStatistics& test, const BlockStatistics& reference,
                               double maxZ, const char* testName) {
   BlockComparison c;
@@ -177,6 +194,9 @@ BlockComparison compareBlocks(const BlockStatistics& test, const BlockStatistics
   return c;
 }
 
+// The relMSE that noise alone gives, expected: the mean over pixels and channels of
+// (variance of the test's mean + variance of the reference's mean) / (reference^2 + epsilon),
+// each variance the sample variance of independent estimates over their count.
 double noiseRelMse(const std::vector<ImageRGBA32F>& test,
                    const std::vector<ImageRGBA32F>& reference, const ImageRGBA32F& referenceMean) {
   auto varianceOfMean = [](const std::vector<ImageRGBA32F>& images, size_t k) {
@@ -196,6 +216,29 @@ double noiseRelMse(const std::vector<ImageRGBA32F>& test,
       total += (varianceOfMean(test, k) + varianceOfMean(reference, k)) / (r * r + kRelMseEpsilon);
     }
   return total / double(3 * referenceMean.pixelCount());
+}
+
+}  // namespace
+
+DirectComparison compareWithDirectReference(vk::Context& context, GpuScene& gpuScene,
+                                            const Scene& scene, const Camera& camera,
+                                            HybridFrame& frame, uint32_t width, uint32_t height,
+                                            const DirectComparisonRuns& runs,
+                                            const char* testName) {
+  const std::vector<ImageRGBA32F> hybridRuns =
+      runMeans(frame, camera, runs.runs, runs.framesPerRun);
+  const std::vector<ImageRGBA32F> referenceBatches =
+      directReference(context, gpuScene, scene, camera, width, height, runs.batches, runs.spp);
+  DirectComparison c;
+  c.hybridMean = meanImage(hybridRuns);
+  c.referenceMean = meanImage(referenceBatches);
+  const BlockStatistics hybrid = blockStatistics(hybridRuns);
+  c.blocks = compareBlocks(hybrid, blockStatistics(referenceBatches), runs.maxZ, testName);
+  c.blockCount = hybrid.blockCount();
+  c.relMse = relativeMeanSquaredError(c.hybridMean, c.referenceMean);
+  c.noiseShare = noiseRelMse(hybridRuns, referenceBatches, c.referenceMean);
+  c.meanRatio = meanLuminance(c.hybridMean) / meanLuminance(c.referenceMean);
+  return c;
 }
 
 void PixelVariance::add(const ImageRGBA32F& image) {

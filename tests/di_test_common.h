@@ -48,39 +48,41 @@ std::vector<ImageRGBA32F> directReference(vk::Context& context, GpuScene& gpuSce
                                           const Scene& scene, const Camera& camera, uint32_t width,
                                           uint32_t height, int batches, uint32_t spp);
 
-// `runs` independent runs of `frame` (resetHistory before each) of `framesPerRun` frames each:
-// each run's mean di-shade image (runs are independent, frames of one run correlated by reuse).
-std::vector<ImageRGBA32F> runMeans(HybridFrame& frame, const Camera& camera, int runs,
-                                   int framesPerRun);
-
-// Each 8x8 block's mean luminance in each of a set of independent images: its mean over the
-// images and the standard error of that mean (two-pass sample variance over the count).
-struct BlockStatistics {
-  std::vector<std::vector<double>> perImage;  // [image][block]
-
-  void add(const ImageRGBA32F& image);
-  size_t blockCount() const { return perImage.empty() ? 0 : perImage[0].size(); }
-  double mean(size_t b) const;
-  double standardError(size_t b) const;
-};
-// The block statistics of each of `images`.
-BlockStatistics blockStatistics(const std::vector<ImageRGBA32F>& images);
-
 // How far the blocks of a test's images lie from the reference's, in combined standard errors.
 struct BlockComparison {
   double worstZ = 0.0;  // the largest |test - reference| / SE over the blocks
   size_t outside = 0;   // blocks beyond maxZ
 };
-// Compares block by block and prints each block beyond `maxZ`, the test's named `testName`.
-BlockComparison compareBlocks(const BlockStatistics& test, const BlockStatistics& reference,
-                              double maxZ, const char* testName);
 
-// The relMSE that noise alone gives, expected: the mean over pixels and channels of
-// (variance of the test's mean + variance of the reference's mean) / (reference^2 + epsilon),
-// each variance the sample variance of independent estimates over their count. relMSE minus
-// this is the squared bias's share.
-double noiseRelMse(const std::vector<ImageRGBA32F>& test,
-                   const std::vector<ImageRGBA32F>& reference, const ImageRGBA32F& referenceMean);
+// The counts of compareWithDirectReference (the unbiased tests' 16 x 4 frames, 8 x 128 spp).
+struct DirectComparisonRuns {
+  int runs = 16, framesPerRun = 4;  // independent runs of the hybrid frame, frames of each
+  int batches = 8;                  // independent batches of the reference
+  uint32_t spp = 128;               // samples per pixel of each batch
+  double maxZ = 3.0;                // a block beyond this many standard errors is `outside`
+};
+
+// What compareWithDirectReference measured.
+struct DirectComparison {
+  ImageRGBA32F hybridMean, referenceMean;
+  BlockComparison blocks;
+  size_t blockCount = 0;
+  double relMse = 0.0;
+  // The relMSE that noise alone gives, expected (both images' noise): relMSE minus this is the
+  // squared bias's share.
+  double noiseShare = 0.0;
+  double meanRatio = 0.0;  // mean luminance of the hybrid over the reference's
+};
+
+// The DI tests' unbiasedness check: the mean di-shade of `runs` independent runs of
+// `framesPerRun` frames of `frame` (resetHistory before each: runs are independent, frames of
+// one run correlated by reuse) against `batches` x `spp` samples of directReference: each 8x8
+// block's mean luminance, with standard errors over the runs and batches (blocks beyond `maxZ`
+// printed, the test's image named `testName`), and the whole image's relMSE.
+DirectComparison compareWithDirectReference(vk::Context& context, GpuScene& gpuScene,
+                                            const Scene& scene, const Camera& camera,
+                                            HybridFrame& frame, uint32_t width, uint32_t height,
+                                            const DirectComparisonRuns& runs, const char* testName);
 
 // Per-pixel variance (luminance) over independent images, averaged over the pixels.
 struct PixelVariance {

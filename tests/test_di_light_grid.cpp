@@ -33,18 +33,15 @@
 namespace bounce {
 namespace {
 
-using test::BlockComparison;
-using test::BlockStatistics;
-using test::blockStatistics;
 using test::cityAtNight;
 using test::cityStreetCamera;
-using test::compareBlocks;
+using test::compareWithDirectReference;
+using test::DirectComparison;
+using test::DirectComparisonRuns;
 using test::directReference;
 using test::diSettings;
 using test::meanImage;
-using test::noiseRelMse;
 using test::oneFrameVariance;
-using test::runMeans;
 
 TEST(DiLightGrid, Rgb9e5KeepsPositiveChannelsPositive) {
   const glm::vec3 colours[] = {{1.0f, 0.484f, 0.155f}, {3.64f, 1.76f, 0.564f}, {1e-6f, 0.0f, 5.0f},
@@ -81,26 +78,17 @@ TEST(DiLightGrid, UnbiasedWithTheGridMatchesDirectLightReference) {
   di.lightGridSlots = 8;
   HybridFrame frame(context, gpuScene, scene, diSettings(width, height, di));
   frame.requestDebugView("di-shade");
-  const std::vector<ImageRGBA32F> hybridRuns = runMeans(frame, camera, runs, framesPerRun);
-  const ImageRGBA32F hybridMean = meanImage(hybridRuns);
-  const std::vector<ImageRGBA32F> referenceBatches =
-      directReference(context, gpuScene, scene, camera, width, height, batches, 128);
-  const ImageRGBA32F referenceMean = meanImage(referenceBatches);
-
-  const BlockStatistics hybrid = blockStatistics(hybridRuns);
-  const BlockComparison blocks =
-      compareBlocks(hybrid, blockStatistics(referenceBatches), 3.0, "grid");
-  const double relMse = relativeMeanSquaredError(hybridMean, referenceMean);
-  const double noise = noiseRelMse(hybridRuns, referenceBatches, referenceMean);
-  const double ratio = test::meanLuminance(hybridMean) / test::meanLuminance(referenceMean);
+  const DirectComparisonRuns counts{runs, framesPerRun, batches, 128, 3.0};
+  const DirectComparison c = compareWithDirectReference(context, gpuScene, scene, camera, frame,
+                                                        width, height, counts, "grid");
   std::printf(
       "manylights %ux%u, light grid forced on, --di-unbiased, %d runs x %d frames: relMSE %.4f "
       "(noise's share %.4f), mean ratio %.4f, worst block %.2f SE (%zu of %zu beyond 3)\n",
-      width, height, runs, framesPerRun, relMse, noise, ratio, blocks.worstZ, blocks.outside,
-      hybrid.blockCount());
-  EXPECT_EQ(blocks.outside, 0u);
-  EXPECT_LE(relMse - noise, 0.02);
-  EXPECT_EQ(countNonFinitePixels(hybridMean), 0u);
+      width, height, runs, framesPerRun, c.relMse, c.noiseShare, c.meanRatio, c.blocks.worstZ,
+      c.blocks.outside, c.blockCount);
+  EXPECT_EQ(c.blocks.outside, 0u);
+  EXPECT_LE(c.relMse - c.noiseShare, 0.02);
+  EXPECT_EQ(countNonFinitePixels(c.hybridMean), 0u);
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 

@@ -34,20 +34,17 @@
 namespace bounce {
 namespace {
 
-using test::BlockComparison;
-using test::BlockStatistics;
-using test::blockStatistics;
 using test::cityAtNight;
 using test::cityStreetCamera;
-using test::compareBlocks;
+using test::compareWithDirectReference;
+using test::DirectComparison;
+using test::DirectComparisonRuns;
 using test::directReference;
 using test::diSettings;
 using test::maxOfColumns;
 using test::meanImage;
 using test::meanOfColumns;
-using test::noiseRelMse;
 using test::PixelVariance;
-using test::runMeans;
 using test::wallScene;
 
 // The bug of issue 20: composite lit point lights unshadowed, through walls. With ReSTIR DI no
@@ -100,26 +97,17 @@ TEST(RestirDi, UnbiasedConfigurationMatchesDirectLightReference) {
   HybridFrame frame(context, gpuScene, scene,
                     diSettings(width, height, DiSettings::unbiasedConfiguration()));
   frame.requestDebugView("di-shade");
-  const std::vector<ImageRGBA32F> hybridRuns = runMeans(frame, camera, runs, framesPerRun);
-  const ImageRGBA32F hybridMean = meanImage(hybridRuns);
-  const std::vector<ImageRGBA32F> referenceBatches =
-      directReference(context, gpuScene, scene, camera, width, height, batches, 128);
-  const ImageRGBA32F referenceMean = meanImage(referenceBatches);
-
-  const BlockStatistics hybrid = blockStatistics(hybridRuns);
-  const BlockComparison blocks =
-      compareBlocks(hybrid, blockStatistics(referenceBatches), 3.0, "hybrid");
-  const double relMse = relativeMeanSquaredError(hybridMean, referenceMean);
-  const double noise = noiseRelMse(hybridRuns, referenceBatches, referenceMean);
-  const double ratio = test::meanLuminance(hybridMean) / test::meanLuminance(referenceMean);
+  const DirectComparisonRuns counts{runs, framesPerRun, batches, 128, 3.0};
+  const DirectComparison c = compareWithDirectReference(context, gpuScene, scene, camera, frame,
+                                                        width, height, counts, "hybrid");
   std::printf(
       "manylights %ux%u, --di-unbiased, %d runs x %d frames: relMSE %.4f (noise's share %.4f), "
       "mean ratio %.4f, worst block %.2f SE (%zu of %zu beyond 3)\n",
-      width, height, runs, framesPerRun, relMse, noise, ratio, blocks.worstZ, blocks.outside,
-      hybrid.blockCount());
-  EXPECT_EQ(blocks.outside, 0u);
-  EXPECT_LE(relMse - noise, 0.02);
-  EXPECT_EQ(countNonFinitePixels(hybridMean), 0u);
+      width, height, runs, framesPerRun, c.relMse, c.noiseShare, c.meanRatio, c.blocks.worstZ,
+      c.blocks.outside, c.blockCount);
+  EXPECT_EQ(c.blocks.outside, 0u);
+  EXPECT_LE(c.relMse - c.noiseShare, 0.02);
+  EXPECT_EQ(countNonFinitePixels(c.hybridMean), 0u);
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
@@ -134,6 +122,27 @@ double frameVariance(HybridFrame& frame, const Camera& camera, int runs, int fra
   return variance.meanVariance();
 }
 
+// Per-pixel variance over `runs` independent runs of the uniform baseline's first frame and of
+// ReSTIR's 8th, both at the default light candidates.
+struct ReuseVariance {
+  double uniform = 0.0, restir = 0.0;
+};
+
+ReuseVariance reuseVariance(vk::Context& context, const Scene& scene, const Camera& camera,
+                            uint32_t width, uint32_t height, int runs) {
+  GpuScene gpuScene(context, scene);
+  DiSettings uniform;
+  uniform.mode = DiMode::Uniform;
+  HybridFrame uniformFrame(context, gpuScene, scene, diSettings(width, height, uniform));
+  uniformFrame.requestDebugView("di-shade");
+  ReuseVariance v;
+  v.uniform = frameVariance(uniformFrame, camera, runs, 1);
+  HybridFrame restirFrame(context, gpuScene, scene, diSettings(width, height, DiSettings{}));
+  restirFrame.requestDebugView("di-shade");
+  v.restir = frameVariance(restirFrame, camera, runs, 8);
+  return v;
+}
+
 // Issue 20 / seed 002's gate: at equal candidates per pixel and frame (the default 8 light
 // candidates and one shadow ray each), ReSTIR's 8th frame (temporal M up to 8, one spatial
 // neighbour) varies at least 4x less over 64 independent runs than the uniform baseline's frame
@@ -144,20 +153,12 @@ TEST(RestirDi, ReuseLowersVarianceFourfoldAtEqualCandidates) {
   Scene scene = loadScene("manylights");
   Camera camera = effectiveCamera(scene);
   vk::Context context(vk::contextOptionsFromEnvironment());
-  GpuScene gpuScene(context, scene);
-  DiSettings uniform;
-  uniform.mode = DiMode::Uniform;
-  HybridFrame uniformFrame(context, gpuScene, scene, diSettings(width, height, uniform));
-  uniformFrame.requestDebugView("di-shade");
-  const double uniformVariance = frameVariance(uniformFrame, camera, runs, 1);
-  HybridFrame restirFrame(context, gpuScene, scene, diSettings(width, height, DiSettings{}));
-  restirFrame.requestDebugView("di-shade");
-  const double restirVariance = frameVariance(restirFrame, camera, runs, 8);
-  const double ratio = uniformVariance / std::max(restirVariance, 1e-30);
+  const ReuseVariance v = reuseVariance(context, scene, camera, width, height, runs);
+  const double ratio = v.uniform / std::max(v.restir, 1e-30);
   std::printf(
       "manylights %ux%u, %d candidates: per-pixel variance over %d runs, uniform %.4g, restir "
       "(8th frame) %.4g: %.1fx lower\n",
-      width, height, DiSettings{}.lightCandidates, runs, uniformVariance, restirVariance, ratio);
+      width, height, DiSettings{}.lightCandidates, runs, v.uniform, v.restir, ratio);
   EXPECT_GE(ratio, 4.0);
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
@@ -261,20 +262,12 @@ TEST(RestirDi, DISABLED_ReuseLowersVarianceTenfoldOnCityByNight) {
   Scene scene = cityAtNight(true);
   const Camera camera = cityStreetCamera();
   vk::Context context(vk::contextOptionsFromEnvironment());
-  GpuScene gpuScene(context, scene);
-  DiSettings uniform;
-  uniform.mode = DiMode::Uniform;
-  HybridFrame uniformFrame(context, gpuScene, scene, diSettings(width, height, uniform));
-  uniformFrame.requestDebugView("di-shade");
-  const double uniformVariance = frameVariance(uniformFrame, camera, runs, 1);
-  HybridFrame restirFrame(context, gpuScene, scene, diSettings(width, height, DiSettings{}));
-  restirFrame.requestDebugView("di-shade");
-  const double restirVariance = frameVariance(restirFrame, camera, runs, 8);
-  const double ratio = uniformVariance / std::max(restirVariance, 1e-30);
+  const ReuseVariance v = reuseVariance(context, scene, camera, width, height, runs);
+  const double ratio = v.uniform / std::max(v.restir, 1e-30);
   std::printf(
       "city at 22 h %ux%u, %d candidates: per-pixel variance over %d runs, uniform %.4g, restir "
       "(8th frame) %.4g: %.1fx lower\n",
-      width, height, DiSettings{}.lightCandidates, runs, uniformVariance, restirVariance, ratio);
+      width, height, DiSettings{}.lightCandidates, runs, v.uniform, v.restir, ratio);
   EXPECT_GE(ratio, 10.0);
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }

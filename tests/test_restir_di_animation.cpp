@@ -34,17 +34,15 @@
 namespace bounce {
 namespace {
 
-using test::BlockComparison;
-using test::BlockStatistics;
-using test::blockStatistics;
-using test::compareBlocks;
+using test::compareWithDirectReference;
+using test::DirectComparison;
+using test::DirectComparisonRuns;
 using test::directReference;
 using test::diSettings;
 using test::maxOfColumns;
 using test::meanImage;
 using test::meanOfColumns;
 using test::oneFrameVariance;
-using test::runMeans;
 using test::wallScene;
 
 // ---- the BRDF candidate ------------------------------------------------------------------------
@@ -99,25 +97,18 @@ TEST(RestirDiBrdfCandidate, UnbiasedOnAGlossyHighlightMatchesReference) {
   HybridFrame frame(context, gpuScene, scene,
                     diSettings(width, height, DiSettings::unbiasedConfiguration()));
   frame.requestDebugView("di-shade");
-  const std::vector<ImageRGBA32F> hybridRuns = runMeans(frame, camera, runs, framesPerRun);
-  const ImageRGBA32F hybridMean = meanImage(hybridRuns);
-  const std::vector<ImageRGBA32F> batches =
-      directReference(context, gpuScene, scene, camera, width, height, 8, 128);
-  const ImageRGBA32F referenceMean = meanImage(batches);
-  writeImage("restir_di_glossy_hybrid.png", hybridMean);
-  writeImage("restir_di_glossy_reference.png", referenceMean);
-
-  const BlockStatistics hybrid = blockStatistics(hybridRuns);
-  const BlockComparison blocks = compareBlocks(hybrid, blockStatistics(batches), 3.0, "hybrid");
-  const double relMse = relativeMeanSquaredError(hybridMean, referenceMean);
-  const double ratio = test::meanLuminance(hybridMean) / test::meanLuminance(referenceMean);
+  const DirectComparisonRuns counts{runs, framesPerRun, 8, 128, 3.0};
+  const DirectComparison c = compareWithDirectReference(context, gpuScene, scene, camera, frame,
+                                                        width, height, counts, "hybrid");
+  writeImage("restir_di_glossy_hybrid.png", c.hybridMean);
+  writeImage("restir_di_glossy_reference.png", c.referenceMean);
   std::printf(
       "glossy floor %ux%u, --di-unbiased with the BRDF candidate: relMSE %.4f, mean ratio %.4f, "
       "worst block %.2f SE (%zu of %zu beyond 3)\n",
-      width, height, relMse, ratio, blocks.worstZ, blocks.outside, hybrid.blockCount());
-  EXPECT_EQ(blocks.outside, 0u);
-  EXPECT_LE(relMse, 0.02);
-  EXPECT_EQ(countNonFinitePixels(hybridMean), 0u);
+      width, height, c.relMse, c.meanRatio, c.blocks.worstZ, c.blocks.outside, c.blockCount);
+  EXPECT_EQ(c.blocks.outside, 0u);
+  EXPECT_LE(c.relMse, 0.02);
+  EXPECT_EQ(countNonFinitePixels(c.hybridMean), 0u);
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
