@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <utility>
 
+#include "core/error.h"
 #include "frame/hybrid_frame.h"
 #include "harness.h"
 #include "reference/path_tracer.h"
@@ -36,17 +39,118 @@ Comparison compare(const ImageRGBA32F& test, const ImageRGBA32F& reference) {
           meanLuminance(test) / meanLuminance(reference)};
 }
 
+namespace {
+
+std::string describeCamera(const Camera& c) {
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "position %.9g %.9g %.9g target %.9g %.9g %.9g up %.9g %.9g %.9g fov %.9g",
+                c.position.x, c.position.y, c.position.z, c.target.x, c.target.y, c.target.z,
+                c.up.x, c.up.y, c.up.z, c.verticalFovDegrees);
+  return text;
+}
+
+// Mean luminance of each cell of an 8x6 grid over the image (cells at least one pixel wide).
+std::vector<double> gridMeans(const ImageRGBA32F& image) {
+  const int columns = std::min(8, image.width), rows = std::min(6, image.height);
+  std::vector<double> sum(size_t(columns * rows), 0.0), count(sum.size(), 0.0);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const size_t cell = size_t(y * rows / image.height * columns + x * columns / image.width);
+      sum[cell] += luminance(image, size_t(y) * image.width + x);
+      count[cell] += 1.0;
+    }
+  for (size_t i = 0; i < sum.size(); ++i) sum[i] /= count[i];
+  return sum;
+}
+
+}  // namespace
+
+// How far the stored image's grid means lie from a fresh render's, in units of that render's
+// own noise: two half renders a and b (other seeds) give check = (a + b) / 2, whose cell
+// variance V / 2 is estimated by ((a - b) / 2)^2. With the stored image converged, the sum of
+// (check - stored)^2 over the sum of ((a - b) / 2)^2 is about 1 (an F(48, 48) ratio: above 2.6
+// one time in a thousand); a stale image (another scene, camera or path tracer) is far above.
+double referenceStaleness(const ImageRGBA32F& stored, const ImageRGBA32F& a,
+                          const ImageRGBA32F& b) {
+  const std::vector<double> s = gridMeans(stored), ma = gridMeans(a), mb = gridMeans(b);
+  double difference = 0.0, noise = 0.0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    const double check = 0.5 * (ma[i] + mb[i]);
+    difference += (check - s[i]) * (check - s[i]);
+    noise += 0.25 * (ma[i] - mb[i]) * (ma[i] - mb[i]);
+  }
+  return difference / std::max(noise, 1e-30);
+}
+
 ImageRGBA32F referenceImage(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
-                            const Camera& camera, uint32_t width, uint32_t height, uint32_t spp) {
+                            const Camera& camera, uint32_t width, uint32_t height, uint32_t spp,
+                            uint32_t seed) {
   ReferencePathTracer tracer(context, gpuScene, scene);
   ReferenceOptions options;
   options.width = width;
   options.height = height;
   options.samplesPerPixel = spp;
   options.maxBounces = 16;
+  options.seed = seed;
   options.lambert = true;
   options.pixelCentre = true;
   return tracer.render(camera, options).image;
+}
+
+std::string storedReferencePath(const Scene& scene, uint32_t width, uint32_t height, uint32_t spp) {
+  return std::string(BOUNCE_SOURCE_DIR) + "/tests/data/references/" + scene.name + "_" +
+         std::to_string(width) + "x" + std::to_string(height) + "_" + std::to_string(spp) +
+         "spp.exr";
+}
+
+ImageRGBA32F storedReferenceImage(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                                  const Camera& camera, uint32_t width, uint32_t height,
+                                  uint32_t spp) {
+  const std::string path = storedReferencePath(scene, width, height, spp);
+  const std::string name = std::filesystem::path(path).filename().string();
+  const std::string regenerate =
+      "; regenerate the stored references with BOUNCE_REGENERATE_REFERENCES=1 (docs/testing.md)";
+  const ImageMetadata expected = {
+      {"bounce.reference.camera", describeCamera(camera)},
+      {"bounce.reference.options", "lambert, pixel centres, 16 bounces, seed 1"}};
+  const char* flag = std::getenv("BOUNCE_REGENERATE_REFERENCES");
+  if (flag && std::string(flag) == "1") {
+    ImageRGBA32F image = referenceImage(context, gpuScene, scene, camera, width, height, spp);
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    writeExr(path, image, expected);
+    std::printf("stored reference written: %s\n", path.c_str());
+    return image;
+  }
+  if (!std::filesystem::exists(path)) {
+    std::printf("no stored reference %s: rendering it\n", name.c_str());
+    return referenceImage(context, gpuScene, scene, camera, width, height, spp);
+  }
+  const ImageMetadata stored = readExrMetadata(path);
+  for (const auto& [key, value] : expected) {
+    auto it = std::find_if(stored.begin(), stored.end(),
+                           [&](const auto& entry) { return entry.first == key; });
+    if (it == stored.end() || it->second != value)
+      throw Error(path + ": stored with " + key + " '" +
+                  (it == stored.end() ? std::string("(none)") : it->second) +
+                  "', the test asks for '" + value + "'" + regenerate);
+  }
+  ImageRGBA32F image = readImage(path);
+  if (image.width != int(width) || image.height != int(height))
+    throw Error(path + ": not " + std::to_string(width) + "x" + std::to_string(height) +
+                regenerate);
+  const uint32_t half = std::max(1u, spp / 32);
+  const ImageRGBA32F a = referenceImage(context, gpuScene, scene, camera, width, height, half, 2);
+  const ImageRGBA32F b = referenceImage(context, gpuScene, scene, camera, width, height, half, 3);
+  const double ratio = referenceStaleness(image, a, b);
+  std::printf("stored reference %s: a %u-spp check differs from it by %.2fx its own noise\n",
+              name.c_str(), 2 * half, ratio);
+  if (ratio > 4.0)
+    throw Error(path + ": a fresh " + std::to_string(2 * half) + "-spp render differs from it by " +
+                std::to_string(ratio) +
+                "x its own noise (about 1 expected): the scene, camera or path tracer changed" +
+                regenerate);
+  return image;
 }
 
 HybridSettings giSettings(uint32_t width, uint32_t height, const RestirGiSettings& gi) {

@@ -32,7 +32,23 @@ Comparison compare(const ImageRGBA32F& test, const ImageRGBA32F& reference);
 // The reference path tracer's view through `camera` with every material Lambert and camera rays
 // through pixel centres, 16 bounces: what the composite of giSettings() estimates.
 ImageRGBA32F referenceImage(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
-                            const Camera& camera, uint32_t width, uint32_t height, uint32_t spp);
+                            const Camera& camera, uint32_t width, uint32_t height, uint32_t spp,
+                            uint32_t seed = 1);
+
+// referenceImage() read from tests/data/references/ when stored there (docs/testing.md, "Stored
+// references"): the long tests' references take minutes on lavapipe. A stored file is checked
+// before use: its camera and options must match exactly, and a fresh render at 1/16 of its
+// samples (another seed) must agree with it within that render's own noise; a mismatch throws
+// bounce::Error saying how to regenerate. BOUNCE_REGENERATE_REFERENCES=1 renders and (re)writes
+// the file; without a stored file it renders as referenceImage() does.
+// How far a stored reference lies from a fresh render made of two independent halves a and b,
+// in units of that render's own noise (about 1 when the stored image is a converged render of
+// the same view; storedReferenceImage refuses it above 4).
+double referenceStaleness(const ImageRGBA32F& stored, const ImageRGBA32F& a, const ImageRGBA32F& b);
+std::string storedReferencePath(const Scene& scene, uint32_t width, uint32_t height, uint32_t spp);
+ImageRGBA32F storedReferenceImage(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                                  const Camera& camera, uint32_t width, uint32_t height,
+                                  uint32_t spp);
 
 // The desktop preset's cache (4 candidates and 4 validation rays per cell per frame, alpha-tested
 // rays) with the given ReSTIR GI settings, at a test's size with full-resolution shadows.

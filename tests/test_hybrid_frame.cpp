@@ -147,35 +147,6 @@ TEST(HybridFrame, RayCastVBufferNamesTheRayCastTriangles) {
   }
 }
 
-TEST(HybridFrame, TwentyFramesOfEveryBuiltinSceneAreCleanAndAllocateNothing) {
-  for (const std::string& name : builtinSceneNames()) {
-    SCOPED_TRACE(name);
-    vk::Context context(
-        vk::contextOptionsFromEnvironment({.validation = true, .synchronizationValidation = true}));
-    ASSERT_TRUE(context.validationEnabled()) << "the Khronos validation layer is missing";
-    Scene scene = loadScene(name);
-    GpuScene gpuScene(context, scene);
-    HybridSettings settings;
-    settings.width = 48;
-    settings.height = 32;
-    HybridFrame frame(context, gpuScene, scene, settings);
-    frame.requestDebugView("composite");
-    Camera camera = effectiveCamera(scene);
-    uint64_t allocationsAfterFrame2 = 0;
-    for (uint32_t i = 0; i < 20; ++i) {
-      std::vector<vk::PassTiming> timings = frame.render(camera);
-      if (i == 2) allocationsAfterFrame2 = context.allocationCount();
-      if (i > 2) EXPECT_EQ(context.allocationCount(), allocationsAfterFrame2) << "frame " << i;
-      if (context.info().timestampPeriodNs > 0.0f) EXPECT_FALSE(timings.empty());
-    }
-    ImageRGBA32F hdr = frame.debugViewImage("composite");
-    uint32_t nonFinite = 0;
-    for (float v : hdr.pixels) nonFinite += !std::isfinite(v);
-    EXPECT_EQ(nonFinite, 0u);
-    EXPECT_EQ(context.validationErrorCount(), 0u);
-  }
-}
-
 // One check of the settings' ranges for the library and the command line: the presets and the
 // unbiased configuration pass; each out-of-range field is refused by name, never clamped.
 TEST(FrameSettings, ValidateRefusesOutOfRangeFieldsByName) {

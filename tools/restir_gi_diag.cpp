@@ -183,9 +183,12 @@ struct Setup {
         context(vk::contextOptionsFromEnvironment()),
         gpuScene(context, scene) {}
 
-  // The reference of this scene and size, read from the temp directory when an earlier run left
-  // it there.
+  // The reference of this scene and size: the tests' stored one when there is one (checked
+  // against a fresh render), else read from the temp directory when an earlier run left it there.
   ImageRGBA32F reference() {
+    if (std::filesystem::exists(test::storedReferencePath(scene, width, height, kReferenceSpp)))
+      return test::storedReferenceImage(context, gpuScene, scene, camera, width, height,
+                                        kReferenceSpp);
     const std::string stem = std::filesystem::path(sceneArgument).stem().string();
     const std::filesystem::path path =
         std::filesystem::temp_directory_path() /
