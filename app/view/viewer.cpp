@@ -1,0 +1,861 @@
+#include "viewer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+#include <imgui.h>
+#include <imgui_stdlib.h>
+#include <stb_image_write.h>
+
+#include "camera_recorder.h"
+#include "core/error.h"
+#include "fly_camera.h"
+#include "frame/hybrid_frame.h"
+#include "frame/presets.h"
+#include "pass_time_history.h"
+#include "rt/gpu_scene.h"
+#include "scene/load.h"
+#include "scene/scene_options.h"
+#include "scene/time_of_day.h"
+#include "suggest.h"
+#include "swapchain.h"
+#include "tools/image_io.h"
+#include "tools/output_file.h"
+#include "vk/check.h"
+#include "vk/resources.h"
+#include "window_device.h"
+
+namespace bounce::view {
+
+namespace {
+
+constexpr float kScriptFrameSeconds = 1.0f / 60.0f;  // animation time per scripted frame
+constexpr int kResizeWaitFrames = 120;               // --resize-test: frames to wait for X
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+uint8_t toSrgbByte(float linear) {
+  float v = std::clamp(std::isfinite(linear) ? linear : 0.0f, 0.0f, 1.0f);
+  v = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+  return uint8_t(std::lround(255.0f * v));
+}
+
+// Lost devices and surfaces end the viewer with a message that says so (runViewer).
+void checkSurfaceResult(VkResult r) {
+  if (r == VK_ERROR_DEVICE_LOST) fail("presenting: VK_ERROR_DEVICE_LOST");
+  if (r == VK_ERROR_SURFACE_LOST_KHR) fail("presenting: VK_ERROR_SURFACE_LOST_KHR");
+}
+
+void checkImGuiResult(VkResult r) {
+  if (r < 0) fail("Dear ImGui's Vulkan back end: {}", vk::resultName(r));
+}
+
+// One image barrier (synchronization2).
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
+                  VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                  VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  VkImageMemoryBarrier2 b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+  b.srcStageMask = srcStage;
+  b.srcAccessMask = srcAccess;
+  b.dstStageMask = dstStage;
+  b.dstAccessMask = dstAccess;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  VkDependencyInfo d{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  d.imageMemoryBarrierCount = 1;
+  d.pImageMemoryBarriers = &b;
+  vkCmdPipelineBarrier2(cmd, &d);
+}
+
+// The largest rectangle of the image's aspect ratio centred in the window (letterbox).
+VkOffset3D fitOffsets(uint32_t imageW, uint32_t imageH, VkExtent2D window, VkOffset3D* end) {
+  const double scale = std::min(double(window.width) / imageW, double(window.height) / imageH);
+  const int32_t w = std::max(1, int32_t(std::lround(imageW * scale)));
+  const int32_t h = std::max(1, int32_t(std::lround(imageH * scale)));
+  const int32_t x = (int32_t(window.width) - w) / 2, y = (int32_t(window.height) - h) / 2;
+  *end = {x + w, y + h, 1};
+  return {x, y, 0};
+}
+
+// What the panel edits; applied to the frame by Viewer::applyUi.
+struct UiState {
+  std::string scenePath;
+  int giMode = 1;  // index into giNames
+  int preset = 0;  // 0: none (the frame's defaults), else 1 + index into presetNames
+  bool giDenoise = true;
+  float renderScale = 1.0f;
+  bool autoExposure = true;
+  float exposureStops = 0.0f;
+  bool timeOfDayEnabled = false;
+  float timeOfDay = 12.0f;
+  float sunAzimuthDegrees = 0.0f;
+  float moveSpeed = 1.0f;  // metres per second
+  std::string view = "tonemap";
+  std::string screenshotPath = "screenshot.png";
+  std::string cameraPathOut;
+  std::string status;
+};
+
+class Viewer {
+ public:
+  explicit Viewer(const ViewerOptions& options);
+  ~Viewer();
+  int run();
+
+ private:
+  // Scene and frame.
+  HybridSettings settingsFromUi() const;
+  void loadScene(const std::string& nameOrPath, bool fromOptions);
+  void createFrame();
+  void applySun();
+  void setView(const std::string& name);
+  ImageRGBA32F shownImage();
+  // Window and presentation.
+  void initImGui();
+  void recreateSwapchain();
+  void ensureDisplayResources(uint32_t width, uint32_t height);
+  void uploadView(const ImageRGBA32F& image);
+  bool drawAndPresent(bool captureWindow);
+  void readWindowCapture();
+  // Input and UI.
+  void handleInput(double dt);
+  void drawPanel();
+  void drawTimingGraph();
+  void takeScreenshot(const std::string& path);
+  static void onDrop(GLFWwindow* window, int count, const char** paths);
+
+  ViewerOptions options_;
+  WindowDevice window_;
+  vk::Context& context_;
+  Swapchain swapchain_;
+  bool swapchainDirty_ = true;
+
+  Scene scene_;
+  std::unique_ptr<GpuScene> gpuScene_;
+  std::unique_ptr<HybridFrame> frame_;
+  HybridSettings settings_;
+  std::vector<std::string> viewNames_;
+  bool rebuildPending_ = false;
+  std::string sceneToLoad_;
+
+  FlyCamera camera_;
+  CameraRecorder recorder_;
+  PassTimeHistory history_;
+  UiState ui_;
+  std::vector<std::string> giNames_, presetNames_;
+  ImageRGBA32F shown_;  // the last view image shown
+
+  // Presentation resources: the view as 8-bit sRGB, uploaded and blitted to the window.
+  vk::Buffer staging_;
+  vk::Image display_;
+  vk::Buffer windowReadback_;
+  VkCommandPool commandPool_ = VK_NULL_HANDLE;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkSemaphore imageAvailable_ = VK_NULL_HANDLE;
+  VkDescriptorPool imguiPool_ = VK_NULL_HANDLE;
+  bool imguiReady_ = false;
+  VkExtent2D capturedExtent_{0, 0};
+
+  double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
+  uint32_t swapchainRecreations_ = 0;
+};
+
+Viewer::Viewer(const ViewerOptions& options)
+    : options_(options),
+      window_([&] {
+        WindowOptions w;
+        Resolution res =
+            options.common.res.empty() ? parseResolution("640x360") : options.common.resolution();
+        w.width = res.width;
+        w.height = res.height;
+        // --device and --validate, else BOUNCE_DEVICE and BOUNCE_VALIDATE, as in `bounce`.
+        vk::ContextOptions c;
+        c.deviceIndex = options.common.device;
+        c.validation = options.common.validate;
+        c = vk::contextOptionsFromEnvironment(c);
+        w.deviceIndex = c.deviceIndex;
+        w.validation = c.validation;
+        return w;
+      }()),
+      context_(window_.context()),
+      swapchain_(window_.physicalDevice(), window_.device(), window_.surface()) {
+  giNames_ = app::splitNames(giModeNames());
+  presetNames_ = app::splitNames(presetNames());
+  ui_.giMode = int(std::find(giNames_.begin(), giNames_.end(), options.gi) - giNames_.begin());
+  if (!options.preset.empty())
+    ui_.preset = 1 + int(std::find(presetNames_.begin(), presetNames_.end(), options.preset) -
+                         presetNames_.begin());
+  if (options.exposureStops) {
+    ui_.autoExposure = false;
+    ui_.exposureStops = *options.exposureStops;
+  }
+  if (options.timeOfDay) {
+    ui_.timeOfDayEnabled = true;
+    ui_.timeOfDay = *options.timeOfDay;
+  }
+  ui_.view = options.view;
+  ui_.cameraPathOut = options.cameraPathOut;
+  if (!options.screenshot.empty()) ui_.screenshotPath = options.screenshot;
+
+  VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  pool.queueFamilyIndex = context_.queueFamily();
+  VK_CHECK(vkCreateCommandPool(context_.device(), &pool, nullptr, &commandPool_));
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = commandPool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  VK_CHECK(vkAllocateCommandBuffers(context_.device(), &ai, &cmd_));
+  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VK_CHECK(vkCreateFence(context_.device(), &fi, nullptr, &fence_));
+  VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+  VK_CHECK(vkCreateSemaphore(context_.device(), &si, nullptr, &imageAvailable_));
+
+  recreateSwapchain();
+  loadScene(options.common.scene, true);
+  initImGui();
+  glfwSetWindowUserPointer(window_.window(), this);
+  glfwSetDropCallback(window_.window(), &Viewer::onDrop);
+  glfwGetCursorPos(window_.window(), &lastCursorX_, &lastCursorY_);
+}
+
+Viewer::~Viewer() {
+  VkDevice device = context_.device();
+  vkDeviceWaitIdle(device);
+  if (imguiReady_) {
+    ImGui_ImplVulkan_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+  frame_.reset();
+  gpuScene_.reset();
+  staging_.reset();
+  display_.reset();
+  windowReadback_.reset();
+  vkDestroyDescriptorPool(device, imguiPool_, nullptr);
+  vkDestroySemaphore(device, imageAvailable_, nullptr);
+  vkDestroyFence(device, fence_, nullptr);
+  vkDestroyCommandPool(device, commandPool_, nullptr);
+}
+
+// ---- scene and frame --------------------------------------------------------------------------
+
+HybridSettings Viewer::settingsFromUi() const {
+  HybridSettings s;
+  if (ui_.preset > 0) s = presetSettings(*presetFromName(presetNames_[size_t(ui_.preset - 1)]));
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_.window(), &w, &h);
+  s.width = std::max(1u, uint32_t(std::lround(float(std::max(w, 1)) * ui_.renderScale)));
+  s.height = std::max(1u, uint32_t(std::lround(float(std::max(h, 1)) * ui_.renderScale)));
+  s.gi = *giModeFromName(giNames_[size_t(ui_.giMode)]);
+  s.autoExposure = ui_.autoExposure;
+  s.exposureStops = ui_.exposureStops;
+  if (!ui_.giDenoise) s.restirGi.temporalDenoise = s.restirGi.spatialDenoise = false;
+  validate(s);
+  return s;
+}
+
+// A scene that cannot be loaded (a bad dropped file) leaves the current one showing, with the
+// message in the panel; only the command line's scene is fatal.
+void Viewer::loadScene(const std::string& nameOrPath, bool fromOptions) {
+  app::CommonOptions source = options_.common;
+  if (!fromOptions) source.camera = source.sun = source.sky = "";
+  source.scene = nameOrPath;
+  Scene loaded;
+  try {
+    source.checkArguments();
+    loaded = source.loadScene();
+  } catch (const Error& e) {
+    if (fromOptions) throw;
+    ui_.status = e.what();
+    std::fprintf(stderr, "bounce view: %s\n", e.what());
+    return;
+  }
+  context_.waitIdle();
+  frame_.reset();
+  gpuScene_.reset();
+  scene_ = std::move(loaded);
+  gpuScene_ = std::make_unique<GpuScene>(context_, scene_);
+  camera_ = FlyCamera(effectiveCamera(scene_));
+  ui_.scenePath = nameOrPath;
+  ui_.status = "loaded " + scene_.name;
+  createFrame();
+}
+
+void Viewer::createFrame() {
+  context_.waitIdle();
+  frame_.reset();
+  settings_ = settingsFromUi();
+  frame_ = std::make_unique<HybridFrame>(context_, *gpuScene_, scene_, settings_);
+  viewNames_ = frame_->passNames();
+  for (const std::string& name : frame_->resourceNames()) viewNames_.push_back(name);
+  if (std::find(viewNames_.begin(), viewNames_.end(), ui_.view) == viewNames_.end()) {
+    ui_.status = fmt::format("view '{}' is not in this frame; showing tonemap", ui_.view);
+    ui_.view = "tonemap";
+  }
+  setView(ui_.view);
+  applySun();
+  history_.clear();
+  rebuildPending_ = false;
+}
+
+void Viewer::applySun() {
+  Sun sun = scene_.sun;
+  Sky sky = scene_.sky;
+  if (ui_.timeOfDayEnabled) applyTimeOfDay(ui_.timeOfDay, scene_.sun, scene_.sky, sun, sky);
+  const float a = glm::radians(ui_.sunAzimuthDegrees);
+  const glm::vec3 d = sun.direction;
+  sun.direction = {std::cos(a) * d.x + std::sin(a) * d.z, d.y,
+                   -std::sin(a) * d.x + std::cos(a) * d.z};
+  frame_->setSunAndSky(sun, sky);
+}
+
+void Viewer::setView(const std::string& name) {
+  frame_->clearDebugViews();
+  frame_->requestDebugView(name);
+  ui_.view = name;
+}
+
+// The chosen view as the last frame captured it; "tonemap" (always captured) where it could not
+// be (a view requested after the frame was recorded).
+ImageRGBA32F Viewer::shownImage() {
+  if (ui_.view != "tonemap") {
+    try {
+      return frame_->debugViewImage(ui_.view);
+    } catch (const Error&) {
+    }
+  }
+  return frame_->debugViewImage("tonemap");
+}
+
+// ---- window and presentation ------------------------------------------------------------------
+
+void Viewer::initImGui() {
+  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8};
+  VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pi.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+  pi.maxSets = 8;
+  pi.poolSizeCount = 1;
+  pi.pPoolSizes = &size;
+  VK_CHECK(vkCreateDescriptorPool(context_.device(), &pi, nullptr, &imguiPool_));
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the working directory
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForVulkan(window_.window(), true);
+  ImGui_ImplVulkan_InitInfo info{};
+  info.Instance = window_.instance();
+  info.PhysicalDevice = window_.physicalDevice();
+  info.Device = context_.device();
+  info.QueueFamily = context_.queueFamily();
+  info.Queue = context_.queue();
+  info.DescriptorPool = imguiPool_;
+  info.MinImageCount = swapchain_.minImageCount();
+  info.ImageCount = std::max(swapchain_.imageCount(), swapchain_.minImageCount());
+  info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+  info.CheckVkResultFn = &checkImGuiResult;
+  ImGui_ImplVulkan_Init(&info, swapchain_.renderPass());
+  imguiReady_ = true;
+  context_.submitAndWait([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+  ImGui_ImplVulkan_DestroyFontUploadObjects();
+}
+
+// The swapchain follows the framebuffer; the render resolution follows it too (times the
+// render scale), which rebuilds the frame's resolution-dependent images (HybridFrame::resize).
+void Viewer::recreateSwapchain() {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_.window(), &w, &h);
+  context_.waitIdle();
+  if (!swapchain_.recreate(uint32_t(std::max(w, 0)), uint32_t(std::max(h, 0)))) return;
+  swapchainDirty_ = false;
+  ++swapchainRecreations_;
+  if (imguiReady_) ImGui_ImplVulkan_SetMinImageCount(swapchain_.minImageCount());
+  if (frame_) {
+    HybridSettings wanted = settingsFromUi();
+    if (wanted.width != settings_.width || wanted.height != settings_.height) {
+      frame_->resize(wanted.width, wanted.height);
+      settings_.width = wanted.width;
+      settings_.height = wanted.height;
+      history_.clear();
+    }
+  }
+  std::printf("bounce view: swapchain %ux%u (%u images)", swapchain_.extent().width,
+              swapchain_.extent().height, swapchain_.imageCount());
+  if (frame_) std::printf(", render %ux%u", settings_.width, settings_.height);
+  std::printf("\n");
+}
+
+// Made at start and when the shown image's size changes (a resize, a view of another size):
+// never per frame.
+void Viewer::ensureDisplayResources(uint32_t width, uint32_t height) {
+  if (display_.handle() && display_.width() == width && display_.height() == height) return;
+  context_.waitIdle();
+  staging_ = vk::Buffer(context_, VkDeviceSize(width) * height * 4,
+                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload, "view-staging");
+  display_ = vk::Image(context_, VK_FORMAT_R8G8B8A8_UNORM, width, height, 1, 1,
+                       VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                           VK_IMAGE_USAGE_SAMPLED_BIT,  // vk::Image makes a view
+                       "view-display", VK_IMAGE_VIEW_TYPE_2D);
+}
+
+// The view's linear values as the .png writer encodes them: clamped to [0, 1], sRGB.
+void Viewer::uploadView(const ImageRGBA32F& image) {
+  ensureDisplayResources(uint32_t(image.width), uint32_t(image.height));
+  uint8_t* out = staging_.mappedAs<uint8_t>();
+  const size_t pixels = size_t(image.width) * size_t(image.height);
+  for (size_t i = 0; i < pixels; ++i) {
+    for (int c = 0; c < 3; ++c) out[4 * i + c] = toSrgbByte(image.pixels[4 * i + c]);
+    out[4 * i + 3] = 255;
+  }
+}
+
+// Acquire, blit the view (letterboxed on black), draw the UI, present. Returns false when the
+// frame could not be shown (the swapchain went out of date: recreated before the next one).
+bool Viewer::drawAndPresent(bool captureWindow) {
+  VkDevice device = context_.device();
+  uint32_t index = 0;
+  VkResult acquired = vkAcquireNextImageKHR(device, swapchain_.handle(), 1000000000ull,
+                                            imageAvailable_, VK_NULL_HANDLE, &index);
+  checkSurfaceResult(acquired);
+  if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+    swapchainDirty_ = true;
+    return false;
+  }
+  if (acquired == VK_TIMEOUT || acquired == VK_NOT_READY) return false;
+  if (acquired == VK_SUBOPTIMAL_KHR)
+    swapchainDirty_ = true;
+  else
+    VK_CHECK(acquired);
+
+  VK_CHECK(vkResetCommandBuffer(cmd_, 0));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cmd_, &bi));
+  const VkImage target = swapchain_.image(index);
+  const VkExtent2D extent = swapchain_.extent();
+  imageBarrier(cmd_, display_.handle(), VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,
+               VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {display_.width(), display_.height(), 1};
+  vkCmdCopyBufferToImage(cmd_, staging_.handle(), display_.handle(),
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+  imageBarrier(cmd_, display_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+               VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+               VK_ACCESS_2_TRANSFER_READ_BIT);
+  // The acquire semaphore is waited for at the transfer stage: the barrier's first scope.
+  imageBarrier(cmd_, target, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+               VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkClearColorValue black{};
+  VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdClearColorImage(cmd_, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &range);
+  imageBarrier(cmd_, target, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+               VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_TRANSFER_BIT,
+               VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkImageBlit blit{};
+  blit.srcSubresource = blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  blit.srcOffsets[1] = {int32_t(display_.width()), int32_t(display_.height()), 1};
+  blit.dstOffsets[0] = fitOffsets(display_.width(), display_.height(), extent, &blit.dstOffsets[1]);
+  vkCmdBlitImage(cmd_, display_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
+                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+
+  VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  rp.renderPass = swapchain_.renderPass();
+  rp.framebuffer = swapchain_.framebuffer(index);
+  rp.renderArea.extent = extent;
+  vkCmdBeginRenderPass(cmd_, &rp, VK_SUBPASS_CONTENTS_INLINE);
+  ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd_);
+  vkCmdEndRenderPass(cmd_);
+
+  if (captureWindow && swapchain_.canReadBack()) {
+    // The render pass's dependency to EXTERNAL makes its writes and final layout available to
+    // the transfer stage.
+    imageBarrier(cmd_, target, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR,
+                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,
+                 VK_PIPELINE_STAGE_2_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    windowReadback_ =
+        vk::Buffer(context_, VkDeviceSize(extent.width) * extent.height * 4,
+                   VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback, "window-readback");
+    VkBufferImageCopy back{};
+    back.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    back.imageExtent = {extent.width, extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd_, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           windowReadback_.handle(), 1, &back);
+    imageBarrier(cmd_, target, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                 VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_PIPELINE_STAGE_2_TRANSFER_BIT, 0,
+                 VK_PIPELINE_STAGE_2_NONE, 0);
+    capturedExtent_ = extent;
+  }
+  VK_CHECK(vkEndCommandBuffer(cmd_));
+
+  VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  wait.semaphore = imageAvailable_;
+  wait.stageMask = VK_PIPELINE_STAGE_2_TRANSFER_BIT;
+  VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
+  signal.semaphore = swapchain_.renderFinished(index);
+  signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+  VkCommandBufferSubmitInfo cb{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+  cb.commandBuffer = cmd_;
+  VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+  submit.waitSemaphoreInfoCount = 1;
+  submit.pWaitSemaphoreInfos = &wait;
+  submit.commandBufferInfoCount = 1;
+  submit.pCommandBufferInfos = &cb;
+  submit.signalSemaphoreInfoCount = 1;
+  submit.pSignalSemaphoreInfos = &signal;
+  VK_CHECK(vkResetFences(device, 1, &fence_));
+  VK_CHECK(vkQueueSubmit2(context_.queue(), 1, &submit, fence_));
+
+  VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+  VkSemaphore finished = swapchain_.renderFinished(index);
+  VkSwapchainKHR handle = swapchain_.handle();
+  present.waitSemaphoreCount = 1;
+  present.pWaitSemaphores = &finished;
+  present.swapchainCount = 1;
+  present.pSwapchains = &handle;
+  present.pImageIndices = &index;
+  VkResult presented = vkQueuePresentKHR(context_.queue(), &present);
+  // The renderer waits for each of its frames anyway: one frame in flight costs nothing here.
+  VK_CHECK(vkWaitForFences(device, 1, &fence_, VK_TRUE, UINT64_MAX));
+  checkSurfaceResult(presented);
+  if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR)
+    swapchainDirty_ = true;
+  else
+    VK_CHECK(presented);
+  return true;
+}
+
+void Viewer::readWindowCapture() {
+  if (options_.windowScreenshot.empty() || !windowReadback_) return;
+  const VkExtent2D e = capturedExtent_;
+  std::vector<uint8_t> rgba(size_t(e.width) * e.height * 4);
+  const uint8_t* in = windowReadback_.mappedAs<uint8_t>();
+  const bool bgra = swapchain_.format() == VK_FORMAT_B8G8R8A8_UNORM;
+  for (size_t i = 0; i < size_t(e.width) * e.height; ++i) {
+    rgba[4 * i + 0] = in[4 * i + (bgra ? 2 : 0)];
+    rgba[4 * i + 1] = in[4 * i + 1];
+    rgba[4 * i + 2] = in[4 * i + (bgra ? 0 : 2)];
+    rgba[4 * i + 3] = 255;
+  }
+  if (!stbi_write_png(options_.windowScreenshot.c_str(), int(e.width), int(e.height), 4,
+                      rgba.data(), int(e.width) * 4))
+    fail("--window-screenshot '{}': cannot write the file", options_.windowScreenshot);
+  std::printf("bounce view: window %ux%u -> %s\n", e.width, e.height,
+              options_.windowScreenshot.c_str());
+}
+
+// ---- input and UI -----------------------------------------------------------------------------
+
+void Viewer::onDrop(GLFWwindow* window, int count, const char** paths) {
+  auto* self = static_cast<Viewer*>(glfwGetWindowUserPointer(window));
+  for (int i = 0; i < count; ++i)
+    if (isGltfPath(paths[i])) {
+      self->sceneToLoad_ = paths[i];
+      return;
+    }
+  if (count > 0) self->ui_.status = fmt::format("'{}': not a .gltf or .glb file", paths[0]);
+}
+
+// Fly: WASD (Q/E down/up, Shift x4) and the right mouse button to look around. Orbit: the left
+// button turns the camera around its pivot. The wheel zooms. Nothing reaches the camera while
+// the panel has the mouse or keyboard.
+void Viewer::handleInput(double dt) {
+  GLFWwindow* w = window_.window();
+  double x = 0.0, y = 0.0;
+  glfwGetCursorPos(w, &x, &y);
+  const float dx = float(x - lastCursorX_), dy = float(y - lastCursorY_);
+  lastCursorX_ = x;
+  lastCursorY_ = y;
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureMouse) {
+    const int button =
+        camera_.mode() == CameraMode::Fly ? GLFW_MOUSE_BUTTON_RIGHT : GLFW_MOUSE_BUTTON_LEFT;
+    constexpr float kRadiansPerPixel = 0.004f;
+    if (glfwGetMouseButton(w, button) == GLFW_PRESS)
+      camera_.turn(dx * kRadiansPerPixel, -dy * kRadiansPerPixel);
+    if (io.MouseWheel != 0.0f) camera_.zoom(std::pow(0.9f, io.MouseWheel));
+  }
+  if (io.WantCaptureKeyboard) return;
+  auto down = [&](int key) { return glfwGetKey(w, key) == GLFW_PRESS; };
+  glm::vec3 move{float(down(GLFW_KEY_D)) - float(down(GLFW_KEY_A)),
+                 float(down(GLFW_KEY_E)) - float(down(GLFW_KEY_Q)),
+                 float(down(GLFW_KEY_W)) - float(down(GLFW_KEY_S))};
+  const float speed = ui_.moveSpeed * (down(GLFW_KEY_LEFT_SHIFT) ? 4.0f : 1.0f);
+  if (move != glm::vec3(0.0f)) camera_.move(move * speed * float(dt));
+  if (down(GLFW_KEY_ESCAPE) && options_.frames == 0) glfwSetWindowShouldClose(w, GLFW_TRUE);
+}
+
+// Each pass a band of its own colour, stacked bottom to top in recording order, one column per
+// frame (newest on the right); the legend gives the 9-frame rolling mean.
+void Viewer::drawTimingGraph() {
+  const size_t frames = history_.frameCount();
+  const std::vector<std::string>& names = history_.passNames();
+  if (frames == 0) return;
+  const double top = std::max(history_.maxFrameMilliseconds(), 1e-3);
+  const ImVec2 size(ImGui::GetContentRegionAvail().x, 120.0f);
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y),
+                      IM_COL32(20, 20, 20, 255));
+  auto color = [&](size_t pass) {
+    return ImU32(ImColor::HSV(std::fmod(0.61803f * float(pass), 1.0f), 0.6f, 0.9f));
+  };
+  const float column = size.x / float(std::max<size_t>(frames, 60));
+  for (size_t f = 0; f < frames; ++f) {
+    const float x0 = origin.x + size.x - float(frames - f) * column;
+    float y = origin.y + size.y;
+    for (size_t p = 0; p < names.size(); ++p) {
+      const float h = float(history_.milliseconds(f, p) / top) * size.y;
+      if (h <= 0.0f) continue;
+      draw->AddRectFilled(ImVec2(x0, y - h), ImVec2(x0 + column, y), color(p));
+      y -= h;
+    }
+  }
+  ImGui::Dummy(size);
+  ImGui::Text("frame %.2f ms (9-frame mean), graph top %.2f ms", history_.rollingFrameMean(), top);
+  for (size_t p = 0; p < names.size(); ++p) {
+    const ImVec2 at = ImGui::GetCursorScreenPos();
+    const float s = ImGui::GetTextLineHeight();
+    draw->AddRectFilled(at, ImVec2(at.x + s, at.y + s), color(p));
+    ImGui::Dummy(ImVec2(s, s));
+    ImGui::SameLine();
+    ImGui::Text("%-28s %7.3f ms", names[p].c_str(), history_.rollingMean(p));
+  }
+}
+
+void Viewer::drawPanel() {
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(380, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("bounce");
+  ImGui::Text("%s on %s", scene_.name.c_str(), context_.info().name.c_str());
+  ImGui::Text("render %ux%u, window %ux%u", settings_.width, settings_.height,
+              swapchain_.extent().width, swapchain_.extent().height);
+  if (!ui_.status.empty()) ImGui::TextWrapped("%s", ui_.status.c_str());
+
+  if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::InputText("##scene", &ui_.scenePath);
+    ImGui::SameLine();
+    if (ImGui::Button("Load")) sceneToLoad_ = ui_.scenePath;
+    ImGui::TextDisabled("a built-in name or .gltf/.glb path; or drop a file on the window");
+  }
+  if (ImGui::CollapsingHeader("Frame", ImGuiTreeNodeFlags_DefaultOpen)) {
+    auto combo = [](const char* label, int* index, const std::vector<std::string>& names) {
+      bool changed = false;
+      if (ImGui::BeginCombo(label, names[size_t(*index)].c_str())) {
+        for (size_t i = 0; i < names.size(); ++i)
+          if (ImGui::Selectable(names[i].c_str(), int(i) == *index)) {
+            changed = int(i) != *index;
+            *index = int(i);
+          }
+        ImGui::EndCombo();
+      }
+      return changed;
+    };
+    if (combo("GI mode", &ui_.giMode, giNames_)) rebuildPending_ = true;
+    std::vector<std::string> presets = {"(none)"};
+    presets.insert(presets.end(), presetNames_.begin(), presetNames_.end());
+    if (combo("preset", &ui_.preset, presets)) rebuildPending_ = true;
+    if (ImGui::Checkbox("GI denoisers", &ui_.giDenoise)) rebuildPending_ = true;
+    ImGui::SliderFloat("render scale", &ui_.renderScale, 0.25f, 1.0f, "%.2f");
+    if (ImGui::IsItemDeactivatedAfterEdit()) rebuildPending_ = true;
+    if (ImGui::BeginCombo("view", ui_.view.c_str())) {
+      for (const std::string& name : viewNames_)
+        if (ImGui::Selectable(name.c_str(), name == ui_.view)) setView(name);
+      ImGui::EndCombo();
+    }
+  }
+  if (ImGui::CollapsingHeader("Light and exposure", ImGuiTreeNodeFlags_DefaultOpen)) {
+    bool sun = ImGui::Checkbox("time of day", &ui_.timeOfDayEnabled);
+    sun |= ImGui::SliderFloat("hours", &ui_.timeOfDay, 0.0f, 24.0f, "%.2f");
+    sun |= ImGui::SliderFloat("sun azimuth", &ui_.sunAzimuthDegrees, -180.0f, 180.0f, "%.0f deg");
+    if (sun) applySun();
+    if (ImGui::Checkbox("auto exposure", &ui_.autoExposure)) rebuildPending_ = true;
+    ImGui::SliderFloat(ui_.autoExposure ? "compensation" : "exposure", &ui_.exposureStops, -12.0f,
+                       12.0f, "%.1f stops");
+    if (ImGui::IsItemDeactivatedAfterEdit()) rebuildPending_ = true;
+  }
+  if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+    int mode = int(camera_.mode());
+    ImGui::RadioButton("fly (WASD, QE, right drag)", &mode, int(CameraMode::Fly));
+    ImGui::RadioButton("orbit (left drag, wheel)", &mode, int(CameraMode::Orbit));
+    camera_.setMode(CameraMode(mode));
+    ImGui::SliderFloat("speed", &ui_.moveSpeed, 0.05f, 20.0f, "%.2f m/s",
+                       ImGuiSliderFlags_Logarithmic);
+    ImGui::SliderFloat("vertical fov", &camera_.verticalFovDegrees, 10.0f, 120.0f, "%.0f deg");
+    ImGui::InputText("path file", &ui_.cameraPathOut);
+    if (!recorder_.recording()) {
+      if (ImGui::Button("Record camera path")) recorder_.start();
+    } else if (ImGui::Button("Stop and save")) {
+      CameraPath path = recorder_.stop();
+      try {
+        if (path.keys.size() < 2) fail("a camera path needs two keys at least; record longer");
+        writeTextFile(ui_.cameraPathOut, cameraPathJson(path));
+        ui_.status = fmt::format("{} keys -> {}", path.keys.size(), ui_.cameraPathOut);
+      } catch (const Error& e) {
+        ui_.status = e.what();
+      }
+    }
+    if (recorder_.recording()) {
+      ImGui::SameLine();
+      ImGui::Text("%zu keys", recorder_.keyCount());
+    }
+  }
+  if (ImGui::CollapsingHeader("GPU time per pass", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (context_.info().type == "cpu")
+      ImGui::TextDisabled("a CPU device: these times measure its emulation of a GPU");
+    drawTimingGraph();
+  }
+  ImGui::InputText("##shot", &ui_.screenshotPath);
+  ImGui::SameLine();
+  if (ImGui::Button("Screenshot")) takeScreenshot(ui_.screenshotPath);
+  ImGui::End();
+}
+
+// The shown view's values: .png as sRGB (clamped), .exr as linear floats.
+void Viewer::takeScreenshot(const std::string& path) {
+  try {
+    requireExtension("screenshot", path, {"png", "exr"});
+    writeImage(path, shown_);
+    ui_.status = fmt::format("{} {}x{} -> {}", ui_.view, shown_.width, shown_.height, path);
+    std::printf("bounce view: %s\n", ui_.status.c_str());
+  } catch (const Error& e) {
+    ui_.status = e.what();
+    if (options_.frames > 0) throw;
+  }
+}
+
+int Viewer::run() {
+  const auto start = std::chrono::steady_clock::now();
+  auto previous = start;
+  const int64_t scripted = options_.frames;
+  int64_t presented = 0, rendered = 0;
+  std::optional<VkExtent2D> resizeTarget;
+  int resizeWait = 0;
+  while (!glfwWindowShouldClose(window_.window())) {
+    glfwPollEvents();
+    int fbw = 0, fbh = 0;
+    glfwGetFramebufferSize(window_.window(), &fbw, &fbh);
+    if (fbw == 0 || fbh == 0) {  // minimised: nothing to present to; wait for the window
+      glfwWaitEventsTimeout(0.1);
+      continue;
+    }
+    if (swapchainDirty_ || !swapchain_.valid() || uint32_t(fbw) != swapchain_.extent().width ||
+        uint32_t(fbh) != swapchain_.extent().height)
+      recreateSwapchain();
+    if (!swapchain_.valid()) continue;
+    if (!sceneToLoad_.empty()) {
+      std::string path = std::move(sceneToLoad_);
+      sceneToLoad_.clear();
+      loadScene(path, false);
+    }
+    if (rebuildPending_) createFrame();
+
+    const double now = secondsSince(start);
+    const double dt = std::min(0.1, secondsSince(previous));
+    previous = std::chrono::steady_clock::now();
+    handleInput(dt);
+    const Camera camera = camera_.camera();
+    recorder_.update(float(now), camera);
+    frame_->setTime(scripted > 0 ? double(rendered) * kScriptFrameSeconds : now);
+    history_.add(frame_->render(camera));
+    ++rendered;
+    shown_ = shownImage();
+    uploadView(shown_);
+
+    ImGui_ImplVulkan_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    if (!options_.hideUi) drawPanel();
+    ImGui::Render();
+
+    const bool resizeDone =
+        !options_.resizeTest || (resizeTarget && swapchain_.extent().width == resizeTarget->width &&
+                                 swapchain_.extent().height == resizeTarget->height);
+    const bool last = scripted > 0 && presented + 1 >= scripted && resizeDone;
+    if (!drawAndPresent(last && !options_.windowScreenshot.empty())) continue;
+    ++presented;
+    if (options_.resizeTest && !resizeTarget && presented >= std::max<int64_t>(1, scripted / 2)) {
+      resizeTarget =
+          VkExtent2D{swapchain_.extent().width * 3 / 2, swapchain_.extent().height * 3 / 2};
+      std::printf("bounce view: --resize-test: resizing the window to %ux%u\n", resizeTarget->width,
+                  resizeTarget->height);
+      glfwSetWindowSize(window_.window(), int(resizeTarget->width), int(resizeTarget->height));
+    }
+    if (scripted > 0 && presented >= scripted && !resizeDone && ++resizeWait > kResizeWaitFrames)
+      fail("--resize-test: the window did not reach {}x{} within {} frames (it is {}x{})",
+           resizeTarget->width, resizeTarget->height, kResizeWaitFrames, swapchain_.extent().width,
+           swapchain_.extent().height);
+    if (last) {
+      if (!options_.screenshot.empty()) takeScreenshot(options_.screenshot);
+      readWindowCapture();
+      break;
+    }
+  }
+  const double seconds = secondsSince(start);
+  std::printf(
+      "bounce view: %lld frame(s) presented (%lld rendered) in %.2f s, %u swapchain "
+      "creation(s)\n",
+      (long long)presented, (long long)rendered, seconds, swapchainRecreations_);
+  context_.waitIdle();
+  if (window_.validationErrorCount() > 0) {
+    std::fprintf(stderr, "bounce view: error: %u Vulkan validation error(s)\n",
+                 window_.validationErrorCount());
+    return app::kValidationFailedExit;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int runViewer(const ViewerOptions& options) {
+  options.common.checkArguments();
+  app::requireOneOf("--gi", options.gi, app::splitNames(giModeNames()));
+  if (!options.preset.empty())
+    app::requireOneOf("--preset", options.preset, app::splitNames(presetNames()));
+  if (options.frames < 0) fail("--frames {}: expected 0 (until closed) or more", options.frames);
+  if (options.resizeTest && options.frames < 2)
+    fail("--resize-test needs --frames 2 or more (it resizes half-way)");
+  if (!options.screenshot.empty()) {
+    requireExtension("--screenshot", options.screenshot, {"png", "exr"});
+    requireWritableFile("--screenshot", options.screenshot);
+  }
+  if (!options.windowScreenshot.empty()) {
+    requireExtension("--window-screenshot", options.windowScreenshot, {"png"});
+    requireWritableFile("--window-screenshot", options.windowScreenshot);
+  }
+  try {
+    Viewer viewer(options);
+    return viewer.run();
+  } catch (const Error& e) {
+    if (std::strstr(e.what(), "VK_ERROR_DEVICE_LOST"))
+      fail(
+          "the Vulkan device was lost (a driver reset, a GPU hang or a removed GPU): {}; the "
+          "viewer cannot go on",
+          e.what());
+    if (std::strstr(e.what(), "VK_ERROR_SURFACE_LOST_KHR"))
+      fail("the window's surface was lost: {}", e.what());
+    throw;
+  }
+}
+
+}  // namespace bounce::view
