@@ -633,6 +633,8 @@ void Viewer::drawTimingGraph() {
   }
   ImGui::Dummy(size);
   ImGui::Text("frame %.2f ms (9-frame mean), graph top %.2f ms", history_.rollingFrameMean(), top);
+  ImGui::BeginChild("legend", ImVec2(0, 12 * ImGui::GetTextLineHeightWithSpacing()));
+  draw = ImGui::GetWindowDrawList();  // the child's
   for (size_t p = 0; p < names.size(); ++p) {
     const ImVec2 at = ImGui::GetCursorScreenPos();
     const float s = ImGui::GetTextLineHeight();
@@ -641,6 +643,7 @@ void Viewer::drawTimingGraph() {
     ImGui::SameLine();
     ImGui::Text("%-28s %7.3f ms", names[p].c_str(), history_.rollingMean(p));
   }
+  ImGui::EndChild();
 }
 
 void Viewer::drawPanel() {
@@ -684,7 +687,7 @@ void Viewer::drawPanel() {
       ImGui::EndCombo();
     }
   }
-  if (ImGui::CollapsingHeader("Light and exposure", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("Light and exposure")) {
     bool sun = ImGui::Checkbox("time of day", &ui_.timeOfDayEnabled);
     sun |= ImGui::SliderFloat("hours", &ui_.timeOfDay, 0.0f, 24.0f, "%.2f");
     sun |= ImGui::SliderFloat("sun azimuth", &ui_.sunAzimuthDegrees, -180.0f, 180.0f, "%.0f deg");
@@ -694,7 +697,7 @@ void Viewer::drawPanel() {
                        12.0f, "%.1f stops");
     if (ImGui::IsItemDeactivatedAfterEdit()) rebuildPending_ = true;
   }
-  if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("Camera")) {
     int mode = int(camera_.mode());
     ImGui::RadioButton("fly (WASD, QE, right drag)", &mode, int(CameraMode::Fly));
     ImGui::RadioButton("orbit (left drag, wheel)", &mode, int(CameraMode::Orbit));
@@ -720,14 +723,21 @@ void Viewer::drawPanel() {
       ImGui::Text("%zu keys", recorder_.keyCount());
     }
   }
-  if (ImGui::CollapsingHeader("GPU time per pass", ImGuiTreeNodeFlags_DefaultOpen)) {
-    if (context_.info().type == "cpu")
-      ImGui::TextDisabled("a CPU device: these times measure its emulation of a GPU");
-    drawTimingGraph();
-  }
   ImGui::InputText("##shot", &ui_.screenshotPath);
   ImGui::SameLine();
   if (ImGui::Button("Screenshot")) takeScreenshot(ui_.screenshotPath);
+  ImGui::End();
+
+  // The timings in a window of their own, at the right edge.
+  const float width = 360.0f;
+  ImGui::SetNextWindowPos(
+      ImVec2(std::max(8.0f, float(swapchain_.extent().width) - width - 8.0f), 8),
+      ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(width, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("GPU time per pass");
+  if (context_.info().type == "cpu")
+    ImGui::TextDisabled("a CPU device: these times measure its emulation of a GPU");
+  drawTimingGraph();
   ImGui::End();
 }
 
