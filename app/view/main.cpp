@@ -49,7 +49,13 @@ void addOptions(CLI::App& app, bounce::view::ViewerOptions& o) {
   app.add_flag("--resize-test", o.resizeTest,
                "With --frames: grow the window by half after half the frames and check that "
                "the swapchain and the render resolution follow (for CI)");
+  app.add_flag("--ui-test", o.uiTest,
+               "With --frames 8 or more: do what the panel does, one action per frame (for CI; "
+               "docs/cli.md lists them)");
   app.add_flag("--hide-ui", o.hideUi, "No panel over the image");
+  app.add_option("--render-scale", o.renderScale,
+                 "Render resolution / window size, 0.25 to 1 (the panel's render scale)")
+      ->capture_default_str();
 }
 
 }  // namespace

@@ -136,6 +136,7 @@ class Viewer {
   void drawPanel();
   void drawTimingGraph();
   void takeScreenshot(const std::string& path);
+  void uiTestStep(int64_t frame, bool last);
   static void onDrop(GLFWwindow* window, int count, const char** paths);
 
   ViewerOptions options_;
@@ -209,6 +210,7 @@ Viewer::Viewer(const ViewerOptions& options)
     ui_.timeOfDay = *options.timeOfDay;
   }
   ui_.view = options.view;
+  ui_.renderScale = options.renderScale;
   ui_.cameraPathOut = options.cameraPathOut;
   if (!options.screenshot.empty()) ui_.screenshotPath = options.screenshot;
 
@@ -734,6 +736,8 @@ void Viewer::drawPanel() {
       ImVec2(std::max(8.0f, float(swapchain_.extent().width) - width - 8.0f), 8),
       ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(width, 0), ImGuiCond_FirstUseEver);
+  // In a small window it would hide the frame: it starts folded there.
+  ImGui::SetNextWindowCollapsed(swapchain_.extent().width < 2 * width + 24, ImGuiCond_FirstUseEver);
   ImGui::Begin("GPU time per pass");
   if (context_.info().type == "cpu")
     ImGui::TextDisabled("a CPU device: these times measure its emulation of a GPU");
@@ -751,6 +755,54 @@ void Viewer::takeScreenshot(const std::string& path) {
   } catch (const Error& e) {
     ui_.status = e.what();
     if (options_.frames > 0) throw;
+  }
+}
+
+// --ui-test: the functions the panel's controls call, one per frame, so that CI runs them under
+// validation without a mouse.
+void Viewer::uiTestStep(int64_t frame, bool last) {
+  auto say = [](const char* what) { std::printf("bounce view: --ui-test: %s\n", what); };
+  switch (frame) {
+    case 1:
+      say("view shadows-trace, turn the camera");
+      setView("shadows-trace");
+      camera_.turn(0.1f, -0.05f);
+      break;
+    case 2:
+      say("GI mode cache, time of day 9 h");
+      ui_.giMode = int(std::find(giNames_.begin(), giNames_.end(), "cache") - giNames_.begin());
+      rebuildPending_ = true;
+      ui_.timeOfDayEnabled = true;
+      ui_.timeOfDay = 9.0f;
+      break;
+    case 3: {
+      say("drop a file that is not glTF (refused), record a camera path, fly forward");
+      const char* paths[] = {"notes.txt"};
+      onDrop(window_.window(), 1, paths);
+      recorder_.start();
+      camera_.move({0.0f, 0.0f, 0.2f});
+      break;
+    }
+    case 4:
+      say("load the scene sunroom, orbit");
+      sceneToLoad_ = "sunroom";
+      break;
+    case 5:
+      say("orbit, view tonemap");
+      setView("tonemap");
+      camera_.setMode(CameraMode::Orbit);
+      camera_.zoom(0.8f);  // nearer the pivot, and a small turn: still inside sunroom
+      camera_.turn(0.03f, 0.0f);
+      break;
+    default:
+      break;
+  }
+  if (frame >= 5) recorder_.update(float(frame), camera_.camera());  // a key per frame
+  if (last && recorder_.recording()) {
+    CameraPath path = recorder_.stop();
+    writeTextFile(ui_.cameraPathOut, cameraPathJson(path));
+    std::printf("bounce view: --ui-test: camera path of %zu keys -> %s\n", path.keys.size(),
+                ui_.cameraPathOut.c_str());
   }
 }
 
@@ -773,6 +825,7 @@ int Viewer::run() {
         uint32_t(fbh) != swapchain_.extent().height)
       recreateSwapchain();
     if (!swapchain_.valid()) continue;
+    if (options_.uiTest) uiTestStep(rendered, scripted > 0 && presented + 1 >= scripted);
     if (!sceneToLoad_.empty()) {
       std::string path = std::move(sceneToLoad_);
       sceneToLoad_.clear();
@@ -785,7 +838,7 @@ int Viewer::run() {
     previous = std::chrono::steady_clock::now();
     handleInput(dt);
     const Camera camera = camera_.camera();
-    recorder_.update(float(now), camera);
+    if (!options_.uiTest) recorder_.update(float(now), camera);
     frame_->setTime(scripted > 0 ? double(rendered) * kScriptFrameSeconds : now);
     history_.add(frame_->render(camera));
     ++rendered;
@@ -842,7 +895,11 @@ int runViewer(const ViewerOptions& options) {
   app::requireOneOf("--gi", options.gi, app::splitNames(giModeNames()));
   if (!options.preset.empty())
     app::requireOneOf("--preset", options.preset, app::splitNames(presetNames()));
+  if (!(options.renderScale >= 0.25f && options.renderScale <= 1.0f))
+    fail("--render-scale {}: expected 0.25 to 1", options.renderScale);
   if (options.frames < 0) fail("--frames {}: expected 0 (until closed) or more", options.frames);
+  if (options.uiTest && options.frames < 8)
+    fail("--ui-test needs --frames 8 or more (one panel action per frame)");
   if (options.resizeTest && options.frames < 2)
     fail("--resize-test needs --frames 2 or more (it resizes half-way)");
   if (!options.screenshot.empty()) {

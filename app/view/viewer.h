@@ -21,7 +21,11 @@ struct ViewerOptions {
   std::string windowScreenshot;  // the window as presented, UI included (.png)
   std::string cameraPathOut = "camera_path.json";  // where "record camera path" writes
   bool resizeTest = false;  // script: grow the window by half mid-run, check the swapchain follows
+  // script: the panel's actions in turn, one per frame (a view, GI mode, the sun, a refused
+  // drop, a scene load, camera moves, a recorded camera path written to cameraPathOut)
+  bool uiTest = false;
   bool hideUi = false;
+  float renderScale = 1.0f;            // render resolution / window size, in [0.25, 1]
   std::optional<float> exposureStops;  // fixed exposure; else automatic
   std::optional<float> timeOfDay;      // hours; else the scene's sun
 };

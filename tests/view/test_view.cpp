@@ -124,6 +124,18 @@ TEST(ViewerProgram, HelpListsTheScriptOptions) {
   EXPECT_NE(r.output.find("--resize-test"), std::string::npos) << r.output;
 }
 
+// `bounce` without bounce-view beside it (a build without GLFW or ImGui): one clear line, exit 1.
+TEST(ViewerProgram, MissingViewerIsAClearError) {
+  const std::string dir = test::tempDir("viewer-missing");
+  std::filesystem::copy_file(test::bounceExe(), dir + "/bounce");
+  std::filesystem::permissions(dir + "/bounce", std::filesystem::perms::owner_exec,
+                               std::filesystem::perm_options::add);
+  const test::CommandResult r = test::runCommand(dir + "/bounce view --scene cornell");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("bounce: error: view: the viewer is not built"), std::string::npos)
+      << r.output;
+}
+
 // CI's check (issue 24): the viewer opens on a virtual X server, presents frames, follows a
 // resize, writes its screenshots and exits 0 with validation on.
 TEST(ViewerProgram, PresentsResizesAndScreenshotsUnderXvfb) {
@@ -151,6 +163,29 @@ TEST(ViewerProgram, PresentsResizesAndScreenshotsUnderXvfb) {
   EXPECT_EQ(presented.width, 144);
   EXPECT_EQ(presented.height, 96);
   EXPECT_GT(luminanceSpread(presented), 0.02) << "the window is blank";
+}
+
+// The panel's actions (a debug view, a GI mode change that rebuilds the frame, the sun, a refused
+// drop, a scene load, fly and orbit moves, a recorded camera path) under validation: exit 0,
+// and the path file is one `bounce render --camera-path` accepts.
+TEST(ViewerProgram, PanelActionsRunCleanUnderXvfb) {
+  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth)";
+  const std::string dir = test::tempDir("viewer-ui");
+  const std::string path = dir + "/path.json", shot = dir + "/shot.png";
+  const test::CommandResult r = test::runCommand(
+      "xvfb-run -a -s '-screen 0 1024x768x24' " + test::bounceExe() +
+          " view --scene cornell --res 64x48 --frames 8 --ui-test --validate --camera-path-out " +
+          path + " --screenshot " + shot,
+      120);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("camera path of 3 keys"), std::string::npos) << r.output;
+  const CameraPath read = loadCameraPath(path);
+  ASSERT_EQ(read.keys.size(), 3u);
+  validateCameraPath(read, path);
+  // The last frames show sunroom's tone-mapped frame in the cache GI mode: not blank.
+  EXPECT_GT(luminanceSpread(readImage(shot)), 0.02) << r.output;
 }
 
 }  // namespace
