@@ -108,6 +108,7 @@ struct UiState {
   int giMode = 1;  // index into giNames
   int preset = 0;  // 0: none (the frame's defaults), else 1 + index into presetNames
   bool giDenoise = true;
+  bool reflectionDenoise = true;
   float renderScale = 1.0f;
   bool autoExposure = true;
   float exposureStops = 0.0f;
@@ -279,6 +280,7 @@ HybridSettings Viewer::settingsFromUi() const {
   s.autoExposure = ui_.autoExposure;
   s.exposureStops = ui_.exposureStops;
   if (!ui_.giDenoise) s.restirGi.temporalDenoise = s.restirGi.spatialDenoise = false;
+  s.reflectionDenoise.enabled = ui_.reflectionDenoise;
   validate(s);
   return s;
 }
@@ -692,6 +694,8 @@ void Viewer::drawPanel() {
     presets.insert(presets.end(), presetNames_.begin(), presetNames_.end());
     if (combo("preset", &ui_.preset, presets)) rebuildPending_ = true;
     if (ImGui::Checkbox("GI denoisers", &ui_.giDenoise)) rebuildPending_ = true;
+    ImGui::SameLine();
+    if (ImGui::Checkbox("reflection denoiser", &ui_.reflectionDenoise)) rebuildPending_ = true;
     ImGui::SliderFloat("render scale", &ui_.renderScale, 0.25f, 1.0f, "%.2f");
     if (ImGui::IsItemDeactivatedAfterEdit()) rebuildPending_ = true;
     if (ImGui::BeginCombo("view", ui_.view.c_str())) {

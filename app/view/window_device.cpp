@@ -89,6 +89,9 @@ std::string glfwErrorText() {
 }  // namespace
 
 WindowDevice::WindowDevice(const WindowOptions& options) {
+  glfwSetErrorCallback([](int code, const char* description) {
+    std::fprintf(stderr, "bounce view: GLFW error %d: %s\n", code, description);
+  });
   if (!glfwInit())
     fail("cannot open a window: {} (is DISPLAY set? without a display, run under xvfb-run)",
          glfwErrorText());

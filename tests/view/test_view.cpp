@@ -138,13 +138,15 @@ TEST(ViewerProgram, MissingViewerIsAClearError) {
 
 // CI's check (issue 24): the viewer opens on a virtual X server, presents frames, follows a
 // resize, writes its screenshots and exits 0 with validation on.
+// Each xvfb test starts its search for a free display at its own number (-a -n): two started at
+// once by `ctest -j` would otherwise both try :99.
 TEST(ViewerProgram, PresentsResizesAndScreenshotsUnderXvfb) {
   if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth)";
   const std::string dir = test::tempDir("viewer");
   const std::string shot = dir + "/shot.png", window = dir + "/window.png";
   const test::CommandResult r = test::runCommand(
-      "xvfb-run -a -s '-screen 0 1024x768x24' " + test::bounceExe() +
+      "xvfb-run -a -n 101 -s '-screen 0 1024x768x24' " + test::bounceExe() +
           " view --scene cornell --res 96x64 --frames 6 --resize-test --validate --screenshot " +
           shot + " --window-screenshot " + window,
       120);
@@ -174,7 +176,7 @@ TEST(ViewerProgram, PanelActionsRunCleanUnderXvfb) {
   const std::string dir = test::tempDir("viewer-ui");
   const std::string path = dir + "/path.json", shot = dir + "/shot.png";
   const test::CommandResult r = test::runCommand(
-      "xvfb-run -a -s '-screen 0 1024x768x24' " + test::bounceExe() +
+      "xvfb-run -a -n 121 -s '-screen 0 1024x768x24' " + test::bounceExe() +
           " view --scene cornell --res 64x48 --frames 8 --ui-test --validate --camera-path-out " +
           path + " --screenshot " + shot,
       120);
