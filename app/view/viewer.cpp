@@ -124,14 +124,16 @@ struct UiState {
 
 class Viewer {
  public:
-  explicit Viewer(const ViewerOptions& options);
+  Viewer(const ViewerOptions& options, Scene scene);
   ~Viewer();
   int run();
 
  private:
   // Scene and frame.
   HybridSettings settingsFromUi() const;
-  void loadScene(const std::string& nameOrPath, bool fromOptions);
+  void loadScene(const std::string& nameOrPath);
+  void useScene(Scene scene, const std::string& nameOrPath);
+  void release();  // everything the constructor made, in reverse order
   void createFrame();
   void applySun();
   void setView(const std::string& name);
@@ -188,7 +190,7 @@ class Viewer {
   uint32_t swapchainRecreations_ = 0;
 };
 
-Viewer::Viewer(const ViewerOptions& options)
+Viewer::Viewer(const ViewerOptions& options, Scene scene)
     : options_(options),
       window_([&] {
         WindowOptions w;
@@ -207,54 +209,64 @@ Viewer::Viewer(const ViewerOptions& options)
       }()),
       context_(window_.context()),
       swapchain_(window_.physicalDevice(), window_.device(), window_.surface()) {
-  giNames_ = app::splitNames(giModeNames());
-  presetNames_ = app::splitNames(presetNames());
-  ui_.giMode = int(std::find(giNames_.begin(), giNames_.end(), options.gi) - giNames_.begin());
-  if (!options.preset.empty())
-    ui_.preset = 1 + int(std::find(presetNames_.begin(), presetNames_.end(), options.preset) -
-                         presetNames_.begin());
-  if (options.exposureStops) {
-    ui_.autoExposure = false;
-    ui_.exposureStops = *options.exposureStops;
-  }
-  if (options.timeOfDay) {
-    ui_.timeOfDayEnabled = true;
-    ui_.timeOfDay = *options.timeOfDay;
-  }
-  ui_.view = options.view;
-  ui_.renderScale = options.renderScale;
-  ui_.cameraPathOut = options.cameraPathOut;
-  if (!options.screenshot.empty()) ui_.screenshotPath = options.screenshot;
+  try {
+    giNames_ = app::splitNames(giModeNames());
+    presetNames_ = app::splitNames(presetNames());
+    ui_.giMode = int(std::find(giNames_.begin(), giNames_.end(), options.gi) - giNames_.begin());
+    if (!options.preset.empty())
+      ui_.preset = 1 + int(std::find(presetNames_.begin(), presetNames_.end(), options.preset) -
+                           presetNames_.begin());
+    if (options.exposureStops) {
+      ui_.autoExposure = false;
+      ui_.exposureStops = *options.exposureStops;
+    }
+    if (options.timeOfDay) {
+      ui_.timeOfDayEnabled = true;
+      ui_.timeOfDay = *options.timeOfDay;
+    }
+    ui_.view = options.view;
+    ui_.renderScale = options.renderScale;
+    ui_.cameraPathOut = options.cameraPathOut;
+    if (!options.screenshot.empty()) ui_.screenshotPath = options.screenshot;
 
-  VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-  pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
-  pool.queueFamilyIndex = context_.queueFamily();
-  VK_CHECK(vkCreateCommandPool(context_.device(), &pool, nullptr, &commandPool_));
-  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-  ai.commandPool = commandPool_;
-  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-  ai.commandBufferCount = 1;
-  VK_CHECK(vkAllocateCommandBuffers(context_.device(), &ai, &cmd_));
-  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  VK_CHECK(vkCreateFence(context_.device(), &fi, nullptr, &fence_));
-  VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-  VK_CHECK(vkCreateSemaphore(context_.device(), &si, nullptr, &imageAvailable_));
+    VkCommandPoolCreateInfo pool{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pool.queueFamilyIndex = context_.queueFamily();
+    VK_CHECK(vkCreateCommandPool(context_.device(), &pool, nullptr, &commandPool_));
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = commandPool_;
+    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    ai.commandBufferCount = 1;
+    VK_CHECK(vkAllocateCommandBuffers(context_.device(), &ai, &cmd_));
+    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(vkCreateFence(context_.device(), &fi, nullptr, &fence_));
+    VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+    VK_CHECK(vkCreateSemaphore(context_.device(), &si, nullptr, &imageAvailable_));
 
-  recreateSwapchain();
-  loadScene(options.common.scene, true);
-  initImGui();
-  glfwSetWindowUserPointer(window_.window(), this);
-  glfwSetDropCallback(window_.window(), &Viewer::onDrop);
-  glfwGetCursorPos(window_.window(), &lastCursorX_, &lastCursorY_);
+    recreateSwapchain();
+    useScene(std::move(scene), options.common.scene);
+    initImGui();
+    glfwSetWindowUserPointer(window_.window(), this);
+    glfwSetDropCallback(window_.window(), &Viewer::onDrop);
+    glfwGetCursorPos(window_.window(), &lastCursorX_, &lastCursorY_);
+  } catch (...) {
+    release();
+    throw;
+  }
 }
 
 Viewer::~Viewer() {
+  release();
+}
+
+void Viewer::release() {
   VkDevice device = context_.device();
   vkDeviceWaitIdle(device);
   if (imguiReady_) {
     ImGui_ImplVulkan_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
+    imguiReady_ = false;
   }
   frame_.reset();
   gpuScene_.reset();
@@ -265,6 +277,10 @@ Viewer::~Viewer() {
   vkDestroySemaphore(device, imageAvailable_, nullptr);
   vkDestroyFence(device, fence_, nullptr);
   vkDestroyCommandPool(device, commandPool_, nullptr);
+  imguiPool_ = VK_NULL_HANDLE;
+  imageAvailable_ = VK_NULL_HANDLE;
+  fence_ = VK_NULL_HANDLE;
+  commandPool_ = VK_NULL_HANDLE;
 }
 
 // ---- scene and frame --------------------------------------------------------------------------
@@ -286,25 +302,25 @@ HybridSettings Viewer::settingsFromUi() const {
 }
 
 // A scene that cannot be loaded (a bad dropped file) leaves the current one showing, with the
-// message in the panel; only the command line's scene is fatal.
-void Viewer::loadScene(const std::string& nameOrPath, bool fromOptions) {
+// message in the panel. (The command line's scene is loaded by runViewer, before any window.)
+void Viewer::loadScene(const std::string& nameOrPath) {
   app::CommonOptions source = options_.common;
-  if (!fromOptions) source.camera = source.sun = source.sky = "";
+  source.camera = source.sun = source.sky = "";  // the command line's were for its scene
   source.scene = nameOrPath;
-  Scene loaded;
   try {
     source.checkArguments();
-    loaded = source.loadScene();
+    useScene(source.loadScene(), nameOrPath);
   } catch (const Error& e) {
-    if (fromOptions) throw;
     ui_.status = e.what();
     std::fprintf(stderr, "bounce view: %s\n", e.what());
-    return;
   }
+}
+
+void Viewer::useScene(Scene scene, const std::string& nameOrPath) {
   context_.waitIdle();
   frame_.reset();
   gpuScene_.reset();
-  scene_ = std::move(loaded);
+  scene_ = std::move(scene);
   gpuScene_ = std::make_unique<GpuScene>(context_, scene_);
   camera_ = FlyCamera(effectiveCamera(scene_));
   ui_.scenePath = nameOrPath;
@@ -847,7 +863,7 @@ int Viewer::run() {
     if (!sceneToLoad_.empty()) {
       std::string path = std::move(sceneToLoad_);
       sceneToLoad_.clear();
-      loadScene(path, false);
+      loadScene(path);
     }
     if (rebuildPending_) createFrame();
 
@@ -937,8 +953,9 @@ int runViewer(const ViewerOptions& options) {
     requireExtension("--window-screenshot", options.windowScreenshot, {"png"});
     requireWritableFile("--window-screenshot", options.windowScreenshot);
   }
+  Scene scene = options.common.loadScene();  // a bad scene fails before any window opens
   try {
-    Viewer viewer(options);
+    Viewer viewer(options, std::move(scene));
     return viewer.run();
   } catch (const Error& e) {
     if (std::strstr(e.what(), "VK_ERROR_DEVICE_LOST"))

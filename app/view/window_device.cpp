@@ -89,12 +89,13 @@ std::string glfwErrorText() {
 }  // namespace
 
 WindowDevice::WindowDevice(const WindowOptions& options) {
-  glfwSetErrorCallback([](int code, const char* description) {
-    std::fprintf(stderr, "bounce view: GLFW error %d: %s\n", code, description);
-  });
   if (!glfwInit())
     fail("cannot open a window: {} (is DISPLAY set? without a display, run under xvfb-run)",
          glfwErrorText());
+  // Later GLFW errors (a window-system call that fails mid-run) are printed as they happen.
+  glfwSetErrorCallback([](int code, const char* description) {
+    std::fprintf(stderr, "bounce view: GLFW error %d: %s\n", code, description);
+  });
   if (!glfwVulkanSupported()) {
     glfwTerminate();
     fail("GLFW finds no Vulkan loader (apt-get install libvulkan1 mesa-vulkan-drivers)");

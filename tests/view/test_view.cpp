@@ -138,6 +138,15 @@ TEST(ViewerProgram, MissingViewerIsAClearError) {
 
 // CI's check (issue 24): the viewer opens on a virtual X server, presents frames, follows a
 // resize, writes its screenshots and exits 0 with validation on.
+TEST(ViewerProgram, NoDisplayIsAClearError) {
+  const test::CommandResult r = test::runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " +
+                                                 test::bounceExe() + " view --scene cornell");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("bounce: error: view: cannot open a window"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("xvfb-run"), std::string::npos) << r.output;
+}
+
 // Each xvfb test starts its search for a free display at its own number (-a -n): two started at
 // once by `ctest -j` would otherwise both try :99.
 TEST(ViewerProgram, PresentsResizesAndScreenshotsUnderXvfb) {
