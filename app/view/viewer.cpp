@@ -165,6 +165,7 @@ class Viewer {
   HybridSettings settings_;
   std::vector<std::string> viewNames_;
   bool rebuildPending_ = false;
+  bool frameCreated_ = false;  // after the first createFrame()
   std::string sceneToLoad_;
 
   FlyCamera camera_;
@@ -187,6 +188,8 @@ class Viewer {
   VkExtent2D capturedExtent_{0, 0};
 
   double lastCursorX_ = 0.0, lastCursorY_ = 0.0;
+  bool f1Down_ = false, f12Down_ = false;
+  bool panelHidden_ = false;  // --hide-ui, or F1
   uint32_t swapchainRecreations_ = 0;
 };
 
@@ -225,6 +228,7 @@ Viewer::Viewer(const ViewerOptions& options, Scene scene)
       ui_.timeOfDay = *options.timeOfDay;
     }
     ui_.view = options.view;
+    panelHidden_ = options.hideUi;
     ui_.renderScale = options.renderScale;
     ui_.cameraPathOut = options.cameraPathOut;
     if (!options.screenshot.empty()) ui_.screenshotPath = options.screenshot;
@@ -336,9 +340,17 @@ void Viewer::createFrame() {
   viewNames_ = frame_->passNames();
   for (const std::string& name : frame_->resourceNames()) viewNames_.push_back(name);
   if (std::find(viewNames_.begin(), viewNames_.end(), ui_.view) == viewNames_.end()) {
+    // The command line's --view is checked as `render --view` checks it; later frames (another
+    // GI mode) may lack the panel's choice, which then falls back.
+    if (!frameCreated_)
+      fail(
+          "--view '{}': not a pass or resource of this frame{}; `bounce render --list-views` "
+          "prints them",
+          ui_.view, app::didYouMean(ui_.view, viewNames_));
     ui_.status = fmt::format("view '{}' is not in this frame; showing tonemap", ui_.view);
     ui_.view = "tonemap";
   }
+  frameCreated_ = true;
   setView(ui_.view);
   applySun();
   history_.clear();
@@ -634,6 +646,15 @@ void Viewer::handleInput(double dt) {
   const float speed = ui_.moveSpeed * (down(GLFW_KEY_LEFT_SHIFT) ? 4.0f : 1.0f);
   if (move != glm::vec3(0.0f)) camera_.move(move * speed * float(dt));
   if (down(GLFW_KEY_ESCAPE) && options_.frames == 0) glfwSetWindowShouldClose(w, GLFW_TRUE);
+  // F1 shows or hides the panels, F12 takes a screenshot: on the key's press, not while held.
+  auto pressed = [&](int key, bool& was) {
+    const bool now = down(key);
+    const bool edge = now && !was;
+    was = now;
+    return edge;
+  };
+  if (pressed(GLFW_KEY_F1, f1Down_)) panelHidden_ = !panelHidden_;
+  if (pressed(GLFW_KEY_F12, f12Down_)) takeScreenshot(ui_.screenshotPath);
 }
 
 // Each pass a band of its own colour, stacked bottom to top in recording order, one column per
@@ -858,7 +879,10 @@ int Viewer::run() {
     if (swapchainDirty_ || !swapchain_.valid() || uint32_t(fbw) != swapchain_.extent().width ||
         uint32_t(fbh) != swapchain_.extent().height)
       recreateSwapchain();
-    if (!swapchain_.valid()) continue;
+    if (!swapchain_.valid()) {  // the surface has no area yet (minimising, mapping): wait
+      glfwWaitEventsTimeout(0.05);
+      continue;
+    }
     if (options_.uiTest) uiTestStep(rendered, scripted > 0 && presented + 1 >= scripted);
     if (!sceneToLoad_.empty()) {
       std::string path = std::move(sceneToLoad_);
@@ -885,7 +909,7 @@ int Viewer::run() {
     ImGui_ImplVulkan_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    if (!options_.hideUi) drawPanel();
+    if (!panelHidden_) drawPanel();
     ImGui::Render();
 
     const bool resizeDone =
