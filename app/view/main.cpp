@@ -52,6 +52,9 @@ void addOptions(CLI::App& app, bounce::view::ViewerOptions& o) {
   app.add_flag("--ui-test", o.uiTest,
                "With --frames 8 or more: do what the panel does, one action per frame (for CI; "
                "docs/cli.md lists them)");
+  app.add_flag("--animate", o.animate,
+               "Play the scene's moving objects and lights (the panel's checkbox); the camera "
+               "stays yours");
   app.add_flag("--hide-ui", o.hideUi, "No panel over the image");
   app.add_option("--render-scale", o.renderScale,
                  "Render resolution / window size, 0.25 to 1 (the panel's render scale)")

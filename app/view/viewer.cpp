@@ -18,6 +18,7 @@
 #include "camera_recorder.h"
 #include "core/error.h"
 #include "fly_camera.h"
+#include "frame/animation_player.h"
 #include "frame/hybrid_frame.h"
 #include "frame/presets.h"
 #include "pass_time_history.h"
@@ -61,6 +62,9 @@ struct UiState {
   float exposureStops = 0.0f;
   bool timeOfDayEnabled = false;
   float timeOfDay = 12.0f;
+  bool dayCycle = false;        // the hours advance while the viewer runs
+  float hoursPerSecond = 0.5f;  // of wall time (a day in 48 s)
+  bool animate = false;         // the scene's moving objects and lights
   float sunAzimuthDegrees = 0.0f;
   float moveSpeed = 1.0f;  // metres per second
   std::string view = "tonemap";
@@ -84,6 +88,7 @@ class Viewer {
   void createFrame();
   void applySun();
   void setView(const std::string& name);
+  void advanceAnimation(double dt);
   ImageRGBA32F shownImage();
   // Window and presentation.
   void initImGui();
@@ -105,6 +110,10 @@ class Viewer {
   Scene scene_;
   std::unique_ptr<GpuScene> gpuScene_;
   std::unique_ptr<HybridFrame> frame_;
+  // The scene's object and light animation (its camera path and time of day left out: the
+  // camera and the sun are the panel's), played while ui_.animate is on.
+  std::optional<AnimationPlayer> player_;
+  double animationTime_ = 0.0;
   HybridSettings settings_;
   std::vector<std::string> viewNames_;
   bool rebuildPending_ = false;
@@ -164,6 +173,7 @@ Viewer::Viewer(const ViewerOptions& options, Scene scene)
       ui_.timeOfDay = *options.timeOfDay;
     }
     ui_.view = options.view;
+    ui_.animate = options.animate;
     panelHidden_ = options.hideUi;
     ui_.renderScale = options.renderScale;
     ui_.cameraPathOut = options.cameraPathOut;
@@ -247,6 +257,7 @@ void Viewer::useScene(Scene scene, const std::string& nameOrPath) {
 
 void Viewer::createFrame() {
   context_.waitIdle();
+  player_.reset();
   frame_.reset();
   settings_ = settingsFromUi();
   frame_ = std::make_unique<HybridFrame>(context_, *gpuScene_, scene_, settings_);
@@ -264,6 +275,11 @@ void Viewer::createFrame() {
     ui_.view = "tonemap";
   }
   frameCreated_ = true;
+  SceneAnimation animation = scene_.animation;
+  animation.camera.reset();
+  animation.timeOfDay.reset();
+  player_.emplace(scene_, std::move(animation));
+  animationTime_ = 0.0;
   setView(ui_.view);
   applySun();
   history_.clear();
@@ -279,6 +295,18 @@ void Viewer::applySun() {
   sun.direction = {std::cos(a) * d.x + std::sin(a) * d.z, d.y,
                    -std::sin(a) * d.x + std::cos(a) * d.z};
   frame_->setSunAndSky(sun, sky);
+}
+
+// Moves the scene's objects and lights, and the sun through the day, by dt seconds.
+void Viewer::advanceAnimation(double dt) {
+  if (ui_.animate) {
+    animationTime_ += dt;
+    player_->apply(*frame_, float(animationTime_));
+  }
+  if (ui_.dayCycle && ui_.timeOfDayEnabled) {
+    ui_.timeOfDay = std::fmod(ui_.timeOfDay + float(dt) * ui_.hoursPerSecond, 24.0f);
+    applySun();
+  }
 }
 
 void Viewer::setView(const std::string& name) {
@@ -491,9 +519,14 @@ void Viewer::drawPanel() {
       ImGui::EndCombo();
     }
   }
+  ImGui::Checkbox("play the scene's animation (objects, lights)", &ui_.animate);
   if (ImGui::CollapsingHeader("Light and exposure")) {
     bool sun = ImGui::Checkbox("time of day", &ui_.timeOfDayEnabled);
     sun |= ImGui::SliderFloat("hours", &ui_.timeOfDay, 0.0f, 24.0f, "%.2f");
+    ImGui::Checkbox("day cycle", &ui_.dayCycle);
+    ImGui::SameLine();
+    ImGui::SliderFloat("h/s", &ui_.hoursPerSecond, 0.01f, 4.0f, "%.2f",
+                       ImGuiSliderFlags_Logarithmic);
     sun |= ImGui::SliderFloat("sun azimuth", &ui_.sunAzimuthDegrees, -180.0f, 180.0f, "%.0f deg");
     if (sun) applySun();
     if (ImGui::Checkbox("auto exposure", &ui_.autoExposure)) rebuildPending_ = true;
@@ -590,8 +623,10 @@ void Viewer::uiTestStep(int64_t frame, bool last) {
       sceneToLoad_ = "sunroom";
       break;
     case 5:
-      say("orbit, view tonemap");
+      say("orbit, view tonemap, the scene's animation and the day cycle on");
       setView("tonemap");
+      ui_.animate = true;
+      ui_.dayCycle = true;
       camera_.setMode(CameraMode::Orbit);
       camera_.zoom(0.8f);  // nearer the pivot, and a small turn: still inside sunroom
       camera_.turn(0.03f, 0.0f);
@@ -647,6 +682,7 @@ int Viewer::run() {
     handleInput(dt);
     const Camera camera = camera_.camera();
     if (!options_.uiTest) recorder_.update(float(now), camera);
+    advanceAnimation(scripted > 0 ? kScriptFrameSeconds : dt);
     frame_->setTime(scripted > 0 ? double(rendered) * kScriptFrameSeconds : now);
     const auto renderStart = std::chrono::steady_clock::now();
     history_.add(frame_->render(camera));

@@ -25,6 +25,7 @@ struct ViewerOptions {
   // drop, a scene load, camera moves, a recorded camera path written to cameraPathOut)
   bool uiTest = false;
   bool hideUi = false;
+  bool animate = false;                // play the scene's object and light animation from the start
   float renderScale = 1.0f;            // render resolution / window size, in [0.25, 1]
   std::optional<float> exposureStops;  // fixed exposure; else automatic
   std::optional<float> timeOfDay;      // hours; else the scene's sun
