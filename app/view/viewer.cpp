@@ -83,7 +83,8 @@ class Viewer {
   // Scene and frame.
   HybridSettings settingsFromUi() const;
   void loadScene(const std::string& nameOrPath);
-  void useScene(Scene scene, const std::string& nameOrPath);
+  void useScene(std::unique_ptr<Scene> scene, std::unique_ptr<GpuScene> gpuScene,
+                const std::string& nameOrPath);
   void release();  // everything the constructor made, in reverse order
   void createFrame();
   void applySun();
@@ -99,6 +100,8 @@ class Viewer {
   void drawTimingGraph();
   void takeScreenshot(const std::string& path);
   void uiTestStep(int64_t frame, bool last);
+  void resizeTestStep(int64_t presented, int64_t scripted);
+  bool resizeTestDone() const;
   static void onDrop(GLFWwindow* window, int count, const char** paths);
 
   ViewerOptions options_;
@@ -107,7 +110,8 @@ class Viewer {
   Swapchain swapchain_;
   bool swapchainDirty_ = true;
 
-  Scene scene_;
+  // On the heap: the frame and the GPU scene hold on to its address while a new one loads.
+  std::unique_ptr<Scene> scene_;
   std::unique_ptr<GpuScene> gpuScene_;
   std::unique_ptr<HybridFrame> frame_;
   // The scene's object and light animation (its camera path and time of day left out: the
@@ -135,6 +139,8 @@ class Viewer {
   bool f1Down_ = false, f12Down_ = false;
   bool panelHidden_ = false;  // --hide-ui, or F1
   uint32_t swapchainRecreations_ = 0;
+  std::optional<VkExtent2D> resizeTarget_;  // --resize-test
+  int resizeWaitFrames_ = 0;
 };
 
 Viewer::Viewer(const ViewerOptions& options, Scene scene)
@@ -180,7 +186,9 @@ Viewer::Viewer(const ViewerOptions& options, Scene scene)
     if (!options.screenshot.empty()) ui_.screenshotPath = options.screenshot;
 
     recreateSwapchain();
-    useScene(std::move(scene), options.common.scene);
+    auto owned = std::make_unique<Scene>(std::move(scene));
+    auto gpuScene = std::make_unique<GpuScene>(context_, *owned);
+    useScene(std::move(owned), std::move(gpuScene), options.common.scene);
     initImGui();
     glfwSetWindowUserPointer(window_.window(), this);
     glfwSetDropCallback(window_.window(), &Viewer::onDrop);
@@ -228,30 +236,38 @@ HybridSettings Viewer::settingsFromUi() const {
   return s;
 }
 
-// A scene that cannot be loaded (a bad dropped file) leaves the current one showing, with the
-// message in the panel. (The command line's scene is loaded by runViewer, before any window.)
+// A scene that cannot be loaded or uploaded (a bad dropped file, one too large for the device)
+// leaves the current one showing, with the message in the panel. (The command line's scene is
+// loaded by runViewer, before any window.)
 void Viewer::loadScene(const std::string& nameOrPath) {
   app::CommonOptions source = options_.common;
   source.camera = source.sun = source.sky = "";  // the command line's were for its scene
   source.scene = nameOrPath;
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<GpuScene> gpuScene;
   try {
     source.checkArguments();
-    useScene(source.loadScene(), nameOrPath);
+    scene = std::make_unique<Scene>(source.loadScene());
+    gpuScene = std::make_unique<GpuScene>(context_, *scene);
   } catch (const Error& e) {
     ui_.status = e.what();
     std::fprintf(stderr, "bounce view: %s\n", e.what());
+    return;
   }
+  useScene(std::move(scene), std::move(gpuScene), nameOrPath);
 }
 
-void Viewer::useScene(Scene scene, const std::string& nameOrPath) {
+// A frame that cannot be made for the new scene ends the viewer (runViewer reports it).
+void Viewer::useScene(std::unique_ptr<Scene> scene, std::unique_ptr<GpuScene> gpuScene,
+                      const std::string& nameOrPath) {
   context_.waitIdle();
+  player_.reset();
   frame_.reset();
-  gpuScene_.reset();
+  gpuScene_ = std::move(gpuScene);
   scene_ = std::move(scene);
-  gpuScene_ = std::make_unique<GpuScene>(context_, scene_);
-  camera_ = FlyCamera(effectiveCamera(scene_));
+  camera_ = FlyCamera(effectiveCamera(*scene_));
   ui_.scenePath = nameOrPath;
-  ui_.status = "loaded " + scene_.name;
+  ui_.status = "loaded " + scene_->name;
   createFrame();
 }
 
@@ -260,7 +276,7 @@ void Viewer::createFrame() {
   player_.reset();
   frame_.reset();
   settings_ = settingsFromUi();
-  frame_ = std::make_unique<HybridFrame>(context_, *gpuScene_, scene_, settings_);
+  frame_ = std::make_unique<HybridFrame>(context_, *gpuScene_, *scene_, settings_);
   viewNames_ = frame_->passNames();
   for (const std::string& name : frame_->resourceNames()) viewNames_.push_back(name);
   if (std::find(viewNames_.begin(), viewNames_.end(), ui_.view) == viewNames_.end()) {
@@ -275,10 +291,10 @@ void Viewer::createFrame() {
     ui_.view = "tonemap";
   }
   frameCreated_ = true;
-  SceneAnimation animation = scene_.animation;
+  SceneAnimation animation = scene_->animation;
   animation.camera.reset();
   animation.timeOfDay.reset();
-  player_.emplace(scene_, std::move(animation));
+  player_.emplace(*scene_, std::move(animation));
   animationTime_ = 0.0;
   setView(ui_.view);
   applySun();
@@ -287,9 +303,9 @@ void Viewer::createFrame() {
 }
 
 void Viewer::applySun() {
-  Sun sun = scene_.sun;
-  Sky sky = scene_.sky;
-  if (ui_.timeOfDayEnabled) applyTimeOfDay(ui_.timeOfDay, scene_.sun, scene_.sky, sun, sky);
+  Sun sun = scene_->sun;
+  Sky sky = scene_->sky;
+  if (ui_.timeOfDayEnabled) applyTimeOfDay(ui_.timeOfDay, scene_->sun, scene_->sky, sun, sky);
   const float a = glm::radians(ui_.sunAzimuthDegrees);
   const glm::vec3 d = sun.direction;
   sun.direction = {std::cos(a) * d.x + std::sin(a) * d.z, d.y,
@@ -480,7 +496,7 @@ void Viewer::drawPanel() {
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(380, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("bounce");
-  ImGui::Text("%s on %s", scene_.name.c_str(), context_.info().name.c_str());
+  ImGui::Text("%s on %s", scene_->name.c_str(), context_.info().name.c_str());
   ImGui::Text("render %ux%u, window %ux%u", settings_.width, settings_.height,
               swapchain_.extent().width, swapchain_.extent().height);
   if (!ui_.status.empty()) ImGui::TextWrapped("%s", ui_.status.c_str());
@@ -643,6 +659,28 @@ void Viewer::uiTestStep(int64_t frame, bool last) {
   }
 }
 
+// --resize-test: after half the frames, the window grows by half; the run goes on until the
+// swapchain has that size, and fails if it never comes.
+void Viewer::resizeTestStep(int64_t presented, int64_t scripted) {
+  if (!resizeTarget_ && presented >= std::max<int64_t>(1, scripted / 2)) {
+    resizeTarget_ =
+        VkExtent2D{swapchain_.extent().width * 3 / 2, swapchain_.extent().height * 3 / 2};
+    std::printf("bounce view: --resize-test: resizing the window to %ux%u\n", resizeTarget_->width,
+                resizeTarget_->height);
+    glfwSetWindowSize(window_.window(), int(resizeTarget_->width), int(resizeTarget_->height));
+  }
+  if (presented >= scripted && !resizeTestDone() && ++resizeWaitFrames_ > kResizeWaitFrames)
+    fail("--resize-test: the window did not reach {}x{} within {} frames (it is {}x{})",
+         resizeTarget_->width, resizeTarget_->height, kResizeWaitFrames, swapchain_.extent().width,
+         swapchain_.extent().height);
+}
+
+bool Viewer::resizeTestDone() const {
+  return !options_.resizeTest ||
+         (resizeTarget_ && swapchain_.extent().width == resizeTarget_->width &&
+          swapchain_.extent().height == resizeTarget_->height);
+}
+
 int Viewer::run() {
   const auto start = std::chrono::steady_clock::now();
   auto previous = start;
@@ -651,8 +689,6 @@ int Viewer::run() {
   // Wall time after the first frame (pipelines, first resources): the frame's render() (with
   // its readback of the view), and the viewer's own work (conversion, upload, UI, present).
   double renderSeconds = 0.0, presentSeconds = 0.0;
-  std::optional<VkExtent2D> resizeTarget;
-  int resizeWait = 0;
   while (!glfwWindowShouldClose(window_.window())) {
     glfwPollEvents();
     int fbw = 0, fbh = 0;
@@ -698,27 +734,14 @@ int Viewer::run() {
     if (!panelHidden_) drawPanel();
     ImGui::Render();
 
-    const bool resizeDone =
-        !options_.resizeTest || (resizeTarget && swapchain_.extent().width == resizeTarget->width &&
-                                 swapchain_.extent().height == resizeTarget->height);
-    const bool last = scripted > 0 && presented + 1 >= scripted && resizeDone;
+    const bool last = scripted > 0 && presented + 1 >= scripted && resizeTestDone();
     const Presenter::Outcome outcome =
         presenter_.present(ImGui::GetDrawData(), last && !options_.windowScreenshot.empty());
     swapchainDirty_ = swapchainDirty_ || outcome.recreate;
     if (!outcome.presented) continue;
     if (rendered > 1) presentSeconds += secondsSince(presentStart);
     ++presented;
-    if (options_.resizeTest && !resizeTarget && presented >= std::max<int64_t>(1, scripted / 2)) {
-      resizeTarget =
-          VkExtent2D{swapchain_.extent().width * 3 / 2, swapchain_.extent().height * 3 / 2};
-      std::printf("bounce view: --resize-test: resizing the window to %ux%u\n", resizeTarget->width,
-                  resizeTarget->height);
-      glfwSetWindowSize(window_.window(), int(resizeTarget->width), int(resizeTarget->height));
-    }
-    if (scripted > 0 && presented >= scripted && !resizeDone && ++resizeWait > kResizeWaitFrames)
-      fail("--resize-test: the window did not reach {}x{} within {} frames (it is {}x{})",
-           resizeTarget->width, resizeTarget->height, kResizeWaitFrames, swapchain_.extent().width,
-           swapchain_.extent().height);
+    if (options_.resizeTest) resizeTestStep(presented, scripted);
     if (last) {
       if (!options_.screenshot.empty()) takeScreenshot(options_.screenshot);
       if (!options_.windowScreenshot.empty())
