@@ -117,6 +117,12 @@ double luminanceSpread(const ImageRGBA32F& image) {
   return std::sqrt(sum / double(image.pixelCount()));
 }
 
+// xvfb-run needs xauth for its server's cookie.
+bool haveXvfb() {
+  return std::system("command -v xvfb-run >/dev/null 2>&1 && command -v xauth >/dev/null 2>&1") ==
+         0;
+}
+
 TEST(ViewerProgram, HelpListsTheScriptOptions) {
   const test::CommandResult r = test::runCommand(test::bounceExe() + " view --help");
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -150,8 +156,8 @@ TEST(ViewerProgram, NoDisplayIsAClearError) {
 // Each xvfb test starts its search for a free display at its own number (-a -n): two started at
 // once by `ctest -j` would otherwise both try :99.
 TEST(ViewerProgram, PresentsResizesAndScreenshotsUnderXvfb) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth)";
+  if (!haveXvfb())
+    GTEST_SKIP() << "xvfb-run or xauth is not installed (apt-get install xvfb xauth)";
   const std::string dir = test::tempDir("viewer");
   const std::string shot = dir + "/shot.png", window = dir + "/window.png";
   const test::CommandResult r = test::runCommand(
@@ -180,8 +186,8 @@ TEST(ViewerProgram, PresentsResizesAndScreenshotsUnderXvfb) {
 // drop, a scene load, fly and orbit moves, a recorded camera path) under validation: exit 0,
 // and the path file is one `bounce render --camera-path` accepts.
 TEST(ViewerProgram, PanelActionsRunCleanUnderXvfb) {
-  if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0)
-    GTEST_SKIP() << "xvfb-run is not installed (apt-get install xvfb xauth)";
+  if (!haveXvfb())
+    GTEST_SKIP() << "xvfb-run or xauth is not installed (apt-get install xvfb xauth)";
   const std::string dir = test::tempDir("viewer-ui");
   const std::string path = dir + "/path.json", shot = dir + "/shot.png";
   const test::CommandResult r = test::runCommand(
