@@ -112,8 +112,8 @@ void Presenter::release() {
 
 // Made at start and when the shown image's size changes (a resize, a view of another size):
 // never per frame.
-void Presenter::ensureDisplayResources(uint32_t width, uint32_t height) {
-  if (display_.handle() && display_.width() == width && display_.height() == height) return;
+bool Presenter::ensureDisplayResources(uint32_t width, uint32_t height) {
+  if (display_.handle() && display_.width() == width && display_.height() == height) return false;
   context_.waitIdle();
   staging_ = vk::Buffer(context_, VkDeviceSize(width) * height * 4,
                         VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload, "view-staging");
@@ -121,17 +121,19 @@ void Presenter::ensureDisplayResources(uint32_t width, uint32_t height) {
                        VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
                            VK_IMAGE_USAGE_SAMPLED_BIT,  // vk::Image makes a view
                        "view-display", VK_IMAGE_VIEW_TYPE_2D);
+  return true;
 }
 
 // The view's linear values as the .png writer encodes them: clamped to [0, 1], sRGB.
-void Presenter::upload(const ImageRGBA32F& image) {
-  ensureDisplayResources(uint32_t(image.width), uint32_t(image.height));
+bool Presenter::upload(const ImageRGBA32F& image) {
+  const bool made = ensureDisplayResources(uint32_t(image.width), uint32_t(image.height));
   uint8_t* out = staging_.mappedAs<uint8_t>();
   const size_t pixels = size_t(image.width) * size_t(image.height);
   for (size_t i = 0; i < pixels; ++i) {
     for (int c = 0; c < 3; ++c) out[4 * i + c] = toSrgbByte(image.pixels[4 * i + c]);
     out[4 * i + 3] = 255;
   }
+  return made;
 }
 
 Presenter::Outcome Presenter::present(ImDrawData* ui, bool captureWindow) {

@@ -27,7 +27,8 @@ class Presenter {
   Presenter& operator=(const Presenter&) = delete;
 
   // The image the next present() shows (rows top to bottom, linear values; clamped to [0, 1]).
-  void upload(const ImageRGBA32F& image);
+  // Returns true when it made new resources for it (the first image, a new size).
+  bool upload(const ImageRGBA32F& image);
 
   struct Outcome {
     bool presented = false;  // false: acquire timed out or the swapchain was out of date
@@ -41,7 +42,7 @@ class Presenter {
 
  private:
   void release();
-  void ensureDisplayResources(uint32_t width, uint32_t height);
+  bool ensureDisplayResources(uint32_t width, uint32_t height);
 
   vk::Context& context_;
   Swapchain& swapchain_;

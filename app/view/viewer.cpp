@@ -149,6 +149,7 @@ HybridSettings Viewer::settingsFromUi() const {
 // leaves the current one showing, with the message in the panel. (The command line's scene is
 // loaded by runViewer, before any window.)
 void Viewer::loadScene(const std::string& nameOrPath) {
+  markChange();
   app::CommonOptions source = options_.common;
   source.camera = source.sun = source.sky = "";  // the command line's were for its scene
   source.scene = nameOrPath;
@@ -200,6 +201,7 @@ void Viewer::createFrame() {
     ui_.view = "tonemap";
   }
   frameCreated_ = true;
+  markChange();
   SceneAnimation animation = scene_->animation;
   animation.camera.reset();
   animation.timeOfDay.reset();
@@ -235,6 +237,7 @@ void Viewer::advanceAnimation(double dt) {
 }
 
 void Viewer::setView(const std::string& name) {
+  markChange();
   frame_->clearDebugViews();
   frame_->requestDebugView(name);
   ui_.view = name;
@@ -294,6 +297,7 @@ void Viewer::recreateSwapchain() {
   if (!swapchain_.recreate(uint32_t(std::max(w, 0)), uint32_t(std::max(h, 0)))) return;
   swapchainDirty_ = false;
   ++swapchainRecreations_;
+  markChange();
   if (imguiReady_) ImGui_ImplVulkan_SetMinImageCount(swapchain_.minImageCount());
   if (frame_) {
     HybridSettings wanted = settingsFromUi();
@@ -340,6 +344,8 @@ int Viewer::run() {
   // Wall time after the first frame (pipelines, first resources): the frame's render() (with
   // its readback of the view), and the viewer's own work (conversion, upload, UI, present).
   double renderSeconds = 0.0, presentSeconds = 0.0;
+  int64_t steadyFrames = 0;
+  uint64_t steadyAllocations = 0;
   while (!glfwWindowShouldClose(window_.window())) {
     glfwPollEvents();
     int fbw = 0, fbh = 0;
@@ -355,6 +361,8 @@ int Viewer::run() {
       glfwWaitEventsTimeout(0.05);
       continue;
     }
+    frameIndex_ = rendered;
+    const uint64_t allocationsBefore = context_.allocationCount();
     if (options_.uiTest) uiTestStep(rendered, scripted > 0 && presented + 1 >= scripted);
     if (!sceneToLoad_.empty()) {
       std::string path = std::move(sceneToLoad_);
@@ -377,7 +385,7 @@ int Viewer::run() {
     ++rendered;
     shown_ = shownImage();
     const auto presentStart = std::chrono::steady_clock::now();
-    presenter_.upload(shown_);
+    if (presenter_.upload(shown_)) markChange();
 
     ImGui_ImplVulkan_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -386,9 +394,14 @@ int Viewer::run() {
     ImGui::Render();
 
     const bool last = scripted > 0 && presented + 1 >= scripted && resizeTestDone();
+    if (last && !options_.windowScreenshot.empty()) markChange();  // its readback buffer
     const Presenter::Outcome outcome =
         presenter_.present(ImGui::GetDrawData(), last && !options_.windowScreenshot.empty());
     swapchainDirty_ = swapchainDirty_ || outcome.recreate;
+    if (frameIndex_ >= lastChange_ + 2) {
+      ++steadyFrames;
+      steadyAllocations += context_.allocationCount() - allocationsBefore;
+    }
     if (!outcome.presented) continue;
     if (rendered > 1) presentSeconds += secondsSince(presentStart);
     ++presented;
@@ -410,6 +423,8 @@ int Viewer::run() {
         "bounce view: after the first frame, per frame: render %.1f ms, view upload + UI + "
         "present %.1f ms\n",
         1e3 * renderSeconds / double(rendered - 1), 1e3 * presentSeconds / double(rendered - 1));
+  std::printf("bounce view: %llu GPU allocation(s) in %lld steady frame(s)\n",
+              (unsigned long long)steadyAllocations, (long long)steadyFrames);
   context_.waitIdle();
   if (window_.validationErrorCount() > 0) {
     std::fprintf(stderr, "bounce view: error: %u Vulkan validation error(s)\n",

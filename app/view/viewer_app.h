@@ -114,6 +114,12 @@ class Viewer {
   bool f1Down_ = false, f12Down_ = false;
   bool panelHidden_ = false;  // --hide-ui, or F1
   uint32_t swapchainRecreations_ = 0;
+  // DESIGN.md §1, no GPU allocation per frame: frames at least two after the last change
+  // (a new frame, view, swapchain, display size, a window capture: each may allocate, and a
+  // frame's first render makes its resources) are steady, and their allocations are counted.
+  void markChange() { lastChange_ = frameIndex_; }
+  int64_t frameIndex_ = 0;
+  int64_t lastChange_ = 0;
   std::optional<VkExtent2D> resizeTarget_;  // --resize-test
   int resizeWaitFrames_ = 0;
 };

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <regex>
 
 #include <gtest/gtest.h>
 
@@ -143,7 +144,7 @@ TEST(ViewerProgram, MissingViewerIsAClearError) {
 }
 
 // CI's check (issue 24): the viewer opens on a virtual X server, presents frames, follows a
-// resize, writes its screenshots and exits 0 with validation on.
+// resize, writes its screenshots and exits 0 with validation on; steady frames allocate nothing.
 TEST(ViewerProgram, NoDisplayIsAClearError) {
   const test::CommandResult r = test::runCommand("env -u DISPLAY -u WAYLAND_DISPLAY " +
                                                  test::bounceExe() + " view --scene cornell");
@@ -162,11 +163,20 @@ TEST(ViewerProgram, PresentsResizesAndScreenshotsUnderXvfb) {
   const std::string shot = dir + "/shot.png", window = dir + "/window.png";
   const test::CommandResult r = test::runCommand(
       "xvfb-run -a -n 101 -s '-screen 0 1024x768x24' " + test::bounceExe() +
-          " view --scene cornell --res 96x64 --frames 6 --resize-test --validate --screenshot " +
+          " view --scene cornell --res 96x64 --frames 8 --resize-test --validate --screenshot " +
           shot + " --window-screenshot " + window,
       120);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_EQ(r.output.find("validation"), std::string::npos) << r.output;
+  // No GPU memory allocated in the frames without a change (DESIGN.md §1): frames 2 and 3
+  // before the resize, and 6 when X has resized the window by frame 4 (the last, with the
+  // window capture, is a change).
+  std::smatch steady;
+  ASSERT_TRUE(std::regex_search(r.output, steady,
+                                std::regex(R"((\d+) GPU allocation\(s\) in (\d+) steady frame)")))
+      << r.output;
+  EXPECT_EQ(std::stoi(steady[1]), 0) << r.output;
+  EXPECT_GE(std::stoi(steady[2]), 2) << r.output;
   // The window grew by half: the swapchain was recreated and the frame rendered at its size.
   EXPECT_NE(r.output.find("swapchain 144x96"), std::string::npos) << r.output;
   const ImageRGBA32F image = readImage(shot);
