@@ -107,8 +107,16 @@ int main(int argc, char** argv) {
   bounce::app::addBenchRaysVerb(app, action);
   bounce::app::addReferenceVerb(app, action);
   bounce::app::addCompareVerb(app, action);
+  bounce::app::addViewVerb(app, action);
   for (CLI::App* verb : verbs(app)) verb->allow_extras();
   if (argc < 2) return printVerbs(app);
+  if (std::string(argv[1]) == "view") {
+    try {
+      bounce::app::forwardToViewer(argc, argv);
+    } catch (const bounce::Error& e) {
+      return usageError(e.what());
+    }
+  }
   try {
     checkVerb(app, argv[1]);
     app.parse(argc, argv);

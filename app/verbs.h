@@ -16,5 +16,10 @@ void addBenchVerb(CLI::App& app, VerbAction& action);
 void addBenchRaysVerb(CLI::App& app, VerbAction& action);
 void addCompareVerb(CLI::App& app, VerbAction& action);
 void addReferenceVerb(CLI::App& app, VerbAction& action);
+void addViewVerb(CLI::App& app, VerbAction& action);
+
+// `bounce view ARGS`: replaces the process with bounce-view ARGS (the sibling program); throws
+// bounce::Error when it is not built or cannot run.
+[[noreturn]] void forwardToViewer(int argc, char** argv);
 
 }  // namespace bounce::app

@@ -13,6 +13,8 @@ packages=(
   libstb-dev libtinyexr-dev                  # PNG/JPEG and EXR image I/O
   libglm-dev libcli11-dev libfmt-dev         # maths, command line, formatting
   libgtest-dev libgmock-dev                  # tests
+  libglfw3-dev libimgui-dev                  # the viewer, bounce-view (window, Dear ImGui)
+  xvfb xauth                                 # the viewer's test on a virtual X server (xvfb-run)
   ccache                                     # compile cache (scripts/check-consumer.sh)
   clang-format                               # make format, make format-check (CI)
   "$@"
