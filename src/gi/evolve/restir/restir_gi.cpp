@@ -66,14 +66,14 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
       candidates_(context, gpuScene),
       temporal_(context, gpuScene),
       spatial_(context, gpuScene, settings),
-      resolve_(context, gpuScene, settings),
-      temporalDenoise_(context, gpuScene),
-      spatialDenoise_(context, gpuScene) {
+      resolve_(context, gpuScene, settings) {
   if (settings_.secondVertex == RestirGiSecondVertex::Cache)
     cache_ = std::make_unique<ClipmapCache>(context, gpuScene, lights_, cache);
   validate(settings_);
   if (settings_.denoiser == GiDenoiser::Svgf)
     svgf_ = std::make_unique<Svgf>(context, gpuScene, settings_.svgf);
+  if (evolveDenoise()) temporalDenoise_.emplace(context, gpuScene);
+  if (evolveDenoise() && settings_.spatialDenoise) spatialDenoise_.emplace(context, gpuScene);
   settleFramesLeft_ = settings_.settleFrames;  // the first frames: the cache starts empty
   giResolution_ = graph::ImageSize::dividedRes(settings_.divisor).resolve(resolution);
   blueNoise_ = upload(context, std::span<const uint32_t>(directionBlueNoise()), "gi.blue-noise");
@@ -214,10 +214,10 @@ void RestirGi::declareDenoise(graph::FrameGraph& graph, const RestirFrame& f,
   t.placeholderR16f = candidates.neeVisibility;
   t.constants = f.passConstants(false);
   t.dropHistory = f.lightCutPending;
-  temporalDenoise_.declare(graph, f.in.frame, f.in.gbuffer, t, temporalOut);
+  temporalDenoise_->declare(graph, f.in.frame, f.in.gbuffer, t, temporalOut);
   if (!spatial) return;
-  spatialDenoise_.declare(graph, f.in.frame, f.in.gbuffer,
-                          {temporalOut, resolved.occlusion, f.passConstants(false)}, output);
+  spatialDenoise_->declare(graph, f.in.frame, f.in.gbuffer,
+                           {temporalOut, resolved.occlusion, f.passConstants(false)}, output);
 }
 
 }  // namespace bounce

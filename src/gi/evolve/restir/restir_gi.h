@@ -86,9 +86,10 @@ class RestirGi final : public DiffuseGi {
   TemporalStage temporal_;
   SpatialStage spatial_;
   ResolveStage resolve_;
-  GiTemporalDenoise temporalDenoise_;
-  GiSpatialDenoise spatialDenoise_;
-  std::unique_ptr<Svgf> svgf_;  // only with GiDenoiser::Svgf
+  // The denoiser's pipelines exist only for the chosen one (issue 21 counts pipelines).
+  std::optional<GiTemporalDenoise> temporalDenoise_;  // GiDenoiser::Evolve
+  std::optional<GiSpatialDenoise> spatialDenoise_;    // GiDenoiser::Evolve and spatialDenoise
+  std::unique_ptr<Svgf> svgf_;                        // GiDenoiser::Svgf
 };
 
 }  // namespace bounce

@@ -149,7 +149,9 @@ struct RestirGiSettings {
   uint32_t settleFrames = 16;
   float settleHistoryScale = 0.2f;
   GiDenoiser denoiser = GiDenoiser::Evolve;
-  SvgfSettings svgf;  // with GiDenoiser::Svgf
+  // With GiDenoiser::Svgf: Falcor's parameters, which measured better than the paper's on the
+  // Cornell box (docs/denoise.md).
+  SvgfSettings svgf = SvgfSettings::falcor();
   bool temporalDenoise = true;
   float denoiseMaxHistory = 16.0f;
   float denoiseClipSigma = 2.0f;
