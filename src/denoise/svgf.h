@@ -53,8 +53,8 @@ struct SvgfSettings {
 
   // Falcor's SVGFPass defaults where they differ from the paper's: colour alpha 0.05 (a longer
   // history, about 39 frames) and sigma_l 10 (a looser luminance stop). What Evolve's GI uses
-  // (RestirGiSettings::svgf): on the Cornell box it measured HDR-FLIP 0.149 against the paper's
-  // 0.162 (docs/denoise.md).
+  // (RestirGiSettings::svgf): on the Cornell box it measured HDR-FLIP 0.148-0.158 (3 runs) against
+  // the paper's 0.162 (docs/denoise.md).
   static SvgfSettings falcor() {
     SvgfSettings s;
     s.colorAlpha = 0.05f;
