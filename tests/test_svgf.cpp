@@ -10,7 +10,8 @@
 //     exponentially distributed noise (skewed like Monte Carlo), and the GI signal (Evolve,
 //     no denoiser) of the furnace and of `sunroom` at 1 frame, 16 independent frames, whose
 //     mean is that of 32 more;
-//   - SVGF compiles 3 pipelines.
+//   - SVGF compiles 3 pipelines;
+//   - validation layers silent throughout.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -290,6 +291,7 @@ void writeStrip(const std::string& name, uint32_t w, uint32_t h,
 class SvgfTest : public ::testing::Test {
  protected:
   SvgfTest() : context_(vk::contextOptionsFromEnvironment({})) {}
+  void TearDown() override { EXPECT_EQ(context_.validationErrorCount(), 0u); }
   vk::Context context_;
 };
 
