@@ -268,7 +268,7 @@ void expectEdgesKept(const Gates& g) {
   EXPECT_LE(g.edgeError, 1.5 * g.restError);
 }
 
-// Writes noisy | denoised | known mean side by side (tests/out is not kept: a temp dir).
+// Writes noisy | denoised | known mean side by side, 4x, into a temp dir.
 void writeStrip(const std::string& name, uint32_t w, uint32_t h,
                 const std::vector<std::vector<glm::vec4>>& images) {
   constexpr uint32_t zoom = 4;
@@ -283,7 +283,8 @@ void writeStrip(const std::string& name, uint32_t w, uint32_t h,
           strip.pixels[(size_t(y) * strip.width + k * w * zoom + x) * 4 + c] =
               images[k][(y / zoom) * w + x / zoom][c];
   for (size_t i = 3; i < strip.pixels.size(); i += 4) strip.pixels[i] = 1.0f;
-  std::string path = test::tempDir("svgf") + "/" + name + ".png";
+  static const std::string dir = test::tempDir("svgf");  // it empties the directory: once
+  std::string path = dir + "/" + name + ".png";
   writePng(path, strip);
   std::printf("wrote %s\n", path.c_str());
 }
@@ -372,34 +373,37 @@ TEST(SvgfReference, AtrousStepHalvesVariance) {
 
 // Two planes facing the camera at depths 2 and 6 (a depth edge down the middle), means 1 and
 // 0.25, each pixel's value the mean times an exponential variate (mean 1, variance 1) per frame.
-Gates twoPlanesGates(vk::Context& context, const SvgfSettings& settings = {}) {
+// `shift`: the planes move right by this many pixels a frame (motion = (shift, 0) everywhere;
+// what enters at the left edge has no history), so the history must be reprojected to be kept.
+Gates twoPlanesGates(vk::Context& context, const SvgfSettings& settings = {}, int shift = 0) {
   constexpr uint32_t w = 64, h = 48;
   SvgfHarness harness(context, w, h, settings);
   std::mt19937 rng(3);
   std::exponential_distribution<float> noise(1.0f);
-  Frame f;
-  std::vector<glm::vec4> truth;
-  for (uint32_t y = 0; y < h; ++y)
-    for (uint32_t x = 0; x < w; ++x) {
-      bool near = x < w / 2;
-      f.depth.push_back(near ? 2.0f : 6.0f);
-      f.normals.push_back({0.0f, 0.0f, 1.0f, 0.0f});
-      f.motion.push_back({0.0f, 0.0f});
-      float m = near ? 1.0f : 0.25f;
-      truth.push_back({m, m, m, 1.0f});
-    }
-  std::vector<glm::vec4> out;
+  std::vector<glm::vec4> out, truth;
   std::vector<std::vector<glm::vec4>> inputs;
+  Frame f;
   for (int frame = 0; frame < 16; ++frame) {
-    f.noisy.clear();
+    f = Frame{};
+    truth.clear();
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x) {
+        int world = ((int(x) - shift * frame) % int(w) + int(w)) % int(w);
+        bool near = world < int(w) / 2;
+        f.depth.push_back(near ? 2.0f : 6.0f);
+        f.normals.push_back({0.0f, 0.0f, 1.0f, 0.0f});
+        f.motion.push_back({float(shift), 0.0f});
+        float m = near ? 1.0f : 0.25f;
+        truth.push_back({m, m, m, 1.0f});
+      }
     for (const glm::vec4& t : truth) f.noisy.push_back(t * noise(rng));
     inputs.push_back(f.noisy);
     out = harness.frame(f);
   }
   Gates g = measure(f.noisy, out, truth, f.depth, w, h);
   g.meanSeen = temporallyWeightedMean(inputs, f.depth, settings.colorAlpha);
-  print("two planes, 16 frames", g);
-  writeStrip("two_planes", w, h, {f.noisy, out, truth});
+  print(shift ? "two moving planes, 16 frames" : "two planes, 16 frames", g);
+  writeStrip(shift ? "two_moving_planes" : "two_planes", w, h, {f.noisy, out, truth});
   return g;
 }
 
@@ -416,6 +420,18 @@ TEST_F(SvgfTest, TwoPlanesVarianceLowerEdgesKept) {
 // -1.04 %, no luminance stop -0.33 % (docs/denoise.md).
 TEST_F(SvgfTest, DISABLED_TwoPlanesMeanKept) {
   expectMeanKept(twoPlanesGates(context_), true);
+}
+
+// Reprojection: the same planes moving 3 px a frame keep their history.
+TEST_F(SvgfTest, MovingPlanesVarianceLower) {
+  expectVarianceLower(twoPlanesGates(context_, SvgfSettings{}, 3));
+}
+
+// Not met (lavapipe): pixels beside the moving depth edges err 1.80x the rest (0.0162 vs 0.0090;
+// squared error 2094x lower, mean -1.42 %). The far plane's pixels the near one uncovers each
+// frame start a new history (1 frame, the 7x7 variance estimate); the picture shows no ghost.
+TEST_F(SvgfTest, DISABLED_MovingPlanesEdgesKept) {
+  expectEdgesKept(twoPlanesGates(context_, SvgfSettings{}, 3));
 }
 
 // The configuration Evolve's GI uses (SvgfSettings::falcor()).
