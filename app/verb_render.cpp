@@ -56,6 +56,7 @@ struct RenderOptions {
   std::optional<int64_t> restirMaxSampleAge;
   std::optional<float> restirHistoryBrightening;
   bool noGiDenoise = false;
+  std::string denoiser;  // evolve|svgf|none; empty: the settings' (evolve)
   std::optional<int64_t> materialTextureSide;
   bool noOccluderVisibility = false;
   std::string preset;
@@ -86,6 +87,7 @@ const std::vector<std::string>& restirOptions() {
                                                  "--restir-validation-period",
                                                  "--restir-history-brightening",
                                                  "--no-gi-denoise",
+                                                 "--denoiser",
                                                  "--no-occluder-visibility"};
   return names;
 }
@@ -253,6 +255,9 @@ void applyRestirOptions(const RenderOptions& o, HybridSettings& settings) {
         settings, "--restir-history-brightening", *o.restirHistoryBrightening,
         [&](HybridSettings& s) { s.restirGi.historyBrightening = *o.restirHistoryBrightening; });
   if (o.noGiDenoise) gi.temporalDenoise = gi.spatialDenoise = false;
+  if (o.denoiser == "svgf") gi.denoiser = GiDenoiser::Svgf;
+  if (o.denoiser == "none") gi.denoiser = GiDenoiser::None;
+  if (o.denoiser == "evolve") gi.denoiser = GiDenoiser::Evolve;
   if (o.noOccluderVisibility) gi.occluderVisibility = false;
 }
 
@@ -538,6 +543,10 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                   "than their running mean by this ratio (0: off, the default; 1.3 with "
                   "--restir-validation-period 3 for jumping light: see docs/gi/restir-gi.md)");
   cmd->add_flag("--no-gi-denoise", options->noGiDenoise, "Turn the GI denoisers off");
+  cmd->add_option("--denoiser", options->denoiser,
+                  "Denoiser of the diffuse GI: evolve (gi-temporal/spatial-denoise, the "
+                  "default), svgf (SVGF: docs/denoise.md) or none")
+      ->check(CLI::IsMember({"evolve", "svgf", "none"}));
   cmd->add_flag("--no-occluder-visibility", options->noOccluderVisibility,
                 "Pixels beside an occluder reuse ReSTIR GI samples without a visibility test and "
                 "are blurred like the others (light leaks into gaps; for comparisons)");

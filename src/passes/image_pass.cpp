@@ -22,20 +22,23 @@ std::vector<const vk::DescriptorSetLayout*> setLayouts(
 }  // namespace
 
 ComputePass::ComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
-                         uint32_t imageCount, uint32_t pushConstantBytes)
+                         uint32_t imageCount, uint32_t pushConstantBytes, uint32_t dispatches)
     : context_(context), scene_(scene), imageCount_(imageCount) {
   if (imageCount > 64) fail("pass '{}': {} storage images, at most 64", shader, imageCount);
+  if (dispatches < 1 || dispatches > 8)
+    fail("pass '{}': {} dispatches per frame, expected 1 to 8", shader, dispatches);
   if (imageCount > 0) {
     layout_.emplace(context, storageImageBindings(imageCount));
-    pool_.emplace(context, 1, imageCount);
-    set_ = pool_->allocate(*layout_);
+    pool_.emplace(context, dispatches, imageCount * dispatches);
+    for (uint32_t i = 0; i < dispatches; ++i) sets_.push_back(pool_->allocate(*layout_));
   }
   pipeline_ = vk::ComputePipeline(context, shader, setLayouts(scene, layout_), pushConstantBytes);
   infos_.resize(imageCount);
   writes_.resize(imageCount);
 }
 
-void ComputePass::bindSets(VkCommandBuffer cmd, std::span<const graph::BoundImage> images) {
+void ComputePass::bindSets(VkCommandBuffer cmd, std::span<const graph::BoundImage> images,
+                           uint32_t dispatch) {
   if (images.size() != imageCount_)
     fail("pass '{}': {} images bound, the shader has {} (its *_BINDING_COUNT)", pipeline_.name(),
          images.size(), imageCount_);
@@ -43,15 +46,18 @@ void ComputePass::bindSets(VkCommandBuffer cmd, std::span<const graph::BoundImag
     pipeline_.bind(cmd, {scene_.descriptorSet()});
     return;
   }
+  if (dispatch >= sets_.size())
+    fail("pass '{}': dispatch {} of a pass made for {}", pipeline_.name(), dispatch, sets_.size());
+  VkDescriptorSet set = sets_[dispatch];
   uint64_t seen = 0;  // bit per binding (a pass has far fewer than 64 images)
   for (size_t i = 0; i < images.size(); ++i)
-    writeImage(i, images[i].binding, images[i].image, seen);
+    writeImage(set, i, images[i].binding, images[i].image, seen);
   vkUpdateDescriptorSets(context_.device(), uint32_t(writes_.size()), writes_.data(), 0, nullptr);
-  pipeline_.bind(cmd, {scene_.descriptorSet(), set_});
+  pipeline_.bind(cmd, {scene_.descriptorSet(), set});
 }
 
-void ComputePass::writeImage(size_t slot, uint32_t binding, const graph::ResolvedImage& image,
-                             uint64_t& seen) {
+void ComputePass::writeImage(VkDescriptorSet set, size_t slot, uint32_t binding,
+                             const graph::ResolvedImage& image, uint64_t& seen) {
   if (binding >= imageCount_ || (seen >> binding) & 1u)
     fail("pass '{}': binding {} out of range (the shader has {}) or bound twice", pipeline_.name(),
          binding, imageCount_);
@@ -59,7 +65,7 @@ void ComputePass::writeImage(size_t slot, uint32_t binding, const graph::Resolve
   infos_[slot] = {VK_NULL_HANDLE, image.view, image.layout};
   VkWriteDescriptorSet& w = writes_[slot];
   w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = set_;
+  w.dstSet = set;
   w.dstBinding = binding;
   w.descriptorCount = 1;
   w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;

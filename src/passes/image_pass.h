@@ -20,16 +20,20 @@ namespace bounce {
 class ComputePass {
  public:
   // `shader`: embedded name, e.g. "gi/evolve/cache/cache_build_sh"; bindings 0 .. imageCount - 1 of
-  // set 1 are storage images (no set 1 when imageCount is 0).
+  // set 1 are storage images (no set 1 when imageCount is 0). `dispatches`: how many times one
+  // frame records the pass (each its own descriptor set of the one pipeline, e.g. the iterations
+  // of an à-trous filter), at most 8.
   ComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
-              uint32_t imageCount, uint32_t pushConstantBytes);
+              uint32_t imageCount, uint32_t pushConstantBytes, uint32_t dispatches = 1);
 
   // Binds the pipeline, the scene and the images the pass declared with bindings
   // (graph::PassBuilder::read/write with a binding: every binding of set 1 exactly once) and
   // pushes `constants`; the caller dispatches.
+  // `dispatch`: which of this frame's recordings (0 .. dispatches - 1) this is.
   template <typename T>
-  void bind(VkCommandBuffer cmd, const T& constants, const graph::PassResources& resources) {
-    bindSets(cmd, resources.boundImages());
+  void bind(VkCommandBuffer cmd, const T& constants, const graph::PassResources& resources,
+            uint32_t dispatch = 0) {
+    bindSets(cmd, resources.boundImages(), dispatch);
     pipeline_.push(cmd, constants);
   }
   // The same for a pass without images (imageCount 0), e.g. outside a frame graph.
@@ -41,8 +45,10 @@ class ComputePass {
   const vk::ComputePipeline& pipeline() const { return pipeline_; }
 
  private:
-  void bindSets(VkCommandBuffer cmd, std::span<const graph::BoundImage> images);
-  void writeImage(size_t slot, uint32_t binding, const graph::ResolvedImage& image, uint64_t& seen);
+  void bindSets(VkCommandBuffer cmd, std::span<const graph::BoundImage> images,
+                uint32_t dispatch = 0);
+  void writeImage(VkDescriptorSet set, size_t slot, uint32_t binding,
+                  const graph::ResolvedImage& image, uint64_t& seen);
 
   vk::Context& context_;
   const GpuScene& scene_;
@@ -50,7 +56,7 @@ class ComputePass {
   std::optional<vk::DescriptorSetLayout> layout_;
   std::optional<vk::DescriptorPool> pool_;
   vk::ComputePipeline pipeline_;
-  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  std::vector<VkDescriptorSet> sets_;         // one per dispatch
   std::vector<VkDescriptorImageInfo> infos_;  // scratch, reused: no per-frame allocation
   std::vector<VkWriteDescriptorSet> writes_;
 };

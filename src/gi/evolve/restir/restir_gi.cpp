@@ -66,12 +66,14 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
       candidates_(context, gpuScene),
       temporal_(context, gpuScene),
       spatial_(context, gpuScene, settings),
-      resolve_(context, gpuScene, settings),
-      temporalDenoise_(context, gpuScene),
-      spatialDenoise_(context, gpuScene) {
+      resolve_(context, gpuScene, settings) {
   if (settings_.secondVertex == RestirGiSecondVertex::Cache)
     cache_ = std::make_unique<ClipmapCache>(context, gpuScene, lights_, cache);
   validate(settings_);
+  if (settings_.denoiser == GiDenoiser::Svgf)
+    svgf_ = std::make_unique<Svgf>(context, gpuScene, settings_.svgf);
+  if (evolveDenoise()) temporalDenoise_.emplace(context, gpuScene);
+  if (evolveDenoise() && settings_.spatialDenoise) spatialDenoise_.emplace(context, gpuScene);
   settleFramesLeft_ = settings_.settleFrames;  // the first frames: the cache starts empty
   giResolution_ = graph::ImageSize::dividedRes(settings_.divisor).resolve(resolution);
   blueNoise_ = upload(context, std::span<const uint32_t>(directionBlueNoise()), "gi.blue-noise");
@@ -91,7 +93,7 @@ gpu::RestirGiConstants RestirGi::makeConstants() const {
                        : gpu::RESTIR_GI_SECOND_VERTEX_NEE;
   c.flags =
       (s.temporalReuse ? gpu::RESTIR_GI_FLAG_TEMPORAL : 0u) |
-      (s.temporalDenoise ? gpu::RESTIR_GI_FLAG_DENOISE : 0u) |
+      (evolveDenoise() ? gpu::RESTIR_GI_FLAG_DENOISE : 0u) |
       (s.resolveSamples > 1 ? gpu::RESTIR_GI_FLAG_RESOLVE_REUSE : 0u) |
       (s.spatialReuse ? gpu::RESTIR_GI_FLAG_SPATIAL : 0u) |
       (s.spatialReuse && s.spatialValidation ? gpu::RESTIR_GI_FLAG_SPATIAL_VALIDATION : 0u) |
@@ -126,6 +128,10 @@ gpu::RestirGiConstants RestirGi::makeConstants() const {
   c.flags |= s.occluderVisibility ? gpu::RESTIR_GI_FLAG_OCCLUDER_VISIBILITY : 0u;
   c.flags |= s.producerNormalisation ? gpu::RESTIR_GI_FLAG_PRODUCER_NORMALISATION : 0u;
   return c;
+}
+
+bool RestirGi::evolveDenoise() const {
+  return settings_.denoiser == GiDenoiser::Evolve && settings_.temporalDenoise;
 }
 
 void RestirGi::afterFrame() {
@@ -176,12 +182,20 @@ DiffuseGiOutput RestirGi::declare(graph::FrameGraph& graph, const GiInputs& in) 
   Candidates candidates = candidates_.declare(graph, f, history, cache_.get());
   Reservoirs temporal = temporal_.declare(graph, f, candidates, history, occlusionValidity);
   Reservoirs reservoirs = spatial_.declare(graph, f, temporal, occlusionValidity);
+  const bool denoised = evolveDenoise() || svgf_;
   graph::ImageHandle target =
-      settings_.temporalDenoise ? graph.createImage("gi.resolved", {VK_FORMAT_R16G16B16A16_SFLOAT})
-                                : output;
+      denoised ? graph.createImage("gi.resolved", {VK_FORMAT_R16G16B16A16_SFLOAT}) : output;
   ResolvedGi resolved = resolve_.declare(graph, f, reservoirs, target);
-  if (settings_.temporalDenoise)
+  if (svgf_) {
+    // gi.resolved is radiance per unit albedo already (gi/diffuse_gi.h): no demodulation.
+    const GBuffer& g = in.gbuffer;
+    SvgfInputs s{resolved.diffuse, g.depth.current, g.normals, g.velocity};
+    s.octahedralNormals = true;
+    s.dropHistory = f.lightCutPending;
+    svgf_->declare(graph, in.frame.resolution, s, output);
+  } else if (evolveDenoise()) {
     declareDenoise(graph, f, candidates, resolved, occlusionValidity, output);
+  }
   return {output};
 }
 
@@ -200,10 +214,10 @@ void RestirGi::declareDenoise(graph::FrameGraph& graph, const RestirFrame& f,
   t.placeholderR16f = candidates.neeVisibility;
   t.constants = f.passConstants(false);
   t.dropHistory = f.lightCutPending;
-  temporalDenoise_.declare(graph, f.in.frame, f.in.gbuffer, t, temporalOut);
+  temporalDenoise_->declare(graph, f.in.frame, f.in.gbuffer, t, temporalOut);
   if (!spatial) return;
-  spatialDenoise_.declare(graph, f.in.frame, f.in.gbuffer,
-                          {temporalOut, resolved.occlusion, f.passConstants(false)}, output);
+  spatialDenoise_->declare(graph, f.in.frame, f.in.gbuffer,
+                           {temporalOut, resolved.occlusion, f.passConstants(false)}, output);
 }
 
 }  // namespace bounce

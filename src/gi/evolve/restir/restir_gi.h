@@ -8,8 +8,10 @@
 //   spatial      gi-restir-spatial-0/-1, gi-trace-spatial-validation-rays,
 //                gi-restir-patch-reservoir (spatial.h)
 //   resolve      gi-trace-resolve-visibility, gi-restir-resolve (resolve.h)
-//   denoise      gi-temporal-denoise (when enabled), gi-spatial-denoise (desktop preset)
-//                (denoise/gi_temporal_denoise.h, denoise/gi_spatial_denoise.h)
+//   denoise      GiDenoiser::Evolve: gi-temporal-denoise (when enabled), gi-spatial-denoise
+//                (desktop preset) (denoise/gi_temporal_denoise.h, denoise/gi_spatial_denoise.h);
+//                GiDenoiser::Svgf: svgf-temporal, svgf-variance, svgf-atrous-0..4
+//                (denoise/svgf.h)
 //
 // Resources (frame graph): gi.rays, gi.hit, gi.hit-normal, gi.hit-radiance, gi.nee-ray,
 // gi.nee-radiance, gi.nee-visibility, gi.candidate.{sample,radiance,origin,normals},
@@ -26,6 +28,7 @@
 
 #include "denoise/gi_spatial_denoise.h"
 #include "denoise/gi_temporal_denoise.h"
+#include "denoise/svgf.h"
 #include "gi/diffuse_gi.h"
 #include "gi/evolve/cache/clipmap_cache.h"
 #include "gi/evolve/restir/candidates.h"
@@ -59,6 +62,8 @@ class RestirGi final : public DiffuseGi {
  private:
   gpu::RestirGiConstants makeConstants() const;
   RestirFrame beginFrame(const GiInputs& inputs);
+  // Whether gi-temporal-denoise runs (GiDenoiser::Evolve with temporalDenoise).
+  bool evolveDenoise() const;
   void declareDenoise(graph::FrameGraph& graph, const RestirFrame& f, const Candidates& candidates,
                       const ResolvedGi& resolved,
                       const std::optional<graph::HistoryImage>& occlusionValidity,
@@ -81,8 +86,10 @@ class RestirGi final : public DiffuseGi {
   TemporalStage temporal_;
   SpatialStage spatial_;
   ResolveStage resolve_;
-  GiTemporalDenoise temporalDenoise_;
-  GiSpatialDenoise spatialDenoise_;
+  // The denoiser's pipelines exist only for the chosen one (issue 21 counts pipelines).
+  std::optional<GiTemporalDenoise> temporalDenoise_;  // GiDenoiser::Evolve
+  std::optional<GiSpatialDenoise> spatialDenoise_;    // GiDenoiser::Evolve and spatialDenoise
+  std::unique_ptr<Svgf> svgf_;                        // GiDenoiser::Svgf
 };
 
 }  // namespace bounce

@@ -4,7 +4,17 @@
 #pragma once
 #include <cstdint>
 
+#include "denoise/svgf.h"
+
 namespace bounce {
+
+// Which denoiser filters the resolved GI (`--denoiser`; docs/denoise.md).
+enum class GiDenoiser : uint32_t {
+  Evolve = 0,  // gi-temporal-denoise, then on desktop gi-spatial-denoise (seed 000), as switched
+               // by temporalDenoise and spatialDenoise below
+  Svgf = 1,    // SVGF (denoise/svgf.h) with the `svgf` settings below, on the demodulated signal
+  None = 2,    // the resolved signal as it is
+};
 
 // What the radiance stored with a 2nd vertex x2 includes besides its emission.
 enum class RestirGiSecondVertex : uint32_t {
@@ -138,6 +148,10 @@ struct RestirGiSettings {
   // (A lighting cut also drops the light-holding histories for one frame: RestirGi::lightingCut.)
   uint32_t settleFrames = 16;
   float settleHistoryScale = 0.2f;
+  GiDenoiser denoiser = GiDenoiser::Evolve;
+  // With GiDenoiser::Svgf: Falcor's parameters, which measured better than the paper's on the
+  // Cornell box (docs/denoise.md).
+  SvgfSettings svgf = SvgfSettings::falcor();
   bool temporalDenoise = true;
   float denoiseMaxHistory = 16.0f;
   float denoiseClipSigma = 2.0f;
@@ -186,6 +200,7 @@ struct RestirGiSettings {
     s.secondVertex = RestirGiSecondVertex::Path;
     s.resolveSamples = 1;
     s.temporalDenoise = false;
+    s.denoiser = GiDenoiser::None;
     s.spatialReuse = false;
     s.spatialValidation = false;
     s.temporalHistorySamples = 1;

@@ -1,0 +1,73 @@
+// svgf-atrous-N (Schied et al. 2017 §4.2; Dammertz et al. 2010): one edge-avoiding à-trous
+// iteration, a 5x5 B3-spline kernel whose taps lie `step` = 2^N pixels apart (5 iterations:
+// steps 1..16, a reach of 2 (1 + 2 + 4 + 8 + 16) = 62 pixels). Each tap's weight is the kernel's
+// times the edge stops (svgf_common.glsl): depth (relative to the surface's slope), normal
+// (cos^phiNormal) and luminance, whose scale is phiLuminance standard deviations of the centre's
+// luminance, its variance first blurred by a 3x3 Gaussian (Schied eq. 5). The variance in alpha
+// is filtered with the squared weights (Schied eq. 2), so later iterations stop at a smaller
+// luminance difference. Iteration 0 writes svgf.illumination, next frame's colour history; the
+// last multiplies the albedo back in (SVGF_FLAG_ALBEDO). Pixels without a surface pass through.
+#version 460
+#include "denoise/svgf_common.glsl"
+
+layout(local_size_x = SVGF_GROUP_SIZE, local_size_y = SVGF_GROUP_SIZE) in;
+
+layout(set = 1, binding = SVGF_ATROUS_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
+layout(set = 1, binding = SVGF_ATROUS_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
+layout(set = 1, binding = SVGF_ATROUS_BINDING_ALBEDO, rgba16f) uniform readonly image2D albedos;
+layout(set = 1, binding = SVGF_ATROUS_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+
+float surfaceDepth(ivec2 q) { return imageLoad(surfaces, q).w; }
+DEFINE_DEPTH_GRADIENT(surfaceDepth)
+
+// The centre's variance blurred by a 3x3 Gaussian (1/4, 1/2, 1/4) over pixels with a surface.
+float prefilteredVariance(ivec2 pixel) {
+  float sum = 0.0, weightSum = 0.0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      ivec2 q = pixel + ivec2(dx, dy);
+      if (!inImage(q) || !hasSurface(imageLoad(surfaces, q).w)) continue;
+      float w = (dx == 0 ? 0.5 : 0.25) * (dy == 0 ? 0.5 : 0.25);
+      sum += w * imageLoad(inputImage, q).a;
+      weightSum += w;
+    }
+  return sum / weightSum;  // the centre has a surface: weightSum >= 1/4
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (!inImage(pixel)) return;
+  vec4 centre = imageLoad(inputImage, pixel);
+  vec4 s = imageLoad(surfaces, pixel);
+  if (!hasSurface(s.w)) {
+    imageStore(outputImage, pixel, centre);
+    return;
+  }
+  float l = svgfLuminance(centre.rgb);
+  float phiL = pc.phiLuminance * sqrt(max(prefilteredVariance(pixel), 0.0)) + 1e-10;
+  float slope = depthSlope(pixel, s.w);
+  float k0 = b3(0) * b3(0);
+  vec3 colourSum = k0 * centre.rgb;
+  float varianceSum = k0 * k0 * centre.a;
+  float weightSum = k0;
+  int step = int(pc.step);
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx) {
+      if (dx == 0 && dy == 0) continue;
+      ivec2 offset = step * ivec2(dx, dy);
+      ivec2 q = pixel + offset;
+      if (!inImage(q)) continue;
+      vec4 sq = imageLoad(surfaces, q);
+      if (!hasSurface(sq.w)) continue;
+      vec4 c = imageLoad(inputImage, q);
+      float w = b3(dx) * b3(dy) *
+                edgeStopWeight(s.w, sq.w, slope, vec2(offset), s.xyz, sq.xyz, l, svgfLuminance(c.rgb), phiL);
+      colourSum += w * c.rgb;
+      varianceSum += w * w * c.a;
+      weightSum += w;
+    }
+  vec3 colour = colourSum / weightSum;
+  if (pc.lastIteration != 0u && (pc.flags & SVGF_FLAG_ALBEDO) != 0u)
+    colour *= safeAlbedo(imageLoad(albedos, pixel).rgb);
+  imageStore(outputImage, pixel, vec4(colour, varianceSum / (weightSum * weightSum)));
+}

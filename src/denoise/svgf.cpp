@@ -1,0 +1,161 @@
+#include "denoise/svgf.h"
+
+#include <string>
+
+#include "core/error.h"
+
+namespace bounce {
+
+using graph::Access;
+
+namespace {
+
+constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kRgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr uint32_t kMaxIterations = 5;
+
+void dispatch(VkCommandBuffer cmd, const gpu::SvgfConstants& c) {
+  vk::ComputePipeline::dispatchCovering(cmd, c.resolution.x, c.resolution.y, gpu::SVGF_GROUP_SIZE,
+                                        gpu::SVGF_GROUP_SIZE);
+}
+
+}  // namespace
+
+void validate(const SvgfSettings& s) {
+  if (!(s.colorAlpha > 0.0f && s.colorAlpha <= 1.0f))
+    fail("SVGF: colour alpha {} must be in (0, 1]", s.colorAlpha);
+  if (!(s.momentsAlpha > 0.0f && s.momentsAlpha <= 1.0f))
+    fail("SVGF: moments alpha {} must be in (0, 1]", s.momentsAlpha);
+  if (!(s.maxHistory >= 1.0f && s.maxHistory <= 1024.0f))
+    fail("SVGF: maximum history {} frames must be 1 to 1024", s.maxHistory);
+  if (!(s.depthTolerance > 0.0f) || !(s.normalTolerance >= -1.0f && s.normalTolerance <= 1.0f))
+    fail("SVGF: depth tolerance {} must be positive, normal tolerance {} in [-1, 1]",
+         s.depthTolerance, s.normalTolerance);
+  // Iteration 0 feeds the history and the last writes the output: two passes at least.
+  if (s.iterations < 2 || s.iterations > kMaxIterations)
+    fail("SVGF: {} à-trous iterations, expected 2 to {}", s.iterations, kMaxIterations);
+  if (!(s.phiDepth > 0.0f) || !(s.phiNormal >= 0.0f) || !(s.phiLuminance > 0.0f))
+    fail("SVGF: edge stops (depth {}, normal {}, luminance {}) must be positive", s.phiDepth,
+         s.phiNormal, s.phiLuminance);
+}
+
+Svgf::Svgf(vk::Context& context, const GpuScene& scene, const SvgfSettings& settings)
+    : settings_(settings),
+      temporal_(context, scene, "denoise/svgf_temporal", gpu::SVGF_TEMPORAL_BINDING_COUNT,
+                sizeof(gpu::SvgfConstants)),
+      variance_(context, scene, "denoise/svgf_variance", gpu::SVGF_VARIANCE_BINDING_COUNT,
+                sizeof(gpu::SvgfConstants)),
+      atrous_(context, scene, "denoise/svgf_atrous", gpu::SVGF_ATROUS_BINDING_COUNT,
+              sizeof(gpu::SvgfConstants), kMaxIterations) {
+  validate(settings_);
+}
+
+gpu::SvgfConstants Svgf::constants(VkExtent2D resolution, const SvgfInputs& in) const {
+  const SvgfSettings& s = settings_;
+  gpu::SvgfConstants c{};
+  c.resolution = {resolution.width, resolution.height};
+  c.flags = (in.octahedralNormals ? gpu::SVGF_FLAG_OCTAHEDRAL_NORMALS : 0u) |
+            (in.albedo ? gpu::SVGF_FLAG_ALBEDO : 0u);
+  c.colorAlpha = s.colorAlpha;
+  c.momentsAlpha = s.momentsAlpha;
+  c.depthTolerance = s.depthTolerance;
+  c.normalTolerance = s.normalTolerance;
+  c.phiDepth = s.phiDepth;
+  c.phiNormal = s.phiNormal;
+  c.phiLuminance = s.phiLuminance;
+  c.maxHistory = s.maxHistory;
+  c.varianceHistoryFrames = s.varianceHistoryFrames;
+  return c;
+}
+
+void Svgf::declare(graph::FrameGraph& graph, VkExtent2D resolution, const SvgfInputs& in,
+                   graph::ImageHandle output) {
+  graph::HistoryImage surface = graph.createHistoryImage("svgf.surface", {kRgba32f});
+  graph::HistoryImage moments = graph.createHistoryImage("svgf.moments", {kRgba32f});
+  graph::HistoryImage illumination = graph.createHistoryImage("svgf.illumination", {kRgba16f});
+  graph::ImageHandle accumulated = graph.createImage("svgf.accumulated", {kRgba16f});
+  graph::ImageHandle filtered = graph.createImage("svgf.filtered-moments", {kRgba16f});
+  const gpu::SvgfConstants c = constants(resolution, in);
+
+  graph::PassBuilder t = graph.addPass("svgf-temporal", graph::QueueKind::Compute);
+  t.read(in.noisy, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_NOISY)
+      .read(in.depth, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_DEPTH)
+      .read(in.normals, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_NORMALS)
+      .read(in.motion, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_MOTION)
+      .read(surface.previous, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_PREVIOUS_SURFACE)
+      .read(moments.previous, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_PREVIOUS_MOMENTS)
+      .read(illumination.previous, Access::StorageRead,
+            gpu::SVGF_TEMPORAL_BINDING_PREVIOUS_ILLUMINATION)
+      .write(surface.current, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_SURFACE)
+      .write(moments.current, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_MOMENTS)
+      .write(accumulated, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_ACCUMULATED);
+  if (in.albedo)
+    t.read(*in.albedo, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_ALBEDO);
+  else
+    t.readPlaceholder(in.noisy, gpu::SVGF_TEMPORAL_BINDING_ALBEDO);
+  const bool drop = in.dropHistory;
+  t.record([this, c, drop, surface, moments, illumination](VkCommandBuffer cmd,
+                                                           const graph::PassResources& r) {
+    gpu::SvgfConstants k = c;
+    k.historyValid =
+        !drop && r.historyValid(surface) && r.historyValid(moments) && r.historyValid(illumination);
+    temporal_.bind(cmd, k, r);
+    dispatch(cmd, k);
+  });
+
+  graph.addPass("svgf-variance", graph::QueueKind::Compute)
+      .read(accumulated, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_ACCUMULATED)
+      .read(moments.current, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_MOMENTS)
+      .read(surface.current, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_SURFACE)
+      .write(filtered, Access::StorageWrite, gpu::SVGF_VARIANCE_BINDING_OUTPUT)
+      .record([this, c](VkCommandBuffer cmd, const graph::PassResources& r) {
+        variance_.bind(cmd, c, r);
+        dispatch(cmd, c);
+      });
+
+  // Iteration 0 writes the colour history; the last writes `output`.
+  graph::ImageHandle input = filtered;
+  const graph::ImageHandle albedo = in.albedo ? *in.albedo : in.noisy;
+  for (uint32_t i = 0; i < settings_.iterations; ++i) {
+    graph::ImageHandle target =
+        i + 1 == settings_.iterations
+            ? output
+            : (i == 0 ? illumination.current
+                      : graph.createImage("svgf.atrous-" + std::to_string(i), {kRgba16f}));
+    declareAtrous(graph, c, input, surface.current, albedo, i, target);
+    input = target;
+  }
+}
+
+void Svgf::declareAtrous(graph::FrameGraph& graph, const gpu::SvgfConstants& constants,
+                         graph::ImageHandle input, graph::ImageHandle surface,
+                         graph::ImageHandle albedo, uint32_t iteration, graph::ImageHandle output) {
+  gpu::SvgfConstants c = constants;
+  c.step = 1u << iteration;
+  c.iteration = iteration;
+  c.lastIteration = iteration + 1 == settings_.iterations ? 1u : 0u;
+  graph::PassBuilder pass =
+      graph.addPass("svgf-atrous-" + std::to_string(iteration), graph::QueueKind::Compute);
+  pass.read(input, Access::StorageRead, gpu::SVGF_ATROUS_BINDING_INPUT)
+      .read(surface, Access::StorageRead, gpu::SVGF_ATROUS_BINDING_SURFACE)
+      .write(output, Access::StorageWrite, gpu::SVGF_ATROUS_BINDING_OUTPUT);
+  if (c.lastIteration && (c.flags & gpu::SVGF_FLAG_ALBEDO))
+    pass.read(albedo, Access::StorageRead, gpu::SVGF_ATROUS_BINDING_ALBEDO);
+  else
+    pass.readPlaceholder(input, gpu::SVGF_ATROUS_BINDING_ALBEDO);
+  pass.record([this, c](VkCommandBuffer cmd, const graph::PassResources& r) {
+    atrous_.bind(cmd, c, r, c.iteration);
+    dispatch(cmd, c);
+  });
+}
+
+void Svgf::declareAtrousStep(graph::FrameGraph& graph, VkExtent2D resolution,
+                             graph::ImageHandle input, graph::ImageHandle surface,
+                             uint32_t iteration, graph::ImageHandle output) {
+  if (iteration >= kMaxIterations)
+    fail("SVGF: à-trous iteration {} of {}", iteration, kMaxIterations);
+  SvgfInputs none;
+  declareAtrous(graph, constants(resolution, none), input, surface, input, iteration, output);
+}
+
+}  // namespace bounce

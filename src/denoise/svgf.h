@@ -1,0 +1,114 @@
+// `svgf`: spatiotemporal variance-guided filtering (Schied et al., HPG 2017;
+// research/gi10_lux_denoisers.md §2.3 (d) and §3.1; docs/denoise.md) of any noisy signal with a
+// G-buffer, as a library unit that knows nothing of the GI technique that made the signal:
+//
+//   svgf-temporal   reprojected running mean of the (demodulated) colour and of the first two
+//                   luminance moments, disocclusion tests on depth and normal
+//   svgf-variance   the luminance variance: temporal, or a 7x7 spatial estimate while the history
+//                   is shorter than 4 frames
+//   svgf-atrous-0..4  5 edge-avoiding à-trous iterations (5x5 B3 kernel, steps 1, 2, 4, 8, 16)
+//                   with depth, normal and luminance-variance edge stops; iteration 0 is the
+//                   next frame's colour history; the last remodulates the albedo
+//
+// Three compute pipelines (shaders/denoise/svgf_{temporal,variance,atrous}.comp); the five
+// à-trous passes share one, with a descriptor set each. Every image is at the frame graph's
+// render resolution. Resources: history svgf.surface, svgf.moments, svgf.illumination;
+// svgf.accumulated, svgf.filtered-moments, svgf.atrous-1..3 (formats: shared/svgf_io.h).
+#pragma once
+#include <cstdint>
+#include <optional>
+
+#include "graph/frame_graph.h"
+#include "passes/image_pass.h"
+#include "shared/svgf_io.h"
+
+namespace bounce {
+
+// The defaults are the paper's (Schied et al. 2017 §5) except where noted.
+struct SvgfSettings {
+  // Temporal blend weight of a new sample, colour and moments (paper: 0.2 both; Falcor's
+  // default colour alpha is 0.05). Lower: a longer effective history (about 2 / alpha - 1
+  // frames), smoother, slower to follow a change. In (0, 1].
+  float colorAlpha = 0.2f;
+  float momentsAlpha = 0.2f;
+  // The history length is counted up to this many frames (Falcor: 32); it only steers
+  // the blend weight max(alpha, 1 / length), so above 1 / alpha frames it changes nothing.
+  float maxHistory = 32.0f;
+  // Disocclusion: last frame's surface is this pixel's when its view depth differs by at most
+  // depthTolerance x depth (plus twice the surface's slope per pixel) and the normals' cosine is
+  // at least normalTolerance. Looser: less history lost on moving views, more ghosting.
+  float depthTolerance = 0.05f;
+  float normalTolerance = 0.9f;
+  // Below this history length (frames) svgf-variance estimates the variance over 7x7 pixels
+  // (paper: 4). 0: always temporal.
+  uint32_t varianceHistoryFrames = 4;
+  // À-trous iterations, steps 1, 2, 4, ... (paper: 5, a 62-pixel reach; Falcor: 4). 2 to 5.
+  uint32_t iterations = 5;
+  // Edge stops (paper §4.2 eq. 3-5): sigma_z (depth, times the slope and the tap distance),
+  // sigma_n (exponent of the normals' cosine), sigma_l (luminance, in standard deviations).
+  // Larger: more blur across the edge kind.
+  float phiDepth = 1.0f;
+  float phiNormal = 128.0f;
+  float phiLuminance = 4.0f;
+
+  // Falcor's SVGFPass defaults where they differ from the paper's: colour alpha 0.05 (a longer
+  // history, about 39 frames) and sigma_l 10 (a looser luminance stop). What Evolve's GI uses
+  // (RestirGiSettings::svgf): on the Cornell box it measured HDR-FLIP 0.148-0.158 (3 runs) against
+  // the paper's 0.162 (docs/denoise.md).
+  static SvgfSettings falcor() {
+    SvgfSettings s;
+    s.colorAlpha = 0.05f;
+    s.phiLuminance = 10.0f;
+    return s;
+  }
+};
+
+// Throws bounce::Error naming the field when a setting is out of its documented range.
+void validate(const SvgfSettings& settings);
+
+// What SVGF filters and the surface it lies on, all at render resolution (shared/svgf_io.h has
+// the formats and encodings).
+struct SvgfInputs {
+  graph::ImageHandle noisy;    // RGBA16F: the signal (rgb)
+  graph::ImageHandle depth;    // R32F: linear view depth, <= 0 or non-finite: no surface
+  graph::ImageHandle normals;  // RGBA16F: world normal xyz, or octahedral xy (below)
+  graph::ImageHandle motion;   // RG16F: pixels moved since last frame
+  // RGBA16F: where given, the signal is demodulated by it and remodulated at the end (so the
+  // filter blurs irradiance, not texture); absent when the signal is already demodulated (as
+  // Bounce's gi.diffuse is: radiance per unit albedo).
+  std::optional<graph::ImageHandle> albedo;
+  bool octahedralNormals = false;  // Bounce's gbuffer.normals: xy octahedral shading normal
+  bool dropHistory = false;        // this frame starts afresh (a cut)
+};
+
+class Svgf {
+ public:
+  // The distinct compute pipelines SVGF compiles (issue 21's permutation budget).
+  static constexpr uint32_t kPipelineCount = 3;
+
+  Svgf(vk::Context& context, const GpuScene& scene, const SvgfSettings& settings = {});
+  // Declares SVGF's passes on `graph`, ending in `output` (RGBA16F: rgb the denoised signal,
+  // a its remaining luminance variance). `resolution`: the graph's render resolution.
+  void declare(graph::FrameGraph& graph, VkExtent2D resolution, const SvgfInputs& inputs,
+               graph::ImageHandle output);
+  // One à-trous iteration alone (pass svgf-atrous-<iteration>), for tests against the CPU
+  // reference (denoise/svgf_reference.h): `input` RGBA16F colour + variance, `surface` RGBA32F
+  // normal + depth (svgf.surface's format); no albedo.
+  void declareAtrousStep(graph::FrameGraph& graph, VkExtent2D resolution, graph::ImageHandle input,
+                         graph::ImageHandle surface, uint32_t iteration, graph::ImageHandle output);
+
+  const SvgfSettings& settings() const { return settings_; }
+
+ private:
+  gpu::SvgfConstants constants(VkExtent2D resolution, const SvgfInputs& inputs) const;
+  void declareAtrous(graph::FrameGraph& graph, const gpu::SvgfConstants& constants,
+                     graph::ImageHandle input, graph::ImageHandle surface,
+                     graph::ImageHandle albedo, uint32_t iteration, graph::ImageHandle output);
+
+  SvgfSettings settings_;
+  ComputePass temporal_;
+  ComputePass variance_;
+  ComputePass atrous_;  // one descriptor set per iteration
+};
+
+}  // namespace bounce

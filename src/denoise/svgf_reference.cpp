@@ -1,0 +1,102 @@
+#include "denoise/svgf_reference.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bounce {
+
+namespace {
+
+struct Grid {
+  const SvgfAtrousInput& in;
+  bool inside(int x, int y) const {
+    return x >= 0 && y >= 0 && x < int(in.width) && y < int(in.height);
+  }
+  size_t index(int x, int y) const { return size_t(y) * in.width + size_t(x); }
+  double depth(int x, int y) const { return in.surface[index(x, y)].w; }
+  bool surface(int x, int y) const {
+    double z = depth(x, y);
+    return inside(x, y) && z > 0.0 && std::isfinite(z);
+  }
+};
+
+double luminance(const glm::dvec3& c) {
+  return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+}
+
+// B3 spline (1/16, 1/4, 3/8, 1/4, 1/16).
+double b3(int offset) {
+  static constexpr double kWeights[3] = {3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0};
+  return kWeights[std::abs(offset)];
+}
+
+// The surface's depth change per pixel along an axis: the smaller one-sided difference.
+double slopeAlong(const Grid& g, int x, int y, int ax, int ay) {
+  double best = -1.0;
+  for (int s : {-1, 1})
+    if (g.surface(x + s * ax, y + s * ay)) {
+      double d = std::abs(g.depth(x + s * ax, y + s * ay) - g.depth(x, y));
+      best = best < 0.0 ? d : std::min(best, d);
+    }
+  return std::max(best, 0.0);
+}
+
+// The variance at (x, y) blurred by the 3x3 Gaussian (1/4, 1/2, 1/4)^2 over surface pixels.
+double prefilteredVariance(const Grid& g, int x, int y) {
+  double sum = 0.0, weights = 0.0;
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx) {
+      if (!g.surface(x + dx, y + dy)) continue;
+      double w = (dx == 0 ? 0.5 : 0.25) * (dy == 0 ? 0.5 : 0.25);
+      sum += w * g.in.colourVariance[g.index(x + dx, y + dy)].w;
+      weights += w;
+    }
+  return sum / weights;
+}
+
+glm::vec4 filterPixel(const Grid& g, int x, int y, int step, const SvgfSettings& s) {
+  const glm::dvec4 centre = g.in.colourVariance[g.index(x, y)];
+  const glm::dvec3 n = glm::dvec3(g.in.surface[g.index(x, y)]);
+  const double z = g.depth(x, y);
+  const double l = luminance(glm::dvec3(centre));
+  const double phiL =
+      s.phiLuminance * std::sqrt(std::max(prefilteredVariance(g, x, y), 0.0)) + 1e-10;
+  const double slope = std::hypot(slopeAlong(g, x, y, 1, 0), slopeAlong(g, x, y, 0, 1));
+  glm::dvec3 colour(0.0);
+  double variance = 0.0, weights = 0.0;
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx) {
+      int qx = x + step * dx, qy = y + step * dy;
+      if (!g.surface(qx, qy)) continue;
+      const glm::dvec4 c = g.in.colourVariance[g.index(qx, qy)];
+      const glm::dvec3 nq = glm::dvec3(g.in.surface[g.index(qx, qy)]);
+      double w = b3(dx) * b3(dy);
+      if (dx != 0 || dy != 0) {
+        // Schied eq. 3-5 (depth term with Falcor's |grad z| |offset|; svgf_common.glsl).
+        double distance = step * std::hypot(double(dx), double(dy));
+        double wz = std::abs(z - g.depth(qx, qy)) / (s.phiDepth * slope * distance + 1e-3 * z);
+        double wn = std::pow(std::max(glm::dot(n, nq), 0.0), double(s.phiNormal));
+        double wl = std::abs(l - luminance(glm::dvec3(c))) / phiL;
+        w *= std::exp(-wz - wl) * wn;
+      }
+      colour += w * glm::dvec3(c);
+      variance += w * w * c.w;
+      weights += w;
+    }
+  return glm::vec4(glm::vec3(colour / weights), float(variance / (weights * weights)));
+}
+
+}  // namespace
+
+std::vector<glm::vec4> svgfAtrousReference(const SvgfAtrousInput& input, uint32_t iteration,
+                                           const SvgfSettings& settings) {
+  const Grid g{input};
+  std::vector<glm::vec4> out(input.colourVariance);
+  const int step = 1 << iteration;
+  for (int y = 0; y < int(input.height); ++y)
+    for (int x = 0; x < int(input.width); ++x)
+      if (g.surface(x, y)) out[g.index(x, y)] = filterPixel(g, x, y, step, settings);
+  return out;
+}
+
+}  // namespace bounce

@@ -1,0 +1,27 @@
+// A CPU reference of one SVGF à-trous iteration (svgf-atrous-N, shaders/denoise/svgf_atrous.comp;
+// Schied et al. 2017 §4.2), in double precision, written from the paper rather than from the
+// shader: what tests compare the GPU pass with (issue 21, seed 002's "CPU reference of the
+// à-trous step").
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "denoise/svgf.h"
+
+namespace bounce {
+
+// An image of svgf-atrous's inputs, row-major, width x height.
+struct SvgfAtrousInput {
+  uint32_t width = 0, height = 0;
+  std::vector<glm::vec4> colourVariance;  // rgb colour, a luminance variance
+  std::vector<glm::vec4> surface;         // xyz unit normal, w view depth (<= 0: no surface)
+};
+
+// One iteration with tap spacing 2^iteration and the settings' edge stops; returns rgb colour
+// and a variance per pixel. Pixels without a surface keep their input.
+std::vector<glm::vec4> svgfAtrousReference(const SvgfAtrousInput& input, uint32_t iteration,
+                                           const SvgfSettings& settings);
+
+}  // namespace bounce
