@@ -69,11 +69,13 @@ struct Neighbourhood {
 };
 
 // Variance clipping (Salvi 2016): the box mean +- clipSigma standard deviations of the 3x3
-// neighbourhood, intersected with its min/max box (Karis 2014), in the perceptual space.
+// neighbourhood in the perceptual space. Not intersected with the min/max box (Karis 2014):
+// on the noisy composite that clips a converged history whenever nine samples happen to lie
+// on one side of their mean.
 Neighbourhood neighbourhood(FrameConstants f, ivec2 pixel, float exposure) {
   Neighbourhood n;
   n.centre = vec3(0.0);
-  vec3 sum = vec3(0.0), sumSq = vec3(0.0), lowest = vec3(1e30), highest = vec3(-1e30);
+  vec3 sum = vec3(0.0), sumSq = vec3(0.0);
   float count = 0.0;
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
@@ -85,8 +87,6 @@ Neighbourhood neighbourhood(FrameConstants f, ivec2 pixel, float exposure) {
       vec3 p = toPerceptual(c, exposure);
       sum += p;
       sumSq += p * p;
-      lowest = min(lowest, p);
-      highest = max(highest, p);
       count += 1.0;
     }
   if (count == 0.0) {
@@ -95,8 +95,8 @@ Neighbourhood neighbourhood(FrameConstants f, ivec2 pixel, float exposure) {
   }
   vec3 mean = sum / count;
   vec3 sigma = sqrt(max(sumSq / count - mean * mean, vec3(0.0)));
-  n.low = max(lowest, mean - pc.clipSigma * sigma);
-  n.high = min(highest, mean + pc.clipSigma * sigma);
+  n.low = mean - pc.clipSigma * sigma;
+  n.high = mean + pc.clipSigma * sigma;
   return n;
 }
 
@@ -158,14 +158,15 @@ vec4 historyAt(FrameConstants f, vec2 position) {
 }
 
 // `h` moved towards the box centre until it is inside the box (Karis 2014's clip, which keeps
-// the history's hue better than a per-axis clamp).
-vec3 clipToBox(vec3 h, vec3 low, vec3 high) {
+// the history's hue better than a per-axis clamp). `distance`: how far out h was, in box
+// half-widths along its way to the centre (<= 1: inside).
+vec3 clipToBox(vec3 h, vec3 low, vec3 high, out float distance) {
   vec3 centre = 0.5 * (low + high);
   vec3 extent = 0.5 * (high - low) + 1e-6;
   vec3 d = h - centre;
   vec3 ratio = abs(d) / extent;
-  float largest = max(ratio.x, max(ratio.y, ratio.z));
-  return largest > 1.0 ? centre + d / largest : h;
+  distance = max(ratio.x, max(ratio.y, ratio.z));
+  return distance > 1.0 ? centre + d / distance : h;
 }
 
 void main() {
@@ -182,11 +183,16 @@ void main() {
     return;
   }
   vec3 perceptual = toPerceptual(history.rgb, exposure);
-  vec3 inBox = clipToBox(perceptual, n.low, n.high);
+  float distance;
+  vec3 inBox = clipToBox(perceptual, n.low, n.high, distance);
   vec3 clipped = inBox == perceptual ? history.rgb : fromPerceptual(inBox, exposure);
   // The first frames of a history average uniformly (1 / frames), then exponentially with
   // weight `blend` (an effective 2 / blend - 1 frames).
   float frames = min(history.w + 1.0, 1.0 / pc.blend);
+  // A history far outside the box held another surface or another light (a disocclusion, a
+  // ghost): clipped, it is still only near the box's edge, and would fade at `blend` a frame.
+  // It is shortened by the square of the distance, as the GI denoiser's anti-lag does.
+  if (distance > 1.0) frames = max(min(frames, 1.0 / (pc.blend * distance * distance)), 1.0);
   vec3 blended = mix(clipped, n.centre, 1.0 / frames);
   imageStore(current, pixel, vec4(blended, frames));
 }
