@@ -2,7 +2,8 @@
 //   - the jitter: Halton (2, 3) points inside the pixel, and a raster matrix that lands what the
 //     jittered ray sees on the pixel centre;
 //   - motion stays unjittered: on a static view gbuffer.velocity is zero whatever the jitter,
-//     and under camera motion it is the seen point's own screen motion;
+//     and under camera motion it is the seen point's own screen motion; a camera cut
+//     (resetHistory) leaves nothing of the history;
 //   - (a) on a static view the anti-aliased output converges toward `bounce reference`
 //     (anti-aliased, a box filter over each pixel): the error of edge pixels at least 2x lower
 //     than the pixel-centre composite's;
@@ -250,6 +251,20 @@ TEST(Taa, VelocityIsUnjittered) {
   EXPECT_GT(meanSpeed, 1.0f);
   // RG16F and the depth round trip, as test_motion.cpp's bound.
   EXPECT_LT(maxError, 0.02f);
+
+  // A camera cut: the frame after resetHistory() shows its own composite, nothing of before.
+  frame.requestDebugView("composite");
+  frame.requestDebugView("taa");
+  frame.render(first);
+  frame.resetHistory();
+  frame.render(second);
+  const ImageRGBA32F composite = frame.debugViewImage("composite");
+  const ImageRGBA32F taa = frame.debugViewImage("taa");
+  size_t differing = 0;
+  for (size_t i = 0; i < composite.pixelCount(); ++i)
+    for (int c = 0; c < 3; ++c) differing += composite.pixels[4 * i + c] != taa.pixels[4 * i + c];
+  EXPECT_EQ(differing, 0u) << "history survived resetHistory()";
+  EXPECT_EQ(countNonFinitePixels(taa), 0u);
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
