@@ -68,6 +68,7 @@ struct RenderOptions {
   std::string reflectionReuse;               // on|off; empty: the preset's
   std::string reflectionDenoise;             // "on", "off"; empty: the settings' (on)
   bool lambert = false;
+  bool noTaa = false;
   // Motion and time.
   bool animate = false;
   std::string cameraPath;
@@ -310,6 +311,7 @@ HybridSettings settingsFrom(const RenderOptions& o) {
   if (!o.reflectionDenoise.empty())
     settings.reflectionDenoise.enabled = o.reflectionDenoise == "on";
   settings.lambert = o.lambert;
+  settings.taa.enabled = !o.noTaa;  // on by default here (the library's default is off)
   return settings;
 }
 
@@ -590,6 +592,10 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                   "on (the default): reflections-denoise-temporal and -spatial filter the traced "
                   "reflections; off: reflections-upsample reads the one noisy sample per pixel");
   cmd->add_flag("--lambert", options->lambert, "Shade every material as pure Lambert");
+  cmd->add_flag("--no-taa", options->noTaa,
+                "No temporal anti-aliasing: one sample at each pixel centre, tonemap reads the "
+                "composite (for comparisons with `bounce reference --pixel-centre`); by default "
+                "the primary visibility is jittered and `taa` resolves it (the view `taa`)");
   cmd->add_flag("--animate", options->animate,
                 "Play the scene's animation over the frames (glTF animations; built-in scenes' "
                 "scripted motion, e.g. sunroom's swinging panel and sliding cube; a slow camera "

@@ -24,9 +24,12 @@ vec3 decodeOctahedral(vec2 e) {
   return normalize(n);
 }
 
-// The primary ray through the centre of `pixel`, exactly as the ray-cast views shoot it.
+// The primary ray through screen position `pixel` (pixel + 0.5 for a pixel's centre) shifted by
+// the frame's sub-pixel jitter (FrameConstants::jitter, 0 without anti-aliasing): the ray the
+// vbuffer sees the pixel's surface along, so every pass that rebuilds a position from a pixel
+// and a depth finds that surface.
 vec3 pixelRayDirection(FrameConstants f, vec2 pixel) {
-  return cameraRayDirection(f.camera, pixel, vec2(f.resolution));
+  return cameraRayDirection(f.camera, pixel + f.jitter, vec2(f.resolution));
 }
 
 // The world position seen at `pixel` with view depth `depth`.

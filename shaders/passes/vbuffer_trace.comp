@@ -1,5 +1,6 @@
 // vbuffer (ray-cast variant, --vbuffer trace): the same ids as the raster pass, found by one
-// camera ray through each pixel centre with the tracer's alpha test. Rasterisation and ray
+// camera ray through each pixel centre (shifted by the TAA jitter when on, as the raster pass's
+// matrix is) with the tracer's alpha test. Rasterisation and ray
 // casting agree on what covers a pixel centre (tests/test_hybrid_frame.cpp checks the GBuffer
 // against ray-cast primary hits); this variant exists for GPUs whose raster units are few,
 // such as the H100/H200 (GH100 has graphics units in only a small part of the chip), where

@@ -57,8 +57,8 @@ BOUNCE_CONST uint FRAME_SKY_DAYLIGHT = 1u;  // Preetham et al. 1999, shaders/com
 // Written once per frame by `scene-update` (vkCmdUpdateBuffer), read by every pass through a
 // buffer reference. Matrices map world space to Vulkan clip space (y down, reversed Z).
 struct FrameConstants {
-  mat4 viewProjection;
-  mat4 previousViewProjection;  // last frame's, for velocity and reprojection
+  mat4 viewProjection;          // this frame's, jittered (see `jitter`)
+  mat4 previousViewProjection;  // last frame's, for velocity and reprojection (see `jitter`)
   GpuCamera camera;             // the same camera as rays through pixel centres
   vec3 towardSun;               // unit
   float sunCosHalfAngle;        // cosine of half the sun's angular diameter
@@ -87,8 +87,15 @@ struct FrameConstants {
   // vec4[SPECULAR_ALBEDO_SIZE^2], the split-sum table (shared/specular_albedo_io.h), for passes
   // that reflect light at surfaces their rays hit (the GI's and the cache's metals); 0: none.
   DeviceAddress specularAlbedo;
+  // Sub-pixel offset of this frame's primary visibility in pixels, in [-0.5, 0.5) (temporal
+  // anti-aliasing, src/passes/taa.h; 0 without it): the ray of pixel p passes through
+  // p + 0.5 + jitter (pixelRayDirection), and viewProjection is shifted to match. Motion stays
+  // unjittered: previousViewProjection is last frame's unjittered matrix shifted by this
+  // frame's jitter alone, so a point that has not moved maps to the pixel that sees it now
+  // and gbuffer.velocity is 0 on a static view whatever the jitter.
+  vec2 jitter;
 };
-BOUNCE_CHECK_SIZE(FrameConstants, 328);
+BOUNCE_CHECK_SIZE(FrameConstants, 336);
 
 // Push constants of every hybrid-frame compute pass: the frame constants' address.
 struct HybridPassConstants {

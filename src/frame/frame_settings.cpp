@@ -29,6 +29,7 @@ void validate(const HybridSettings& s) {
   if (!(std::abs(s.exposureStops) <= 64.0f))
     fail("exposure {} stops: expected -64 to 64", s.exposureStops);
   if (s.autoExposure) validate(s.exposure);
+  if (s.taa.enabled) validate(s.taa);
   if (!(s.skyAmbientStrength >= 0.0f) || !std::isfinite(s.skyAmbientStrength))
     fail("sky ambient {}: must be >= 0", s.skyAmbientStrength);
   if (s.di.enabled()) validate(s.di);

@@ -15,6 +15,7 @@
 #include "passes/reflections_denoise.h"
 #include "passes/reflections_trace.h"
 #include "passes/shadows_trace.h"
+#include "passes/taa.h"
 #include "passes/vbuffer.h"
 
 namespace bounce {
@@ -62,6 +63,10 @@ struct HybridSettings {
   // ReSTIR DI: every light but the sun, shadowed, at the primary vertex (--di; restir in both
   // presets and by default). Off: composite's unshadowed loop over the KHR lights.
   DiSettings di;
+  // Temporal anti-aliasing (`taa` after composite, src/passes/taa.h): off here, so library
+  // frames and the tests sample pixel centres unless they ask; `bounce render` turns it on
+  // (--no-taa: off).
+  TaaSettings taa;
   RestirGiSettings restirGi;   // --gi evolve
   ClipmapCacheSettings cache;  // --gi cache (and the cache ReSTIR GI reads)
   // Added to the frame index that seeds every pass's random numbers: frames of two seeds draw

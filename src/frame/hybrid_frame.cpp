@@ -98,6 +98,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
     if (!di_->hasLights()) di_.reset();
   }
   if (settings.autoExposure) autoExposure_.emplace(context, gpuScene, settings.exposure);
+  if (settings.taa.enabled) taa_.emplace(context, gpuScene, settings.taa);
   if (settings.reflections.reuseEnabled())
     reflectionsReuse_.emplace(context, gpuScene, specularAlbedo_, settings.reflections);
 
@@ -114,11 +115,18 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
       uploadStorage(context, std::as_bytes(directional), "hybrid.directional-lights");
 }
 
-gpu::FrameConstants HybridFrame::makeFrameConstants(const Camera& camera) const {
+// `jitter`: the sub-pixel offset of the primary visibility (FrameConstants::jitter); both
+// matrices are shifted by it, the previous one from its unjittered self (motion stays
+// unjittered).
+gpu::FrameConstants HybridFrame::makeFrameConstants(const Camera& camera, glm::vec2 jitter) const {
   gpu::FrameConstants c{};
   c.camera = makeGpuCamera(camera, settings_.width, settings_.height, gpuScene_.bounds());
-  c.viewProjection = viewProjection(c.camera, nearPlane_);
-  c.previousViewProjection = hasPreviousFrame_ ? previousViewProjection_ : c.viewProjection;
+  const glm::mat4 unjittered = viewProjection(c.camera, nearPlane_);
+  const glm::uvec2 resolution{settings_.width, settings_.height};
+  c.jitter = jitter;
+  c.viewProjection = jitteredViewProjection(unjittered, jitter, resolution);
+  c.previousViewProjection = jitteredViewProjection(
+      hasPreviousFrame_ ? previousViewProjection_ : unjittered, jitter, resolution);
   c.towardSun = -glm::normalize(sun_.direction);
   c.sunCosHalfAngle = std::cos(glm::radians(0.5f * sun_.angularDiameterDegrees));
   c.sunIrradiance = sun_.irradiance * sun_.color;
@@ -173,7 +181,10 @@ void HybridFrame::advanceTime() {
 
 std::vector<vk::PassTiming> HybridFrame::render(const Camera& camera) {
   advanceTime();
-  constants_ = makeFrameConstants(camera);
+  const glm::vec2 jitter = settings_.taa.enabled
+                               ? taaJitter(graph_.frameIndex(), settings_.taa.jitterPhases)
+                               : glm::vec2(0.0f);
+  constants_ = makeFrameConstants(camera, jitter);
   // Only a whole frame runs DI: renderGi's host lights its own frame, so there the GI keeps the
   // emission of every emitter.
   if (di_) constants_.flags |= gpu::FRAME_FLAG_DI_LIGHTS;
@@ -186,7 +197,7 @@ std::vector<vk::PassTiming> HybridFrame::renderGi(const Camera& camera,
   if (!gi_) fail("bring your own G-buffer: the renderer has no GI system (gi none)");
   checkHostGBuffer(host, {settings_.width, settings_.height}, "bring your own G-buffer");
   advanceTime();
-  constants_ = makeFrameConstants(camera);
+  constants_ = makeFrameConstants(camera, glm::vec2(0.0f));  // the host's camera: no jitter
   recordGiFrame(host);
   return submitFrame(true);
 }
@@ -218,7 +229,7 @@ std::vector<vk::PassTiming> HybridFrame::submitFrame(bool afterHostWork) {
   if (firstFramePassByPass) graph_.executePassByPass(&timer_);
   if (gi_) gi_->afterFrame();
   lightingCutPending_ = false;
-  previousViewProjection_ = constants_.viewProjection;
+  previousViewProjection_ = viewProjection(constants_.camera, nearPlane_);
   hasPreviousFrame_ = true;
   return timer_.available() ? timer_.read() : std::vector<vk::PassTiming>{};
 }
@@ -286,6 +297,9 @@ void HybridFrame::recordFrame() {
   std::optional<Exposure> exposure;
   if (autoExposure_)
     exposure = autoExposure_->declare(graph_, hdr, settings_.exposureStops, deltaSeconds_);
+  // Exposure meters the composite; taa maps it (and its history) to a perceptual space with
+  // this frame's exposure, and tonemap shows the anti-aliased image.
+  if (taa_) hdr = taa_->declare(graph_, frame, gbuffer, hdr, exposure);
   tonemap_.declare(graph_, frame, hdr, exposure);
 }
 

@@ -1,9 +1,10 @@
 // The hybrid frame (DESIGN.md §4; seed 000's hybrid renderer): scene-update, vbuffer, gbuffer,
 // shadows-trace, shadows-denoise, ReSTIR DI (di-*), sky, the diffuse GI system, composite,
-// automatic exposure (exposure-histogram, exposure-adapt), tonemap; each a pass unit of src/passes/
-// (or src/gi/) declared on the frame graph once per frame by recordFrame(), a straight chain in
-// which each pass takes the typed outputs of the ones before. Resources are created by the first
-// frame (and a resize); later frames only update the frame constants and record.
+// automatic exposure (exposure-histogram, exposure-adapt), taa (when on), tonemap; each a pass unit
+// of src/passes/ (or src/gi/) declared on the frame graph once per frame by recordFrame(), a
+// straight chain in which each pass takes the typed outputs of the ones before. Resources are
+// created by the first frame (and a resize); later frames only update the frame constants and
+// record.
 //
 //   HybridFrame frame(context, gpuScene, scene, settings);
 //   frame.requestDebugView("composite");      // any pass or resource by name
@@ -40,6 +41,7 @@
 #include "passes/shadows_denoise.h"
 #include "passes/shadows_trace.h"
 #include "passes/sky.h"
+#include "passes/taa.h"
 #include "passes/tonemap.h"
 #include "passes/vbuffer.h"
 #include "rt/gpu_scene.h"
@@ -137,7 +139,7 @@ class HybridFrame {
                           IndirectLight& indirect);
   void recordGiFrame(const HostGBufferImages& host);
   std::vector<vk::PassTiming> submitFrame(bool afterHostWork = false);
-  gpu::FrameConstants makeFrameConstants(const Camera& camera) const;
+  gpu::FrameConstants makeFrameConstants(const Camera& camera, glm::vec2 jitter) const;
   void advanceTime();
 
   vk::Context& context_;
@@ -167,6 +169,7 @@ class HybridFrame {
   ReflectionsUpsamplePass reflectionsUpsample_;
   CompositePass composite_;
   std::optional<AutoExposure> autoExposure_;  // settings.autoExposure
+  std::optional<TaaPass> taa_;                // settings.taa.enabled
   TonemapPass tonemap_;
   vk::GpuTimer timer_;
   std::unique_ptr<DiffuseGi> gi_;  // nullptr for --gi none
@@ -174,7 +177,7 @@ class HybridFrame {
   graph::FrameGraph graph_;        // after what it imports: destroyed first
 
   gpu::FrameConstants constants_{};
-  glm::mat4 previousViewProjection_{1.0f};
+  glm::mat4 previousViewProjection_{1.0f};  // unjittered
   bool hasPreviousFrame_ = false;
   std::optional<double> nextTime_;  // setTime()
   std::optional<double> time_;      // of the last frame rendered
