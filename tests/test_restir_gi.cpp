@@ -427,12 +427,11 @@ TEST(RestirGi, LongAnimatedRunStaysFinite) {
   gi.validationPeriod = 3;
   gi.historyBrightening = 1.3f;
   HybridSettings settings = giSettings(width, height, gi);
-  // One candidate and one validation ray per cache cell and frame, and cells 4x wider than the
-  // preset's: the cache's validation path is covered at a fraction of the desktop preset's rays
-  // (its ~4,700 cells' rays, not the 16x16 pixels, set this test's time on lavapipe).
+  // One candidate and one validation ray per cache cell and frame: the cache's validation path
+  // is covered at a quarter of the desktop preset's rays (its ~5,000 cells' rays, not the
+  // 16x16 pixels, set this test's time on lavapipe).
   settings.cache.raysPerCell = 1;
   settings.cache.validationRaysPerCell = 1;
-  settings.cache.finestCellSize *= 4.0f;
   HybridFrame frame(context, gpuScene, scene, settings);
   frame.requestDebugView("composite");
   frame.requestDebugView("gi-restir-temporal");

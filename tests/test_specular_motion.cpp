@@ -310,9 +310,8 @@ TEST(SpecularMotion, DISABLED_CameraDollyOverGlossyFloorLeavesNoGhostTrail) {
 // 1,000 frames of sunroom-glossy's animation (the ball, the cube, the panel, the camera sway and
 // dolly) under a sun that circles the sky, with reflections traced: the composite and the
 // reflection signal stay finite, and the validation layers stay silent. 48 x 27; the cache at
-// one candidate ray and no validation ray per cell and frame, cells 4x wider than the preset's
-// (its cells, not the pixels, set the time on lavapipe; RestirGi.LongAnimatedRunStaysFinite covers
-// the validation rays).
+// one candidate ray and no validation ray per cell and frame (its cells, not the pixels, set
+// the time on lavapipe; RestirGi.LongAnimatedRunStaysFinite covers the validation rays).
 TEST(SpecularMotion, ThousandAnimatedFramesStayFinite) {
   Scene scene = *makeBuiltinScene("sunroom-glossy");
   vk::ContextOptions options = vk::contextOptionsFromEnvironment();
@@ -324,7 +323,6 @@ TEST(SpecularMotion, ThousandAnimatedFramesStayFinite) {
   settings.height = 27;
   settings.cache.raysPerCell = 1;
   settings.cache.validationRaysPerCell = 0;
-  settings.cache.finestCellSize *= 4.0f;
   HybridFrame frame(context, gpuScene, scene, settings);
   frame.requestDebugView("composite");
   frame.requestDebugView("reflections-upsample");
