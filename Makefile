@@ -7,7 +7,7 @@ LAUNCHER := $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache
 export CCACHE_BASEDIR := $(CURDIR)
 FORMATTED = find src app include tests examples tools shaders fuzz -name '*.cpp' -o -name '*.h'
 
-.PHONY: deps build demo test sanitize clean format format-check consumer fuzz
+.PHONY: deps build demo test sanitize clean format format-check consumer fuzz soak
 
 deps:
 	bash scripts/install-deps.sh
@@ -37,6 +37,10 @@ consumer: build
 # libFuzzer on the glTF loader and the image readers (fuzz/; FUZZ_RUNS per target, default 1 M).
 fuzz:
 	bash scripts/fuzz.sh
+
+# Long animated runs checked for NaN pixels and memory growth (scripts/soak.sh; SOAK_FRAMES ...).
+soak: build
+	bash scripts/soak.sh
 
 format:
 	$(FORMATTED) | xargs clang-format -i

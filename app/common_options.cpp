@@ -42,6 +42,10 @@ void CommonOptions::addDeviceOptions(CLI::App& cmd) {
   cmd.add_option("--device", device, "Vulkan device index (see `bounce info`); or BOUNCE_DEVICE");
   cmd.add_flag("--validate", validate,
                "Enable Vulkan validation (incl. synchronization); any error -> exit code 4");
+  cmd.add_option("--device-memory-limit", deviceMemoryLimitMiB,
+                 "Fail, as out of memory, any allocation beyond this many MiB of device memory "
+                 "(to check a preset against a smaller GPU); or BOUNCE_DEVICE_MEMORY_LIMIT")
+      ->check(CLI::Range(uint64_t(1), uint64_t(1) << 24));
 }
 
 void CommonOptions::addResolution(CLI::App& cmd, const std::string& defaultRes) {
@@ -92,6 +96,7 @@ std::unique_ptr<vk::Context> CommonOptions::createContext() const {
   options.deviceIndex = device;
   options.validation = validate;
   options.synchronizationValidation = validate;
+  options.memoryLimitBytes = deviceMemoryLimitMiB << 20;
   options = vk::contextOptionsFromEnvironment(options);
   return std::make_unique<vk::Context>(options);
 }

@@ -35,6 +35,7 @@ struct CommonOptions {
   std::string sky;
   std::optional<uint32_t> device;
   bool validate = false;
+  uint64_t deviceMemoryLimitMiB = 0;  // --device-memory-limit; 0: none
   GivenOptions given;
 
   // Which options a verb offers.

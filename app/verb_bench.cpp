@@ -14,6 +14,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -28,7 +29,9 @@
 #include "scene/animation.h"
 #include "suggest.h"
 #include "tools/image_io.h"
+#include "tools/metrics.h"
 #include "tools/output_file.h"
+#include "tools/soak_check.h"
 #include "tools/stacked_plot.h"
 #include "verbs.h"
 
@@ -53,8 +56,16 @@ struct BenchOptions {
   int64_t window = 9;             // seed 000's rolling average
   int64_t contactFrames = 8;
   std::string out = "out/bench";
-  std::string runsFile;  // JSON list of runs instead of the --preset x --gi product
+  std::string runsFile;              // JSON list of runs instead of the --preset x --gi product
+  std::vector<std::string> compare;  // bench.json files to draw side by side instead of a run
+  // --soak: every frame checked for NaN/Inf, host and device memory for growth (issue 24).
+  bool soak = false;
+  int64_t soakWarmup = 100;
+  double soakResidentGrowthMiB = 8.0;
 };
+
+// A soak whose checks failed (NaN or Inf pixels, memory growth): the report is still written.
+constexpr int kSoakFailedExit = 5;
 
 // One preset x GI mode.
 struct BenchRun {
@@ -118,6 +129,13 @@ void checkArguments(const BenchOptions& o) {
   if (o.window < 1 || o.window > 1000) fail("--window {}: expected 1 to 1000 frames", o.window);
   if (o.contactFrames < 1 || o.contactFrames > 64)
     fail("--contact-frames {}: expected 1 to 64", o.contactFrames);
+  if (o.soak && (o.soakWarmup < 0 || o.soakWarmup >= o.frames))
+    fail(
+        "--soak-warmup {}: expected 0 to --frames - 1 ({}), so that frames after the warm-up "
+        "are checked",
+        o.soakWarmup, o.frames - 1);
+  if (!(o.soakResidentGrowthMiB >= 0.0) || !std::isfinite(o.soakResidentGrowthMiB))
+    fail("--soak-rss-growth {}: expected MiB >= 0", o.soakResidentGrowthMiB);
   if (o.common.given.has("--sun"))
     fail("bench: --sun cannot be used: the day cycle sets the sun (--time-of-day, --day-cycle)");
   requireWritableDirectory("--out", o.out);
@@ -183,6 +201,8 @@ struct RunRecord {
   std::vector<double> frameGpuMs, frameWallMs, hours;
   std::vector<uint32_t> contactFrameIndices;
   std::vector<ImageRGBA32F> contactTiles;
+  uint64_t deviceBytes = 0, deviceAllocations = 0;  // Bounce's, frame and scene, at the end
+  std::optional<SoakCheck> soak;
 };
 
 void addTimings(RunRecord& record, uint32_t frame, uint32_t frames,
@@ -244,12 +264,16 @@ RunRecord runFrames(const BenchOptions& o, const BenchRun& run, const Scene& sce
                     vk::Context& context, GpuScene& gpuScene) {
   HybridFrame frame(context, gpuScene, scene, settingsFor(o, run));
   frame.requestDebugView("tonemap");
+  // The linear frame before tone mapping: a NaN anywhere in the chain reaches it.
+  if (o.soak) frame.requestDebugView("composite");
   const SceneAnimation animation = benchAnimation(o, scene);
   const TimeOfDayTrack day = *animation.timeOfDay;
   AnimationPlayer player(scene, animation);
   const uint32_t frames = uint32_t(o.frames);
   RunRecord record;
   record.contactFrameIndices = contactFrameIndices(frames, uint32_t(o.contactFrames));
+  if (o.soak)
+    record.soak.emplace(uint32_t(o.soakWarmup), uint64_t(o.soakResidentGrowthMiB * (1 << 20)));
   ProgressLine progress;
   const auto start = std::chrono::steady_clock::now();
   for (uint32_t i = 0; i < frames; ++i) {
@@ -259,6 +283,10 @@ RunRecord runFrames(const BenchOptions& o, const BenchRun& run, const Scene& sce
     addTimings(record, i, frames, frame.render(camera));
     record.frameWallMs.push_back(1e3 * secondsSince(frameStart));
     record.hours.push_back(day.hoursAt(t));
+    if (record.soak)
+      record.soak->add({i, countNonFinitePixels(frame.debugViewImage("composite")),
+                        residentSetBytes(), context.liveAllocationBytes(),
+                        context.liveAllocationCount()});
     const auto& picks = record.contactFrameIndices;
     if (std::find(picks.begin(), picks.end(), i) != picks.end()) {
       record.contactTiles.push_back(contactTile(frame.debugViewImage("tonemap")));
@@ -271,6 +299,8 @@ RunRecord runFrames(const BenchOptions& o, const BenchRun& run, const Scene& sce
                   perFrame * double(frames - i - 1));
   }
   progress.finish();
+  record.deviceBytes = context.liveAllocationBytes();
+  record.deviceAllocations = context.liveAllocationCount();
   return record;
 }
 
@@ -323,6 +353,27 @@ std::string dayLabel(const std::vector<double>& hours) {
 }
 
 // Writes the run's plot and contact sheet and returns its part of the report.
+nlohmann::json soakJson(const SoakCheck& soak) {
+  auto sample = [](const std::optional<SoakSample>& s) {
+    if (!s) return nlohmann::json();
+    return nlohmann::json{{"frame", s->frame},
+                          {"non_finite_pixels", s->nonFinitePixels},
+                          {"resident_bytes", s->residentBytes},
+                          {"device_bytes", s->deviceBytes},
+                          {"device_allocations", s->deviceAllocations}};
+  };
+  return {{"passed", soak.passed()},
+          {"failures", soak.failures()},
+          {"frames", soak.frames()},
+          {"warmup_frames", soak.warmupFrames()},
+          {"non_finite_frames", soak.nonFiniteFrames()},
+          {"first_non_finite", sample(soak.firstNonFinite())},
+          {"after_warmup", sample(soak.afterWarmup())},
+          {"last", sample(soak.last())},
+          {"peak_resident_bytes_after_warmup", soak.peakResidentAfterWarmup()},
+          {"resident_slope_bytes_per_frame", soak.residentSlopeBytesPerFrame()}};
+}
+
 nlohmann::json reportRun(const BenchOptions& o, const BenchRun& run, const RunRecord& r,
                          const Scene& scene, const HybridSettings& settings,
                          const vk::Context& context) {
@@ -353,6 +404,9 @@ nlohmann::json reportRun(const BenchOptions& o, const BenchRun& run, const RunRe
   j["frame_wall_ms"] = r.frameWallMs;
   j["hours"] = r.hours;
   j["table"] = tableJson(r, window);
+  j["device_bytes"] = r.deviceBytes;
+  j["device_allocations"] = r.deviceAllocations;
+  if (r.soak) j["soak"] = soakJson(*r.soak);
   const fs::path dir(o.out);
   j["plot_png"] = stem + "-passes.png";
   j["plot_svg"] = stem + "-passes.svg";
@@ -367,7 +421,101 @@ nlohmann::json reportRun(const BenchOptions& o, const BenchRun& run, const RunRe
   return j;
 }
 
+// ---- comparison: runs side by side ----
+
+// One bar of the comparison plot: a run's median milliseconds per pass.
+struct ComparedRun {
+  std::string label;
+  std::vector<std::pair<std::string, double>> passMedians;
+};
+
+// The runs of a bench report; `device` prefixes the labels when reports of several devices meet.
+std::vector<ComparedRun> comparedRuns(const nlohmann::json& report, const std::string& source,
+                                      bool withDevice) {
+  if (!report.is_object() || !report.contains("runs") || !report["runs"].is_array())
+    fail("--compare '{}': not a `bounce bench` report (no \"runs\" list)", source);
+  std::vector<ComparedRun> runs;
+  for (const nlohmann::json& run : report["runs"]) {
+    ComparedRun c;
+    try {
+      c.label = fmt::format("{}{} {}\n{}x{}",
+                            withDevice ? report.at("device").get<std::string>() + "\n" : "",
+                            run.at("preset").get<std::string>(), run.at("gi").get<std::string>(),
+                            run.at("width").get<int>(), run.at("height").get<int>());
+      for (const nlohmann::json& row : run.at("table")) {
+        const std::string pass = row.at("pass").get<std::string>();
+        if (pass.rfind("frame (", 0) == 0) continue;  // the totals, not passes
+        c.passMedians.push_back({pass, row.at("median_ms").get<double>()});
+      }
+    } catch (const nlohmann::json::exception& e) {
+      fail("--compare '{}': run {}: {}", source, runs.size(), e.what());
+    }
+    runs.push_back(std::move(c));
+  }
+  return runs;
+}
+
+// comparison.png/.svg in `dir`: a stacked bar of pass medians per run, passes in the order they
+// first appear.
+void writeComparison(const std::vector<ComparedRun>& runs, const std::string& title,
+                     const fs::path& dir) {
+  StackedPlot plot;
+  plot.title = title;
+  plot.yLabel = "GPU ms (median over the run)";
+  plot.xLabel = "run";
+  for (const ComparedRun& run : runs) plot.bars.push_back(run.label);
+  for (size_t r = 0; r < runs.size(); ++r)
+    for (const auto& [pass, ms] : runs[r].passMedians) {
+      auto it = std::find_if(plot.series.begin(), plot.series.end(),
+                             [&](const PlotSeries& s) { return s.name == pass; });
+      if (it == plot.series.end()) {
+        plot.series.push_back({pass, std::vector<double>(runs.size(), 0.0)});
+        it = plot.series.end() - 1;
+      }
+      it->values[r] = ms;
+    }
+  if (plot.series.empty()) fail("bench comparison: the runs have no pass times");
+  plot.width = std::max(960, 330 + 170 * int(runs.size()));
+  plot.height = std::max(480, 140 + 16 * int(plot.series.size()));
+  writeTextFile((dir / "comparison.svg").string(), stackedPlotSvg(plot));
+  writePng((dir / "comparison.png").string(), stackedPlotImage(plot));
+  std::printf("-> %s\n", (dir / "comparison.png").string().c_str());
+}
+
+int compareReports(const BenchOptions& o) {
+  for (const char* option : {"--preset", "--gi", "--runs", "--scene", "--soak", "--frames"})
+    o.common.given.refuseTogether("--compare", option,
+                                  "a comparison draws finished reports and runs nothing");
+  requireWritableDirectory("--out", o.out);
+  std::vector<nlohmann::json> reports;
+  std::set<std::string> devices;
+  for (const std::string& path : o.compare) {
+    std::ifstream file(path);
+    if (!file) fail("--compare '{}': cannot open the file", path);
+    try {
+      reports.push_back(nlohmann::json::parse(file));
+    } catch (const nlohmann::json::exception& e) {
+      fail("--compare '{}': not valid JSON: {}", path, e.what());
+    }
+    devices.insert(reports.back().value("device", std::string("?")));
+  }
+  std::vector<ComparedRun> runs;
+  std::set<std::string> scenes;
+  for (size_t i = 0; i < reports.size(); ++i) {
+    for (ComparedRun& run : comparedRuns(reports[i], o.compare[i], devices.size() > 1))
+      runs.push_back(std::move(run));
+    scenes.insert(reports[i].value("scene", std::string("?")));
+  }
+  std::string sceneList;
+  for (const std::string& s : scenes) sceneList += (sceneList.empty() ? "" : ", ") + s;
+  std::string deviceList;
+  for (const std::string& d : devices) deviceList += (deviceList.empty() ? "" : ", ") + d;
+  writeComparison(runs, fmt::format("{} on {}", sceneList, deviceList), o.out);
+  return 0;
+}
+
 int runBench(const BenchOptions& o) {
+  if (!o.compare.empty()) return compareReports(o);
   checkArguments(o);
   const std::vector<BenchRun> runs = runsFrom(o);
   Scene scene = o.common.loadScene();
@@ -389,9 +537,13 @@ int runBench(const BenchOptions& o) {
       {"camera",
        scene.animation.camera && o.common.camera.empty() ? "scene path" : "sway and dolly"}};
   report["runs"] = nlohmann::json::array();
+  std::vector<std::string> soakFailures;
   for (const BenchRun& run : runs) {
     const RunRecord record = runFrames(o, run, scene, *context, gpuScene);
     report["runs"].push_back(reportRun(o, run, record, scene, settingsFor(o, run), *context));
+    if (record.soak)
+      for (const std::string& failure : record.soak->failures())
+        soakFailures.push_back(fmt::format("{} --gi {}: {}", run.preset, run.gi, failure));
   }
   if (isCpuDevice(*context))
     std::printf("note: %s is a CPU device: the GPU times measure its emulation of a GPU\n",
@@ -400,11 +552,24 @@ int runBench(const BenchOptions& o) {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   report["host_peak_rss_bytes"] = int64_t(usage.ru_maxrss) * 1024;  // Linux: kilobytes
+  if (report["runs"].size() > 1) {
+    std::vector<ComparedRun> compared = comparedRuns(report, "bench", false);
+    writeComparison(compared, fmt::format("{} on {}", scene.name, context->info().name), o.out);
+    report["comparison_png"] = "comparison.png";
+    report["comparison_svg"] = "comparison.svg";
+  }
   const std::string json = (fs::path(o.out) / "bench.json").string();
   // Paths are bytes, not always UTF-8: replace an invalid sequence rather than throw.
   writeTextFile(json, report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   std::printf("-> %s\n", json.c_str());
-  return exitCodeFor(*context);
+  for (const std::string& failure : soakFailures)
+    std::fprintf(stderr, "bounce: error: bench --soak: %s %s\n", scene.name.c_str(),
+                 failure.c_str());
+  if (o.soak && soakFailures.empty())
+    std::printf("soak passed: every frame finite, no memory growth after frame %lld\n",
+                (long long)o.soakWarmup);
+  const int validation = exitCodeFor(*context);
+  return validation != 0 ? validation : soakFailures.empty() ? 0 : kSoakFailedExit;
 }
 
 }  // namespace
@@ -445,6 +610,18 @@ void addBenchVerb(CLI::App& app, VerbAction& action) {
   cmd->add_option("--out", options->out,
                   "Directory for bench.json and, per run, PRESET-GI-passes.png/.svg and "
                   "PRESET-GI-contact.png (created when missing)")
+      ->capture_default_str();
+  cmd->add_option("--compare", options->compare,
+                  "Draw the runs of these bench.json files (other scenes, devices) side by side "
+                  "in --out as comparison.png/.svg; runs nothing")
+      ->delimiter(',');
+  cmd->add_flag("--soak", options->soak,
+                "Check every frame for NaN or infinite pixels and host (resident set) and device "
+                "memory for growth after the warm-up; exit code 5 when a check fails");
+  cmd->add_option("--soak-warmup", options->soakWarmup, "Frames before memory is compared (--soak)")
+      ->capture_default_str();
+  cmd->add_option("--soak-rss-growth", options->soakResidentGrowthMiB,
+                  "MiB the resident set may grow after the warm-up (--soak)")
       ->capture_default_str();
   cmd->callback([&action, options, cmd] {
     options->common.given.record(*cmd);

@@ -1,7 +1,9 @@
 // `bounce bench` (issue 24): a short scripted run of sunroom on lavapipe writes the JSON report
-// with every pass's series, the stacked plot (PNG and SVG) and the contact sheet.
+// with every pass's series, the stacked plot (PNG and SVG) and the contact sheet, and passes the
+// soak's checks; several runs make a comparison plot.
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <utility>
 #include <vector>
 
@@ -10,6 +12,8 @@
 
 #include "harness.h"
 #include "tools/image_io.h"
+#include "tools/metrics.h"
+#include "tools/soak_check.h"
 
 namespace bounce {
 namespace {
@@ -35,7 +39,7 @@ TEST(Bench, SunroomWritesReportPlotAndContactSheet) {
   const std::string dir = test::tempDir("bench");
   const test::CommandResult r =
       test::runCommand(test::bounceExe() + " bench --scene sunroom --res 160x90 --frames " +
-                           std::to_string(kFrames) + " --out " + dir,
+                           std::to_string(kFrames) + " --soak --soak-warmup 4 --out " + dir,
                        120);
   ASSERT_EQ(r.exitCode, 0) << r.output;
 
@@ -76,6 +80,51 @@ TEST(Bench, SunroomWritesReportPlotAndContactSheet) {
   EXPECT_EQ(sheet.width, 4 * 160);
   EXPECT_EQ(sheet.height, 2 * 90);
   EXPECT_GT(test::meanLuminance(sheet), 0.01);
+
+  // The soak's checks on this short run (`make soak` runs long ones): every frame finite, and
+  // after the warm-up no device allocation (DESIGN.md: frames allocate nothing).
+  const nlohmann::json& soak = run["soak"];
+  EXPECT_TRUE(soak["passed"].get<bool>()) << soak.dump(2);
+  EXPECT_EQ(soak["frames"], kFrames);
+  EXPECT_EQ(soak["non_finite_frames"], 0);
+  EXPECT_EQ(soak["after_warmup"]["device_bytes"], soak["last"]["device_bytes"]);
+  EXPECT_EQ(soak["after_warmup"]["device_bytes"], run["device_bytes"]);
+  EXPECT_GT(soak["last"]["resident_bytes"].get<uint64_t>(), 0u);
+}
+
+// Several runs make a comparison plot, one stacked bar per run; `--compare` draws the runs of
+// several reports (other scenes, other GPUs) the same way, rendering nothing.
+TEST(Bench, RunsSideBySideMakeComparisonPlots) {
+  const std::string dir = test::tempDir("bench-compare");
+  test::CommandResult r = test::runCommand(
+      test::bounceExe() + " bench --scene cornell --res 64x36 --frames 3 --contact-frames 1 " +
+          "--gi cache,none --out " + dir + "/a",
+      180);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream file(fs::path(dir) / "a" / "bench.json");
+  const nlohmann::json report = nlohmann::json::parse(file);
+  ASSERT_EQ(report["runs"].size(), 2u);
+  const ImageRGBA32F bars = readImage((fs::path(dir) / "a" / "comparison.png").string());
+  EXPECT_GT(pixelsUnlikeTheFirst(bars), bars.pixelCount() / 50);
+  // The SVG has one rectangle per pass of each run that has it: the cache run has more passes.
+  std::ifstream svgFile(fs::path(dir) / "a" / "comparison.svg");
+  const std::string svg((std::istreambuf_iterator<char>(svgFile)), {});
+  size_t rectangles = 0;
+  for (size_t at = svg.find("<title>"); at != std::string::npos; at = svg.find("<title>", at + 1))
+    ++rectangles;
+  const size_t passes = report["runs"][0]["passes"].size() + report["runs"][1]["passes"].size();
+  EXPECT_GE(rectangles, passes);
+
+  r = test::runCommand(test::bounceExe() + " bench --compare " + dir + "/a/bench.json," + dir +
+                           "/a/bench.json --out " + dir + "/b",
+                       30);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(fs::exists(fs::path(dir) / "b" / "comparison.png"));
+  // A file that is not a report is refused by name.
+  r = test::runCommand(
+      test::bounceExe() + " bench --compare " + dir + "/a/comparison.svg --out " + dir + "/c", 30);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("comparison.svg"), std::string::npos) << r.output;
 }
 
 // Usage errors name the option and exit 1 before any scene is loaded or frame rendered.
@@ -89,6 +138,8 @@ TEST(Bench, UsageErrorsAreRefusedBeforeAnyWork) {
       {"--contact-frames 0", "--contact-frames"},
       {"--runs " + dir + "/missing.json", "missing.json"},
       {"--runs " + dir + "/runs.json --gi cache", "--runs and --gi cannot be used together"},
+      {"--soak --frames 10 --soak-warmup 10", "--soak-warmup 10"},
+      {"--soak --soak-rss-growth -1", "--soak-rss-growth -1"},
   };
   for (const auto& [args, message] : cases) {
     const test::CommandResult r =
@@ -97,6 +148,52 @@ TEST(Bench, UsageErrorsAreRefusedBeforeAnyWork) {
     EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
   }
   EXPECT_FALSE(fs::exists(fs::path(dir) / "bench.json"));
+}
+
+// The soak's rules on made-up runs: each broken rule is found and named with its frame, and a
+// clean run passes.
+TEST(SoakCheck, FindsNonFiniteFramesAndMemoryGrowthAfterTheWarmup) {
+  constexpr uint64_t kMiB = 1 << 20;
+  ImageRGBA32F clean(4, 4);
+  ImageRGBA32F withNaN(4, 4);
+  withNaN.set(1, 2, glm::vec4(std::nanf(""), 0.0f, 0.0f, 1.0f));
+  withNaN.set(3, 3, glm::vec4(0.0f, INFINITY, 0.0f, 1.0f));
+  EXPECT_EQ(countNonFinitePixels(clean), 0u);
+  EXPECT_EQ(countNonFinitePixels(withNaN), 2u);
+
+  // Memory may change during the warm-up (frames 0-9), not after.
+  auto run = [&](auto sampleAt) {
+    SoakCheck check(10, 8 * kMiB);
+    for (uint32_t i = 0; i < 40; ++i) check.add(sampleAt(i));
+    return check;
+  };
+  const SoakCheck good = run([&](uint32_t i) {
+    return SoakSample{i, 0, (i < 10 ? 100 + i : 110) * kMiB, (i < 5 ? 1 : 2) * kMiB, 7};
+  });
+  EXPECT_TRUE(good.passed()) << good.failures()[0];
+  EXPECT_NEAR(good.residentSlopeBytesPerFrame(), 0.0, 1e-6);
+
+  const SoakCheck nan = run([&](uint32_t i) {
+    return SoakSample{i, countNonFinitePixels(i == 17 || i == 30 ? withNaN : clean), 100 * kMiB,
+                      kMiB, 7};
+  });
+  ASSERT_EQ(nan.failures().size(), 1u);
+  EXPECT_NE(nan.failures()[0].find("2 of 40 frames"), std::string::npos) << nan.failures()[0];
+  EXPECT_NE(nan.failures()[0].find("frame 17"), std::string::npos) << nan.failures()[0];
+
+  const SoakCheck device = run([&](uint32_t i) {
+    return SoakSample{i, 0, 100 * kMiB, kMiB, i < 25 ? 7u : 8u};
+  });
+  ASSERT_EQ(device.failures().size(), 1u);
+  EXPECT_NE(device.failures()[0].find("at frame 25"), std::string::npos) << device.failures()[0];
+
+  // A leak of 300 KiB a frame: 9 MiB over the 30 frames after the warm-up, above the 8 allowed.
+  const SoakCheck host = run([&](uint32_t i) {
+    return SoakSample{i, 0, 100 * kMiB + i * 300 * 1024, kMiB, 7};
+  });
+  ASSERT_EQ(host.failures().size(), 1u);
+  EXPECT_NE(host.failures()[0].find("host memory grew"), std::string::npos);
+  EXPECT_NEAR(host.residentSlopeBytesPerFrame(), 300.0 * 1024, 1.0);
 }
 
 }  // namespace

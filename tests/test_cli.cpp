@@ -69,6 +69,30 @@ TEST(Cli, BadInputGetsAClearError) {
   }
 }
 
+// A frame that does not fit the device's memory: exit code 1 and a message with the size that
+// failed, what Bounce already held, what it needed at least and the heap's size (issue 24). The
+// limit makes any device run out, as a GPU with 8 MiB would.
+TEST(Cli, OutOfDeviceMemoryGetsAClearMessage) {
+  const std::string dir = test::tempDir("cli-oom");
+  test::CommandResult r =
+      runCommand(bounceExe() + " render --scene cornell --res 256x256 --frames 1 " +
+                     "--device-memory-limit 8 --out " + dir + "/frame.png",
+                 60);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  const std::regex message(
+      "out of GPU memory on .*: an allocation of [0-9.]+ MiB failed \\(the "
+      "--device-memory-limit of 8.0 MiB\\)\\. Bounce already held [0-9.]+ MiB in [0-9]+ "
+      "allocations, so it needed at least [0-9.]+ MiB; memory heap [0-9]+ of the device has "
+      "[0-9.]+ MiB");
+  EXPECT_TRUE(std::regex_search(r.output, message)) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/frame.png"));
+  // The same frame renders with room to spare, so the limit, not the frame, made it fail.
+  r = runCommand(bounceExe() + " render --scene cornell --res 256x256 --frames 1 " +
+                     "--device-memory-limit 4096 --out " + dir + "/frame.png",
+                 120);
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
 // Counts the lines of a command's output.
 size_t lineCount(const std::string& output) {
   return size_t(std::count(output.begin(), output.end(), '\n'));

@@ -43,13 +43,16 @@ std::string tickLabel(double v) {
 struct Layout {
   double left = 64, top = 48, right = 0, bottom = 0;  // plot area in pixels
   size_t samples = 0;
+  bool bars = false;  // StackedPlot::bars given: sample i is a bar in the middle of slot i
   double yMax = 1.0;
   // cumulative[k][i]: the sum of series 0..k-1 at sample i (cumulative[0] is all zero).
   std::vector<std::vector<double>> cumulative;
 
   double x(double sample) const {
+    if (bars) return left + (right - left) * (sample + 0.5) / double(samples);
     return samples < 2 ? left : left + (right - left) * sample / double(samples - 1);
   }
+  double barHalfWidth() const { return 0.3 * (right - left) / double(samples); }
   double y(double value) const { return bottom - (bottom - top) * value / yMax; }
 };
 
@@ -65,8 +68,11 @@ Layout layoutOf(const StackedPlot& plot) {
   if (!plot.shaded.empty() && plot.shaded.size() != l.samples)
     fail("stacked plot '{}': {} shaded flags for {} samples", plot.title, plot.shaded.size(),
          l.samples);
-  l.right = plot.width - 250.0;  // the legend's column
-  l.bottom = plot.height - 44.0;
+  if (!plot.bars.empty() && plot.bars.size() != l.samples)
+    fail("stacked plot '{}': {} bar names for {} samples", plot.title, plot.bars.size(), l.samples);
+  l.bars = !plot.bars.empty();
+  l.right = plot.width - 250.0;                     // the legend's column
+  l.bottom = plot.height - (l.bars ? 72.0 : 44.0);  // bar names may take two or three lines
   l.cumulative.assign(plot.series.size() + 1, std::vector<double>(l.samples, 0.0));
   double top = 0.0;
   for (size_t k = 0; k < plot.series.size(); ++k)
@@ -80,7 +86,12 @@ Layout layoutOf(const StackedPlot& plot) {
 }
 
 // x positions of the axis ticks: about six, on whole samples.
-std::vector<size_t> xTicks(size_t samples) {
+std::vector<size_t> xTicks(size_t samples, bool bars) {
+  if (bars) {
+    std::vector<size_t> all(samples);
+    for (size_t i = 0; i < samples; ++i) all[i] = i;
+    return all;
+  }
   const size_t step = std::max<size_t>(1, size_t(niceCeil(double(samples) / 6.0)));
   std::vector<size_t> ticks;
   for (size_t i = 0; i < samples; i += step) ticks.push_back(i);
@@ -94,6 +105,10 @@ constexpr uint32_t kShadeColour = 0xdddddd;
 bool shadedAt(const StackedPlot& plot, const Layout& l, double sample) {
   if (plot.shaded.empty()) return false;
   return plot.shaded[std::min(l.samples - 1, size_t(std::max(0.0, std::round(sample))))];
+}
+
+std::string xTickLabel(const StackedPlot& plot, size_t i) {
+  return plot.bars.empty() ? std::to_string(i) : plot.bars[i];
 }
 
 std::vector<std::string> legendNames(const StackedPlot& plot) {
@@ -126,6 +141,20 @@ std::string hex(uint32_t rgb) {
   return fmt::format("#{:06x}", rgb);
 }
 
+// Text with '\n' as SVG lines at x: the first at the text's y, each next one 14 units lower.
+std::string svgLines(const std::string& text, double x) {
+  std::string out;
+  size_t start = 0;
+  for (int line = 0;; ++line) {
+    const size_t end = text.find('\n', start);
+    const std::string part = escapeXml(text.substr(start, end - start));
+    out += line == 0 ? part : fmt::format("<tspan x=\"{:.1f}\" dy=\"14\">{}</tspan>", x, part);
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string stackedPlotSvg(const StackedPlot& plot) {
@@ -143,8 +172,17 @@ std::string stackedPlotSvg(const StackedPlot& plot) {
           "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\"/>\n", x0,
           l.top, x1 - x0, l.bottom - l.top, hex(kShadeColour));
     }
-  // One polygon per series: along its upper curve, back along the lower one.
-  for (size_t k = 0; k < plot.series.size(); ++k) {
+  // Bars: one rectangle per series and bar.
+  for (size_t k = 0; l.bars && k < plot.series.size(); ++k)
+    for (size_t i = 0; i < l.samples; ++i)
+      svg += fmt::format(
+          "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\">"
+          "<title>{}: {:.3f}</title></rect>\n",
+          l.x(double(i)) - l.barHalfWidth(), l.y(l.cumulative[k + 1][i]), 2 * l.barHalfWidth(),
+          l.y(l.cumulative[k][i]) - l.y(l.cumulative[k + 1][i]), hex(seriesColour(k)),
+          escapeXml(plot.series[k].name), plot.series[k].values[i]);
+  // Areas: one polygon per series, along its upper curve, back along the lower one.
+  for (size_t k = 0; !l.bars && k < plot.series.size(); ++k) {
     std::string points;
     for (size_t i = 0; i < l.samples; ++i)
       points += fmt::format("{:.1f},{:.1f} ", l.x(double(i)), l.y(l.cumulative[k + 1][i]));
@@ -163,11 +201,12 @@ std::string stackedPlotSvg(const StackedPlot& plot) {
         "<text x=\"{3:.1f}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>\n",
         l.left - 4, l.left, l.y(v), l.left - 6, l.y(v) + 4, tickLabel(v));
   }
-  for (size_t i : xTicks(l.samples))
+  for (size_t i : xTicks(l.samples, l.bars))
     svg += fmt::format(
         "<line x1=\"{0:.1f}\" x2=\"{0:.1f}\" y1=\"{1:.1f}\" y2=\"{2:.1f}\" stroke=\"black\"/>"
         "<text x=\"{0:.1f}\" y=\"{3:.1f}\" text-anchor=\"middle\">{4}</text>\n",
-        l.x(double(i)), l.bottom, l.bottom + 4, l.bottom + 17, i);
+        l.x(double(i)), l.bottom, l.bottom + 4, l.bottom + 17,
+        svgLines(xTickLabel(plot, i), l.x(double(i))));
   svg += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n",
                      (l.left + l.right) / 2, plot.height - 8, escapeXml(plot.xLabel));
   svg +=
@@ -233,7 +272,12 @@ ImageRGBA32F stackedPlotImage(const StackedPlot& plot) {
   ImageRGBA32F image(plot.width, plot.height, glm::vec4(1.0f));
   // Column by column: the data at this x (interpolated between the two nearest samples), then
   // each series' span between its lower and upper cumulative values.
-  for (int px = int(std::ceil(l.left)); px < int(l.right); ++px) {
+  for (size_t k = 0; l.bars && k < plot.series.size(); ++k)
+    for (size_t i = 0; i < l.samples; ++i)
+      fillRect(image, l.x(double(i)) - l.barHalfWidth(), l.y(l.cumulative[k + 1][i]),
+               l.x(double(i)) + l.barHalfWidth(), l.y(l.cumulative[k][i]),
+               linearColour(seriesColour(k)));
+  for (int px = int(std::ceil(l.left)); !l.bars && px < int(l.right); ++px) {
     const double s = l.samples < 2 ? 0.0 : (px - l.left) / (l.right - l.left) * (l.samples - 1);
     const size_t i0 = std::min(size_t(s), l.samples - 1), i1 = std::min(i0 + 1, l.samples - 1);
     const double f = s - double(i0);
@@ -253,10 +297,10 @@ ImageRGBA32F stackedPlotImage(const StackedPlot& plot) {
     fillRect(image, l.left - 5, y, l.left - 1, y + 1, black);
     drawText(image, l.left - 8, y - 3, tickLabel(v), 1.0);
   }
-  for (size_t i : xTicks(l.samples)) {
+  for (size_t i : xTicks(l.samples, l.bars)) {
     const double x = l.x(double(i));
     fillRect(image, x, l.bottom, x + 1, l.bottom + 5, black);
-    drawText(image, x, l.bottom + 9, std::to_string(i), 0.5);
+    drawText(image, x, l.bottom + 9, xTickLabel(plot, i), 0.5);
   }
   drawText(image, (l.left + l.right) / 2, plot.height - 16, plot.xLabel, 0.5);
   drawText(image, 8, l.top - 20, plot.yLabel);

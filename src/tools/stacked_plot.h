@@ -1,6 +1,7 @@
-// A stacked-area plot of series over a common x axis (per-pass GPU times over a benchmark run,
-// `bounce bench`), written by our own small writers: SVG text, and a raster image for PNG (the
-// bench runs on machines with nothing but the program installed, so no plotting library).
+// A stacked-area plot of series over a common x axis, or stacked bars (one per run), (per-pass GPU
+// times over a benchmark run, `bounce bench`), written by our own small writers: SVG text, and a
+// raster image for PNG (the bench runs on machines with nothing but the program installed, so no
+// plotting library).
 #pragma once
 #include <string>
 #include <vector>
@@ -19,6 +20,10 @@ struct StackedPlot {
   std::string xLabel;  // the x axis runs over the sample index 0 .. n-1
   std::string yLabel;
   std::vector<PlotSeries> series;  // bottom to top; all of the same length (>= 1)
+  // When given (one name per sample), the plot is a stacked bar chart instead: one bar per sample,
+  // named on the x axis (runs side by side: `bounce bench`'s comparison of GI modes, presets,
+  // GPUs).
+  std::vector<std::string> bars;
   // Samples drawn on a grey background (the bench's night: the sun below the horizon); empty or
   // of the series' length.
   std::vector<bool> shaded;

@@ -283,6 +283,15 @@ ContextOptions contextOptionsFromEnvironment(ContextOptions options) {
       options.deviceIndex = uint32_t(n);
     }
   }
+  if (options.memoryLimitBytes == 0) {
+    if (const char* m = std::getenv("BOUNCE_DEVICE_MEMORY_LIMIT")) {
+      char* end = nullptr;
+      long long mib = std::strtoll(m, &end, 10);
+      if (end == m || *end != '\0' || mib <= 0)
+        fail("BOUNCE_DEVICE_MEMORY_LIMIT='{}': expected a positive number of MiB", m);
+      options.memoryLimitBytes = uint64_t(mib) << 20;
+    }
+  }
   return options;
 }
 
@@ -296,7 +305,7 @@ std::vector<DeviceInfo> Context::listDevices() {
   return infos;
 }
 
-Context::Context(const ContextOptions& options) {
+Context::Context(const ContextOptions& options) : memoryLimitBytes_(options.memoryLimitBytes) {
   createInstance(options);
   pickPhysicalDevice(options);
   createDevice();
@@ -557,15 +566,33 @@ VkDeviceMemory Context::allocate(const VkMemoryRequirements& req, MemoryUse use,
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO, deviceAddress ? &flags : nullptr};
   ai.allocationSize = req.size;
   ai.memoryTypeIndex = typeIndex;
+  if (memoryLimitBytes_ != 0 && liveBytes_ + req.size > memoryLimitBytes_)
+    failOutOfMemory(req.size, typeIndex,
+                    fmt::format("the --device-memory-limit of {:.1f} MiB",
+                                double(memoryLimitBytes_) / (1 << 20)));
   VkDeviceMemory memory = VK_NULL_HANDLE;
   VkResult r = vkAllocateMemory(device_, &ai, nullptr, &memory);
-  if (r != VK_SUCCESS)
-    fail("out of GPU memory allocating {:.1f} MiB ({})", double(req.size) / (1 << 20),
-         resultName(r));
+  if (r != VK_SUCCESS) failOutOfMemory(req.size, typeIndex, resultName(r));
   ++allocationCount_;
+  ++liveAllocations_;
   liveBytes_ += req.size;
   allocationSizes()[memory] = req.size;
   return memory;
+}
+
+// What a user needs to act on: how much was asked for, how much Bounce already holds, how big the
+// heap is, and what to change.
+void Context::failOutOfMemory(VkDeviceSize size, uint32_t typeIndex,
+                              const std::string& cause) const {
+  const uint32_t heap = memoryProperties_.memoryTypes[typeIndex].heapIndex;
+  const double mib = double(1 << 20);
+  fail(
+      "out of GPU memory on {}: an allocation of {:.1f} MiB failed ({}). Bounce already held "
+      "{:.1f} MiB in {} allocations, so it needed at least {:.1f} MiB; memory heap {} of the "
+      "device has {:.1f} MiB. Use a smaller --res, the mobile preset or a smaller scene",
+      info_.name, double(size) / mib, cause, double(liveBytes_) / mib, liveAllocations_,
+      double(liveBytes_ + size) / mib, heap,
+      double(memoryProperties_.memoryHeaps[heap].size) / mib);
 }
 
 void Context::free(VkDeviceMemory memory) {
@@ -573,6 +600,7 @@ void Context::free(VkDeviceMemory memory) {
   auto it = allocationSizes().find(memory);
   if (it != allocationSizes().end()) {
     liveBytes_ -= it->second;
+    --liveAllocations_;
     allocationSizes().erase(it);
   }
   vkFreeMemory(device_, memory, nullptr);

@@ -41,6 +41,10 @@ struct ContextOptions {
   std::optional<uint32_t> deviceIndex;  // --device N; else BOUNCE_DEVICE; else the best ranked
   bool validation = false;              // Khronos validation layer; errors are counted
   bool synchronizationValidation = false;
+  // --device-memory-limit: allocations that would take Bounce's live device memory beyond this
+  // many bytes fail as if the device had run out, so that a preset can be checked against a
+  // smaller GPU's memory (and the out-of-memory path tested on any device). 0: no limit.
+  uint64_t memoryLimitBytes = 0;
 };
 
 // The host's Vulkan objects for Context(const AdoptedDevice&). `createInfo`, when given, is what
@@ -92,6 +96,7 @@ class Context {
   void free(VkDeviceMemory memory);
   uint64_t allocationCount() const { return allocationCount_; }
   uint64_t liveAllocationBytes() const { return liveBytes_; }
+  uint64_t liveAllocationCount() const { return liveAllocations_; }
 
   // Waits until Bounce's work on the GPU is done: the whole device when Bounce created it, its
   // queue when adopted (waiting for the host's device would need the host's other queues).
@@ -116,6 +121,8 @@ class Context {
   void pickPhysicalDevice(const ContextOptions& options);
   void createDevice();
   void createCommandPoolAndFence();
+  [[noreturn]] void failOutOfMemory(VkDeviceSize size, uint32_t typeIndex,
+                                    const std::string& cause) const;
   static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
       VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
       const VkDebugUtilsMessengerCallbackDataEXT* data, void* self);
@@ -139,9 +146,12 @@ class Context {
   uint32_t validationErrors_ = 0;
   uint64_t allocationCount_ = 0;
   uint64_t liveBytes_ = 0;
+  uint64_t liveAllocations_ = 0;
+  uint64_t memoryLimitBytes_ = 0;  // ContextOptions::memoryLimitBytes
 };
 
-// Reads BOUNCE_VALIDATE / BOUNCE_DEVICE from the environment into options (tests and CLI).
+// Reads BOUNCE_VALIDATE / BOUNCE_DEVICE / BOUNCE_DEVICE_MEMORY_LIMIT (MiB) from the environment
+// into options (tests and CLI).
 ContextOptions contextOptionsFromEnvironment(ContextOptions options = {});
 
 }  // namespace bounce::vk
