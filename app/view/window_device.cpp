@@ -53,21 +53,6 @@ std::optional<uint32_t> presentingQueueFamily(VkPhysicalDevice pd, VkSurfaceKHR 
   return std::nullopt;
 }
 
-int typeRank(VkPhysicalDeviceType type) {
-  switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
-      return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
-      return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
-      return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU:
-      return 1;
-    default:
-      return 0;
-  }
-}
-
 // Why `pd` cannot run the viewer, or empty. Bounce's own feature checks come later, from the
 // adopted Context, with its usual message.
 std::string whyUnsuitable(VkPhysicalDevice pd, VkSurfaceKHR surface) {
@@ -238,8 +223,8 @@ void WindowDevice::pickPhysicalDevice(std::optional<uint32_t> index) {
       }
       VkPhysicalDeviceProperties p;
       vkGetPhysicalDeviceProperties(pd, &p);
-      if (typeRank(p.deviceType) > bestRank) {
-        bestRank = typeRank(p.deviceType);
+      if (vk::deviceTypeRank(p.deviceType) > bestRank) {
+        bestRank = vk::deviceTypeRank(p.deviceType);
         physicalDevice_ = pd;
       }
     }

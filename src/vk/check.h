@@ -6,7 +6,10 @@
 
 namespace bounce::vk {
 const char* resultName(VkResult result);
-}
+// How much a device type is preferred when several could run Bounce: discrete 4, integrated 3,
+// virtual 2, CPU 1, other 0 (`bounce info`'s order, the viewer's too).
+int deviceTypeRank(VkPhysicalDeviceType type);
+}  // namespace bounce::vk
 
 #define VK_CHECK(call)                                            \
   do {                                                            \

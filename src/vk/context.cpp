@@ -64,21 +64,6 @@ const char* deviceTypeName(VkPhysicalDeviceType type) {
   }
 }
 
-int typeRank(VkPhysicalDeviceType type) {
-  switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
-      return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
-      return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
-      return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU:
-      return 1;
-    default:
-      return 0;
-  }
-}
-
 // A queue family that can do both compute and graphics (the frame uses one queue).
 std::optional<uint32_t> findQueueFamily(VkPhysicalDevice pd, bool* timestamps) {
   uint32_t count = 0;
@@ -236,7 +221,7 @@ DeviceInfo describeDevice(VkPhysicalDevice pd, uint32_t index) {
 
   info.unsuitableBecause = checkRequirements(pd, p);
   info.suitable = info.unsuitableBecause.empty();
-  info.rank = info.suitable ? typeRank(p.deviceType) : -1;
+  info.rank = info.suitable ? deviceTypeRank(p.deviceType) : -1;
   return info;
 }
 
@@ -679,6 +664,21 @@ const char* resultName(VkResult r) {
       return "VK_ERROR_INCOMPATIBLE_DRIVER";
     default:
       return "VkResult error";
+  }
+}
+
+int deviceTypeRank(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 1;
+    default:
+      return 0;
   }
 }
 
