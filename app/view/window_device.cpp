@@ -8,6 +8,8 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <bounce/external_device.h>
+
 #include "core/error.h"
 #include "vk/check.h"
 
@@ -241,19 +243,10 @@ void WindowDevice::createDevice() {
   queueInfo.queueFamilyIndex = queueFamily_;
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
-  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  f13.synchronization2 = VK_TRUE;
-  f13.dynamicRendering = VK_TRUE;
-  f13.maintenance4 = VK_TRUE;
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
-  f12.bufferDeviceAddress = VK_TRUE;
-  f12.scalarBlockLayout = VK_TRUE;
-  f12.timelineSemaphore = VK_TRUE;
-  f12.hostQueryReset = VK_TRUE;
-  VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
-  f2.features.shaderInt64 = VK_TRUE;
+  api::RequiredDeviceFeatures features;
+  features.vulkan12.hostQueryReset = VK_TRUE;
   const char* extensions[] = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
-  VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f2};
+  VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, features.chain()};
   ci.queueCreateInfoCount = 1;
   ci.pQueueCreateInfos = &queueInfo;
   ci.enabledExtensionCount = 1;

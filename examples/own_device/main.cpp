@@ -115,19 +115,9 @@ int main() {
     queueInfo.queueCount = 1;
     queueInfo.pQueuePriorities = &priority;
 
-    // What bounce/external_device.h lists.
-    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    f13.synchronization2 = VK_TRUE;
-    f13.dynamicRendering = VK_TRUE;
-    f13.maintenance4 = VK_TRUE;
-    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
-                                         &f13};
-    f12.bufferDeviceAddress = VK_TRUE;
-    f12.scalarBlockLayout = VK_TRUE;
-    f12.timelineSemaphore = VK_TRUE;
-    VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
-    f2.features.shaderInt64 = VK_TRUE;
-    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f2};
+    // What bounce/external_device.h lists, as a chain.
+    bounce::api::RequiredDeviceFeatures features;
+    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, features.chain()};
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
     check(vkCreateDevice(physicalDevice, &deviceInfo, nullptr, &device), "vkCreateDevice");

@@ -16,7 +16,7 @@
 //     timestamps on it (timestampValidBits > 0 and timestampComputeAndGraphics) give
 //     FrameStatistics its pass times.
 // No device or instance extension is needed. Renderer::create throws bounce::Error naming the
-// device and what is missing.
+// device and what is missing. RequiredDeviceFeatures (below) is that list as a pNext chain.
 //
 // Threads: Vulkan requires access to a queue to be externally synchronised. Bounce uses the
 // queue inside Renderer::create, render(), readImage() and the Renderer's destructor; the host
@@ -41,6 +41,33 @@ struct ExternalDevice {
   // device was created with; given this, Bounce checks that the ones above are enabled and the
   // queue family was requested, rather than only that the physical device supports them.
   const VkDeviceCreateInfo* createInfo = nullptr;
+};
+
+// The features listed above, switched on in a chain ready for VkDeviceCreateInfo::pNext:
+//   bounce::api::RequiredDeviceFeatures features;
+//   features.vulkan12.descriptorIndexing = VK_TRUE;  // the host's own, if it wants more
+//   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, features.chain()};
+// The structs point at each other, so the object can be neither copied nor moved; keep it alive
+// until vkCreateDevice returns.
+struct RequiredDeviceFeatures {
+  VkPhysicalDeviceVulkan13Features vulkan13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+  VkPhysicalDeviceVulkan12Features vulkan12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+                                            &vulkan13};
+  VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &vulkan12};
+
+  RequiredDeviceFeatures() {
+    features2.features.shaderInt64 = VK_TRUE;
+    vulkan12.bufferDeviceAddress = VK_TRUE;
+    vulkan12.scalarBlockLayout = VK_TRUE;
+    vulkan12.timelineSemaphore = VK_TRUE;
+    vulkan13.synchronization2 = VK_TRUE;
+    vulkan13.dynamicRendering = VK_TRUE;
+    vulkan13.maintenance4 = VK_TRUE;  // workgroup sizes from specialisation constants
+  }
+  RequiredDeviceFeatures(const RequiredDeviceFeatures&) = delete;
+  RequiredDeviceFeatures& operator=(const RequiredDeviceFeatures&) = delete;
+
+  const VkPhysicalDeviceFeatures2* chain() const { return &features2; }
 };
 
 }  // namespace bounce::api

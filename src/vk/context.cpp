@@ -6,6 +6,8 @@
 #include <cstring>
 #include <unordered_map>
 
+#include <bounce/external_device.h>
+
 #include "vk/check.h"
 
 namespace bounce::vk {
@@ -489,20 +491,12 @@ void Context::createDevice() {
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
 
-  VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-  f13.synchronization2 = VK_TRUE;
-  f13.dynamicRendering = VK_TRUE;
-  f13.maintenance4 = VK_TRUE;  // workgroup sizes from shared-header constants (LocalSizeId)
-  VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
-  f12.bufferDeviceAddress = VK_TRUE;
-  f12.scalarBlockLayout = VK_TRUE;
-  f12.timelineSemaphore = VK_TRUE;
-  f12.hostQueryReset = VK_TRUE;
-  f12.shaderFloat16 = info_.shaderFloat16;
-  VkPhysicalDeviceFeatures2 f2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
-  f2.features.shaderInt64 = VK_TRUE;
+  // What an adopted device must have, plus two that Bounce uses when it creates the device.
+  api::RequiredDeviceFeatures features;
+  features.vulkan12.hostQueryReset = VK_TRUE;
+  features.vulkan12.shaderFloat16 = info_.shaderFloat16;
 
-  VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &f2};
+  VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, features.chain()};
   ci.queueCreateInfoCount = 1;
   ci.pQueueCreateInfos = &queueInfo;
   VK_CHECK(vkCreateDevice(physicalDevice_, &ci, nullptr, &device_));
