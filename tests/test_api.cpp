@@ -387,7 +387,8 @@ double squaredError(const bounce::Image& image) {
 }  // namespace
 
 // Each denoiser alone through bounce/denoiser.h: 16 frames of a noisy plane come out with a lower
-// squared error against its mean at least 4x below the input's (issue 21); a wrong image size is named.
+// squared error against its mean at least 4x below the input's (issue 21); a wrong image size is
+// named.
 TEST_F(Api, DenoisersWorkAlone) {
   for (const char* name : {"svgf", "reblur", "hybrid"}) {
     bounce::Denoiser denoiser =

@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
   try {
     const bounce::DenoiserKind kind = bounce::denoiserKindFromName(argc > 1 ? argv[1] : "reblur");
     bounce::Denoiser denoiser = bounce::Denoiser::create(kind, kWidth, kHeight);
-    std::printf("%s: %u pipelines on %s\n", argc > 1 ? argv[1] : "reblur",
-                denoiser.pipelineCount(), denoiser.deviceName().c_str());
+    std::printf("%s: %u pipelines on %s\n", argc > 1 ? argv[1] : "reblur", denoiser.pipelineCount(),
+                denoiser.deviceName().c_str());
     std::mt19937 rng(1);
     Scene scene;
     bounce::DenoiserFrame frame;

@@ -45,7 +45,7 @@ DenoiserKind denoiserKindFromName(const std::string& name);
 
 struct DenoiserFrame {
   Image noisy;
-  std::vector<float> depth;   // width x height
+  std::vector<float> depth;  // width x height
   Image normal;
   std::vector<float> motion;  // 2 x width x height
   Image albedo;               // optional: width 0 for none

@@ -4,7 +4,7 @@
 // history grows, blurRadius / (1 + n) pixels for a history of n frames (NRD's convergence
 // 1 / (1 + k n), k = 1) but at least minBlurRadius: a young history is blurred wide, a converged
 // one barely. As reblur-post-blur (REBLUR_FLAG_POST_BLUR) the radius is twice that (NRD) and the
-// taps are rotated differently; its output is next frame's slow history. The history length
+// taps are rotated differently; its output goes to reblur-stabilize. The history length
 // (alpha) passes through. Pixels without a surface pass through.
 #version 460
 #include "denoise/reblur_common.glsl"

@@ -7,8 +7,9 @@
 //     Where none agrees the histories restart (a disocclusion).
 //   - Blend: running mean with weight 1 / n, n the history length plus this frame, capped at the
 //     maximum (so a young history is a plain mean and an old one an EMA of ~2 n - 1 frames).
-//     The slow history is last frame's reblur-post-blur output (NRD's post-blur writes the
-//     history), the fast one last frame's reblur.fast.
+//     The slow history is last frame's output of this pass, reblur.accumulated, the fast one
+//     last frame's reblur.fast. (NRD feeds the post-blurred signal back; here that compounded
+//     the blurs' small bias frame after frame: docs/denoise.md.)
 //   - Nothing non-finite enters history.
 #version 460
 #include "denoise/reblur_common.glsl"

@@ -10,10 +10,11 @@
 //   reblur.surface      RGBA32F  (history) xyz unit normal, w view depth (0: no surface)
 //   reblur.pre-blurred  RGBA16F  reblur-pre-blur's output (rgb; demodulated)
 //   reblur.fast         RGBA16F  (history) rgb the fast history (few frames), a its length
-//   reblur.accumulated  RGBA16F  reblur-temporal's slow history: rgb, a its length in frames
+//   reblur.accumulated  RGBA16F  (history) reblur-temporal's slow history: rgb, a its length in
+//                                frames; next frame's slow history (unblurred: docs/denoise.md)
 //   reblur.fixed        RGBA16F  reblur-history-fix's output: rgb, a the (anti-lagged) length
 //   reblur.blurred      RGBA16F  reblur-blur's output: rgb, a the length
-//   reblur.history      RGBA16F  (history) reblur-post-blur's output, next frame's slow history
+//   reblur.post-blurred RGBA16F  reblur-post-blur's output: rgb, a the length
 //   reblur.stable       RGBA16F  (history) reblur-stabilize's output: rgb, a its frame count
 #ifndef BOUNCE_SHARED_REBLUR_IO_H
 #define BOUNCE_SHARED_REBLUR_IO_H
@@ -30,14 +31,14 @@ struct ReblurConstants {
   float blurRadius;   // reblur-pre-blur: its radius; reblur-blur / -post-blur: the radius at
                       // history length 0 (it shrinks with the history)
   float minBlurRadius;
-  float depthTolerance;  // disocclusion and the blurs' plane test: relative view-depth difference
+  float depthTolerance;   // disocclusion and the blurs' plane test: relative view-depth difference
   float normalTolerance;  // disocclusion: cosine between normals at least this
   float normalPower;      // the blurs' normal weight: max(0, n.n_q)^normalPower
   float maxAccumulatedFrames;
   float maxFastAccumulatedFrames;
-  float historyFixFrames;  // below this history length reblur-history-fix rebuilds the pixel
-  float historyFixStride;  // pixels between its 5x5 taps at history 0
-  float sigmaScale;        // clamps: mean +- sigmaScale standard deviations of the fast history
+  float historyFixFrames;    // below this history length reblur-history-fix rebuilds the pixel
+  float historyFixStride;    // pixels between its 5x5 taps at history 0
+  float sigmaScale;          // clamps: mean +- sigmaScale standard deviations of the fast history
   float antilagSensitivity;  // how fast a clamped history is shortened (0: no anti-lag)
   float maxStabilizedFrames;
   float pad0;
@@ -63,10 +64,10 @@ BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_INPUT = 0u;  // reblur.pre-blurred
 BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_SURFACE = 1u;
 BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_MOTION = 2u;
 BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_PREVIOUS_SURFACE = 3u;
-BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY = 4u;  // reblur.history (previous)
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY = 4u;  // reblur.accumulated (previous)
 BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST = 5u;
 BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_FAST = 6u;         // reblur.fast (current)
-BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_ACCUMULATED = 7u;  // reblur.accumulated
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_ACCUMULATED = 7u;  // reblur.accumulated (current)
 BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_COUNT = 8u;
 
 // reblur-history-fix
@@ -83,7 +84,7 @@ BOUNCE_CONST uint REBLUR_BLUR_BINDING_OUTPUT = 2u;
 BOUNCE_CONST uint REBLUR_BLUR_BINDING_COUNT = 3u;
 
 // reblur-stabilize
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_INPUT = 0u;  // reblur.history (current)
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_INPUT = 0u;  // reblur.post-blurred
 BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_FAST = 1u;
 BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_SURFACE = 2u;
 BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_MOTION = 3u;
@@ -101,10 +102,10 @@ BOUNCE_CONST uint REBLUR_POISSON_TAPS = 8u;
 // hybrid-blend (src/denoise/hybrid_denoiser.h)
 struct HybridBlendConstants {
   uvec2 resolution;
-  float historySpatial;   // history length (frames) at or below which SVGF alone is used
-  float historyTemporal;  // at or above which ReBLUR may be used alone
-  float motionTemporal;   // |motion| (pixels) at or below which ReBLUR may be used alone
-  float motionSpatial;    // at or above which SVGF alone is used
+  float historySpatial;    // history length (frames) at or below which SVGF alone is used
+  float historyTemporal;   // at or above which ReBLUR may be used alone
+  float motionTemporal;    // |motion| (pixels) at or below which ReBLUR may be used alone
+  float motionSpatial;     // at or above which SVGF alone is used
   float varianceTemporal;  // relative luminance variance at or below which ReBLUR may be alone
   float varianceSpatial;   // at or above which SVGF alone is used
   uint bandRadius;         // the spatial weight is averaged over (2 r + 1)^2 pixels

@@ -42,9 +42,12 @@ std::vector<uint8_t> halfBytes(std::span<const float> values) {
 
 bounce::DenoiserKind internalKind(DenoiserKind kind) {
   switch (kind) {
-    case DenoiserKind::Svgf: return bounce::DenoiserKind::Svgf;
-    case DenoiserKind::Reblur: return bounce::DenoiserKind::Reblur;
-    case DenoiserKind::Hybrid: return bounce::DenoiserKind::Hybrid;
+    case DenoiserKind::Svgf:
+      return bounce::DenoiserKind::Svgf;
+    case DenoiserKind::Reblur:
+      return bounce::DenoiserKind::Reblur;
+    case DenoiserKind::Hybrid:
+      return bounce::DenoiserKind::Hybrid;
   }
   fail("bounce::Denoiser: unknown kind {}", int(kind));
 }
@@ -57,8 +60,7 @@ void checkImage(const Image& image, uint32_t w, uint32_t h, const char* name) {
 
 void checkFloats(const std::vector<float>& values, size_t expected, const char* name) {
   if (values.size() != expected)
-    fail("bounce::Denoiser::denoise: {} has {} floats, expected {}", name, values.size(),
-         expected);
+    fail("bounce::Denoiser::denoise: {} has {} floats, expected {}", name, values.size(), expected);
 }
 
 }  // namespace
@@ -136,8 +138,7 @@ Image Denoiser::denoise(const DenoiserFrame& frame) {
   d.graph.beginFrame();
   d.graph.requestDebugView(kOutput);
   DenoiseInputs in{d.import("denoiser.noisy", d.noisy), d.import("denoiser.depth", d.depth),
-                   d.import("denoiser.normals", d.normals),
-                   d.import("denoiser.motion", d.motion)};
+                   d.import("denoiser.normals", d.normals), d.import("denoiser.motion", d.motion)};
   if (albedo) in.albedo = d.import("denoiser.albedo", d.albedo);
   in.dropHistory = d.dropHistory;
   d.dropHistory = false;

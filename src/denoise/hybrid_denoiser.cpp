@@ -33,8 +33,7 @@ HybridDenoiser::HybridDenoiser(vk::Context& context, const GpuScene& scene,
 }
 
 void HybridDenoiser::declare(graph::FrameGraph& graph, VkExtent2D resolution,
-                             const DenoiseInputs& in, graph::ImageHandle output,
-                             bool debugWeight) {
+                             const DenoiseInputs& in, graph::ImageHandle output, bool debugWeight) {
   constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
   graph::ImageHandle spatial = graph.createImage("hybrid.svgf", {kRgba16f});
   graph::ImageHandle temporal = graph.createImage("hybrid.reblur", {kRgba16f});

@@ -4,9 +4,12 @@ namespace bounce {
 
 const char* denoiserName(DenoiserKind kind) {
   switch (kind) {
-    case DenoiserKind::Svgf: return "svgf";
-    case DenoiserKind::Reblur: return "reblur";
-    case DenoiserKind::Hybrid: return "hybrid";
+    case DenoiserKind::Svgf:
+      return "svgf";
+    case DenoiserKind::Reblur:
+      return "reblur";
+    case DenoiserKind::Hybrid:
+      return "hybrid";
   }
   return "?";
 }
@@ -15,7 +18,9 @@ LibraryDenoiser::LibraryDenoiser(vk::Context& context, const GpuScene& scene, De
                                  const LibraryDenoiserSettings& settings)
     : kind_(kind) {
   switch (kind) {
-    case DenoiserKind::Svgf: svgf_ = std::make_unique<Svgf>(context, scene, settings.svgf); break;
+    case DenoiserKind::Svgf:
+      svgf_ = std::make_unique<Svgf>(context, scene, settings.svgf);
+      break;
     case DenoiserKind::Reblur:
       reblur_ = std::make_unique<Reblur>(context, scene, settings.reblur);
       break;
@@ -35,8 +40,9 @@ void LibraryDenoiser::declare(graph::FrameGraph& graph, VkExtent2D resolution,
 }
 
 uint32_t LibraryDenoiser::pipelineCount() const {
-  return svgf_ ? Svgf::kPipelineCount
-               : reblur_ ? Reblur::kPipelineCount : HybridDenoiser::kPipelineCount;
+  return svgf_     ? Svgf::kPipelineCount
+         : reblur_ ? Reblur::kPipelineCount
+                   : HybridDenoiser::kPipelineCount;
 }
 
 }  // namespace bounce

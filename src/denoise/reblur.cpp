@@ -12,8 +12,8 @@ constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kRgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 void dispatch(VkCommandBuffer cmd, const gpu::ReblurConstants& c) {
-  vk::ComputePipeline::dispatchCovering(cmd, c.resolution.x, c.resolution.y,
-                                        gpu::REBLUR_GROUP_SIZE, gpu::REBLUR_GROUP_SIZE);
+  vk::ComputePipeline::dispatchCovering(cmd, c.resolution.x, c.resolution.y, gpu::REBLUR_GROUP_SIZE,
+                                        gpu::REBLUR_GROUP_SIZE);
 }
 
 bool finiteAtLeast(float v, float lo) {
@@ -46,9 +46,10 @@ void validate(const ReblurSettings& s) {
     fail("ReBLUR: stabilised history {} frames must be 1 to 1024", s.maxStabilizedFrames);
   if (!(s.depthTolerance > 0.0f) || !(s.normalTolerance >= -1.0f && s.normalTolerance <= 1.0f) ||
       !finiteAtLeast(s.normalPower, 0.0f))
-    fail("ReBLUR: depth tolerance {} must be positive, normal tolerance {} in [-1, 1], normal "
-         "power {} at least 0",
-         s.depthTolerance, s.normalTolerance, s.normalPower);
+    fail(
+        "ReBLUR: depth tolerance {} must be positive, normal tolerance {} in [-1, 1], normal "
+        "power {} at least 0",
+        s.depthTolerance, s.normalTolerance, s.normalPower);
 }
 
 Reblur::Reblur(vk::Context& context, const GpuScene& scene, const ReblurSettings& settings)
@@ -91,10 +92,11 @@ void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const Deno
                      graph::ImageHandle output) {
   graph::HistoryImage surface = graph.createHistoryImage("reblur.surface", {kRgba32f});
   graph::HistoryImage fast = graph.createHistoryImage("reblur.fast", {kRgba16f});
-  graph::HistoryImage history = graph.createHistoryImage("reblur.history", {kRgba16f});
+  graph::HistoryImage history = graph.createHistoryImage("reblur.accumulated", {kRgba16f});
+  const graph::ImageHandle accumulated = history.current;
   graph::HistoryImage stable = graph.createHistoryImage("reblur.stable", {kRgba16f});
   graph::ImageHandle preBlurred = graph.createImage("reblur.pre-blurred", {kRgba16f});
-  graph::ImageHandle accumulated = graph.createImage("reblur.accumulated", {kRgba16f});
+  graph::ImageHandle postBlurred = graph.createImage("reblur.post-blurred", {kRgba16f});
   graph::ImageHandle fixed = graph.createImage("reblur.fixed", {kRgba16f});
   graph::ImageHandle blurred = graph.createImage("reblur.blurred", {kRgba16f});
   const gpu::ReblurConstants c = constants(resolution, in);
@@ -149,7 +151,7 @@ void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const Deno
 
   // reblur-blur (set 0) and reblur-post-blur (set 1), one pipeline.
   const graph::ImageHandle blurIn[2] = {fixed, blurred};
-  const graph::ImageHandle blurOut[2] = {blurred, history.current};
+  const graph::ImageHandle blurOut[2] = {blurred, postBlurred};
   for (uint32_t i = 0; i < 2; ++i)
     graph.addPass(i == 0 ? "reblur-blur" : "reblur-post-blur", graph::QueueKind::Compute)
         .read(blurIn[i], Access::StorageRead, gpu::REBLUR_BLUR_BINDING_INPUT)
@@ -164,7 +166,7 @@ void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const Deno
         });
 
   graph::PassBuilder st = graph.addPass("reblur-stabilize", graph::QueueKind::Compute);
-  st.read(history.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_INPUT)
+  st.read(postBlurred, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_INPUT)
       .read(fast.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FAST)
       .read(surface.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_SURFACE)
       .read(in.motion, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_MOTION)
@@ -176,8 +178,7 @@ void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const Deno
     st.read(*in.albedo, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_ALBEDO);
   else
     st.readPlaceholder(in.noisy, gpu::REBLUR_STABILIZE_BINDING_ALBEDO);
-  st.record([this, c, valid, surface, stable](VkCommandBuffer cmd,
-                                              const graph::PassResources& r) {
+  st.record([this, c, valid, surface, stable](VkCommandBuffer cmd, const graph::PassResources& r) {
     gpu::ReblurConstants k = c;
     k.historyValid = valid && r.historyValid(surface) && r.historyValid(stable);
     k.frame = frame_++;

@@ -4,12 +4,13 @@
 //
 //   reblur-pre-blur     8 Poisson taps in a 30-pixel disk on the noisy signal (plane and normal
 //                       weights), writes reblur.surface
-//   reblur-temporal     reprojected slow (30 frames) and fast (6 frames) running means
+//   reblur-temporal     reprojected slow (30 frames) and fast (6 frames) running means, the
+//                       next frame's histories
 //   reblur-history-fix  rebuilds histories shorter than 3 frames from a sparse 5x5 kernel
 //                       (stride 14 px); clamps the slow history to the fast one's neighbourhood
 //                       (+-2 sigma) and shortens it where it moved (anti-lag)
 //   reblur-blur         8 Poisson taps, radius 30 / (1 + history length), at least 1
-//   reblur-post-blur    the same at twice the radius; next frame's slow history
+//   reblur-post-blur    the same at twice the radius
 //   reblur-stabilize    a 63-frame stabilised history clamped to the fast one's neighbourhood
 //                       (+-2 sigma, anti-lag); remodulates the albedo
 //

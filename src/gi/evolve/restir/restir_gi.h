@@ -89,7 +89,7 @@ class RestirGi final : public DiffuseGi {
   // The denoiser's pipelines exist only for the chosen one (issue 21 counts pipelines).
   std::optional<GiTemporalDenoise> temporalDenoise_;  // GiDenoiser::Evolve
   std::optional<GiSpatialDenoise> spatialDenoise_;    // GiDenoiser::Evolve and spatialDenoise
-  std::unique_ptr<LibraryDenoiser> libraryDenoiser_;             // GiDenoiser::Svgf, Reblur, Hybrid
+  std::unique_ptr<LibraryDenoiser> libraryDenoiser_;  // GiDenoiser::Svgf, Reblur, Hybrid
 };
 
 }  // namespace bounce
