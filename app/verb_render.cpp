@@ -56,7 +56,7 @@ struct RenderOptions {
   std::optional<int64_t> restirMaxSampleAge;
   std::optional<float> restirHistoryBrightening;
   bool noGiDenoise = false;
-  std::string denoiser;  // evolve|svgf|none; empty: the settings' (evolve)
+  std::string denoiser;  // evolve|svgf|reblur|hybrid|none; empty: the settings' (evolve)
   std::optional<int64_t> materialTextureSide;
   bool noOccluderVisibility = false;
   std::string preset;
@@ -259,6 +259,8 @@ void applyRestirOptions(const RenderOptions& o, HybridSettings& settings) {
   if (o.denoiser == "svgf") gi.denoiser = GiDenoiser::Svgf;
   if (o.denoiser == "none") gi.denoiser = GiDenoiser::None;
   if (o.denoiser == "evolve") gi.denoiser = GiDenoiser::Evolve;
+  if (o.denoiser == "reblur") gi.denoiser = GiDenoiser::Reblur;
+  if (o.denoiser == "hybrid") gi.denoiser = GiDenoiser::Hybrid;
   if (o.noOccluderVisibility) gi.occluderVisibility = false;
 }
 
@@ -547,8 +549,9 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
   cmd->add_flag("--no-gi-denoise", options->noGiDenoise, "Turn the GI denoisers off");
   cmd->add_option("--denoiser", options->denoiser,
                   "Denoiser of the diffuse GI: evolve (gi-temporal/spatial-denoise, the "
-                  "default), svgf (SVGF: docs/denoise.md) or none")
-      ->check(CLI::IsMember({"evolve", "svgf", "none"}));
+                  "default), svgf (SVGF), reblur (ReBLUR-style), hybrid (SVGF or ReBLUR per "
+                  "pixel; all three: docs/denoise.md) or none")
+      ->check(CLI::IsMember({"evolve", "svgf", "reblur", "hybrid", "none"}));
   cmd->add_flag("--no-occluder-visibility", options->noOccluderVisibility,
                 "Pixels beside an occluder reuse ReSTIR GI samples without a visibility test and "
                 "are blurred like the others (light leaks into gaps; for comparisons)");

@@ -230,6 +230,16 @@ TEST(Cli, OutOfRangeValuesAreRefusedNamingTheFlag) {
   }
 }
 
+// --denoiser names one of the denoisers of docs/denoise.md; another name is refused with the list.
+TEST(Cli, UnknownDenoiserIsRefusedWithTheList) {
+  test::CommandResult r = runCommand(bounceExe() + " render --res 8x8 --denoiser nlm", 30);
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("--denoiser: nlm not in {evolve,svgf,reblur,hybrid,none}"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(lineCount(r.output), 1u) << r.output;
+}
+
 // --exposure is in stops, as in `reference` and `compare`: the radiance is scaled by 2^STOPS
 // before the tone curve, so -30 stops leaves about a billionth of the light (black), -1 less
 // than 0; a linear factor could not be negative at all.

@@ -10,6 +10,8 @@
 //   bounce/image.h             Image (float RGBA), writeImage (.png, .exr)
 //   bounce/external_device.h   ExternalDevice: bring your own VkInstance, VkDevice and queue
 //   bounce/host_gbuffer.h      HostGBuffer, GiImage: bring your own G-buffer (Renderer::renderGi)
+//   bounce/denoiser.h          Denoiser: SVGF, ReBLUR or the hybrid alone (noisy signal,
+//                              depth, normal, motion in; denoised signal out)
 //   bounce/error.h             Error: what every function throws for bad input or devices
 //   bounce/math.h              Vec3, Mat4
 //
@@ -23,6 +25,7 @@
 #pragma once
 #include "bounce/camera.h"
 #include "bounce/config.h"
+#include "bounce/denoiser.h"
 #include "bounce/error.h"
 #include "bounce/external_device.h"
 #include "bounce/frame_statistics.h"

@@ -68,8 +68,8 @@ gpu::SvgfConstants Svgf::constants(VkExtent2D resolution, const SvgfInputs& in) 
   return c;
 }
 
-void Svgf::declare(graph::FrameGraph& graph, VkExtent2D resolution, const SvgfInputs& in,
-                   graph::ImageHandle output) {
+graph::ImageHandle Svgf::declare(graph::FrameGraph& graph, VkExtent2D resolution,
+                                 const SvgfInputs& in, graph::ImageHandle output) {
   graph::HistoryImage surface = graph.createHistoryImage("svgf.surface", {kRgba32f});
   graph::HistoryImage moments = graph.createHistoryImage("svgf.moments", {kRgba32f});
   graph::HistoryImage illumination = graph.createHistoryImage("svgf.illumination", {kRgba16f});
@@ -125,6 +125,7 @@ void Svgf::declare(graph::FrameGraph& graph, VkExtent2D resolution, const SvgfIn
     declareAtrous(graph, c, input, surface.current, albedo, i, target);
     input = target;
   }
+  return moments.current;
 }
 
 void Svgf::declareAtrous(graph::FrameGraph& graph, const gpu::SvgfConstants& constants,

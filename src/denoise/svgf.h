@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "denoise/denoise_inputs.h"
 #include "graph/frame_graph.h"
 #include "passes/image_pass.h"
 #include "shared/svgf_io.h"
@@ -66,20 +67,8 @@ struct SvgfSettings {
 // Throws bounce::Error naming the field when a setting is out of its documented range.
 void validate(const SvgfSettings& settings);
 
-// What SVGF filters and the surface it lies on, all at render resolution (shared/svgf_io.h has
-// the formats and encodings).
-struct SvgfInputs {
-  graph::ImageHandle noisy;    // RGBA16F: the signal (rgb)
-  graph::ImageHandle depth;    // R32F: linear view depth, <= 0 or non-finite: no surface
-  graph::ImageHandle normals;  // RGBA16F: world normal xyz, or octahedral xy (below)
-  graph::ImageHandle motion;   // RG16F: pixels moved since last frame
-  // RGBA16F: where given, the signal is demodulated by it and remodulated at the end (so the
-  // filter blurs irradiance, not texture); absent when the signal is already demodulated (as
-  // Bounce's gi.diffuse is: radiance per unit albedo).
-  std::optional<graph::ImageHandle> albedo;
-  bool octahedralNormals = false;  // Bounce's gbuffer.normals: xy octahedral shading normal
-  bool dropHistory = false;        // this frame starts afresh (a cut)
-};
+// What SVGF filters (denoise/denoise_inputs.h; shared/svgf_io.h has the formats).
+using SvgfInputs = DenoiseInputs;
 
 class Svgf {
  public:
@@ -89,8 +78,10 @@ class Svgf {
   Svgf(vk::Context& context, const GpuScene& scene, const SvgfSettings& settings = {});
   // Declares SVGF's passes on `graph`, ending in `output` (RGBA16F: rgb the denoised signal,
   // a its remaining luminance variance). `resolution`: the graph's render resolution.
-  void declare(graph::FrameGraph& graph, VkExtent2D resolution, const SvgfInputs& inputs,
-               graph::ImageHandle output);
+  // Returns svgf.moments (current; RGBA32F: mu1, mu2, history length), which the hybrid
+  // denoiser reads.
+  graph::ImageHandle declare(graph::FrameGraph& graph, VkExtent2D resolution,
+                             const SvgfInputs& inputs, graph::ImageHandle output);
   // One à-trous iteration alone (pass svgf-atrous-<iteration>), for tests against the CPU
   // reference (denoise/svgf_reference.h): `input` RGBA16F colour + variance, `surface` RGBA32F
   // normal + depth (svgf.surface's format); no albedo.

@@ -70,8 +70,10 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
   if (settings_.secondVertex == RestirGiSecondVertex::Cache)
     cache_ = std::make_unique<ClipmapCache>(context, gpuScene, lights_, cache);
   validate(settings_);
-  if (settings_.denoiser == GiDenoiser::Svgf)
-    svgf_ = std::make_unique<Svgf>(context, gpuScene, settings_.svgf);
+  if (auto kind = libraryDenoiser(settings_.denoiser))
+    libraryDenoiser_ = std::make_unique<LibraryDenoiser>(
+        context, gpuScene, *kind,
+        LibraryDenoiserSettings{settings_.svgf, settings_.reblur, settings_.hybrid});
   if (evolveDenoise()) temporalDenoise_.emplace(context, gpuScene);
   if (evolveDenoise() && settings_.spatialDenoise) spatialDenoise_.emplace(context, gpuScene);
   settleFramesLeft_ = settings_.settleFrames;  // the first frames: the cache starts empty
@@ -182,17 +184,17 @@ DiffuseGiOutput RestirGi::declare(graph::FrameGraph& graph, const GiInputs& in) 
   Candidates candidates = candidates_.declare(graph, f, history, cache_.get());
   Reservoirs temporal = temporal_.declare(graph, f, candidates, history, occlusionValidity);
   Reservoirs reservoirs = spatial_.declare(graph, f, temporal, occlusionValidity);
-  const bool denoised = evolveDenoise() || svgf_;
+  const bool denoised = evolveDenoise() || libraryDenoiser_;
   graph::ImageHandle target =
       denoised ? graph.createImage("gi.resolved", {VK_FORMAT_R16G16B16A16_SFLOAT}) : output;
   ResolvedGi resolved = resolve_.declare(graph, f, reservoirs, target);
-  if (svgf_) {
+  if (libraryDenoiser_) {
     // gi.resolved is radiance per unit albedo already (gi/diffuse_gi.h): no demodulation.
     const GBuffer& g = in.gbuffer;
     SvgfInputs s{resolved.diffuse, g.depth.current, g.normals, g.velocity};
     s.octahedralNormals = true;
     s.dropHistory = f.lightCutPending;
-    svgf_->declare(graph, in.frame.resolution, s, output);
+    libraryDenoiser_->declare(graph, in.frame.resolution, s, output);
   } else if (evolveDenoise()) {
     declareDenoise(graph, f, candidates, resolved, occlusionValidity, output);
   }

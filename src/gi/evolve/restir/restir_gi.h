@@ -10,8 +10,8 @@
 //   resolve      gi-trace-resolve-visibility, gi-restir-resolve (resolve.h)
 //   denoise      GiDenoiser::Evolve: gi-temporal-denoise (when enabled), gi-spatial-denoise
 //                (desktop preset) (denoise/gi_temporal_denoise.h, denoise/gi_spatial_denoise.h);
-//                GiDenoiser::Svgf: svgf-temporal, svgf-variance, svgf-atrous-0..4
-//                (denoise/svgf.h)
+//                GiDenoiser::Svgf, Reblur, Hybrid: the library denoiser's passes
+//                (denoise/library_denoiser.h)
 //
 // Resources (frame graph): gi.rays, gi.hit, gi.hit-normal, gi.hit-radiance, gi.nee-ray,
 // gi.nee-radiance, gi.nee-visibility, gi.candidate.{sample,radiance,origin,normals},
@@ -28,7 +28,7 @@
 
 #include "denoise/gi_spatial_denoise.h"
 #include "denoise/gi_temporal_denoise.h"
-#include "denoise/svgf.h"
+#include "denoise/library_denoiser.h"
 #include "gi/diffuse_gi.h"
 #include "gi/evolve/cache/clipmap_cache.h"
 #include "gi/evolve/restir/candidates.h"
@@ -89,7 +89,7 @@ class RestirGi final : public DiffuseGi {
   // The denoiser's pipelines exist only for the chosen one (issue 21 counts pipelines).
   std::optional<GiTemporalDenoise> temporalDenoise_;  // GiDenoiser::Evolve
   std::optional<GiSpatialDenoise> spatialDenoise_;    // GiDenoiser::Evolve and spatialDenoise
-  std::unique_ptr<Svgf> svgf_;                        // GiDenoiser::Svgf
+  std::unique_ptr<LibraryDenoiser> libraryDenoiser_;  // GiDenoiser::Svgf, Reblur, Hybrid
 };
 
 }  // namespace bounce

@@ -3,8 +3,9 @@
 // gpu::RestirGiConstants (shaders/shared/restir_gi_io.h).
 #pragma once
 #include <cstdint>
+#include <optional>
 
-#include "denoise/svgf.h"
+#include "denoise/library_denoiser.h"
 
 namespace bounce {
 
@@ -14,7 +15,17 @@ enum class GiDenoiser : uint32_t {
                // by temporalDenoise and spatialDenoise below
   Svgf = 1,    // SVGF (denoise/svgf.h) with the `svgf` settings below, on the demodulated signal
   None = 2,    // the resolved signal as it is
+  Reblur = 3,  // ReBLUR-style (denoise/reblur.h) with the `reblur` settings below
+  Hybrid = 4,  // SVGF or ReBLUR per pixel (denoise/hybrid_denoiser.h), the `hybrid` settings
 };
+
+// The library denoiser a GiDenoiser names; none for Evolve's own pair and None.
+inline std::optional<DenoiserKind> libraryDenoiser(GiDenoiser d) {
+  if (d == GiDenoiser::Svgf) return DenoiserKind::Svgf;
+  if (d == GiDenoiser::Reblur) return DenoiserKind::Reblur;
+  if (d == GiDenoiser::Hybrid) return DenoiserKind::Hybrid;
+  return std::nullopt;
+}
 
 // What the radiance stored with a 2nd vertex x2 includes besides its emission.
 enum class RestirGiSecondVertex : uint32_t {
@@ -152,6 +163,8 @@ struct RestirGiSettings {
   // With GiDenoiser::Svgf: Falcor's parameters, which measured better than the paper's on the
   // Cornell box (docs/denoise.md).
   SvgfSettings svgf = SvgfSettings::falcor();
+  ReblurSettings reblur;         // with GiDenoiser::Reblur (NRD's defaults)
+  HybridDenoiseSettings hybrid;  // with GiDenoiser::Hybrid
   bool temporalDenoise = true;
   float denoiseMaxHistory = 16.0f;
   float denoiseClipSigma = 2.0f;

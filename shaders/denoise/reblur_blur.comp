@@ -1,0 +1,47 @@
+// reblur-blur and reblur-post-blur (NRD REBLUR "blur" and "post-blur";
+// research/gi10_lux_denoisers.md §3.2 steps 6 and 7): 8 Poisson taps with the geometry weights of
+// reblur_common.glsl (plane, normal; no luminance weight) in a disk whose radius shrinks as the
+// history grows, blurRadius / (1 + n) pixels for a history of n frames (NRD's convergence
+// 1 / (1 + k n), k = 1) but at least minBlurRadius: a young history is blurred wide, a converged
+// one barely. As reblur-post-blur (REBLUR_FLAG_POST_BLUR) the radius is twice that (NRD) and the
+// taps are rotated differently; its output goes to reblur-stabilize. The history length
+// (alpha) passes through. Pixels without a surface pass through.
+#version 460
+#include "denoise/reblur_common.glsl"
+
+layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
+
+layout(set = 1, binding = REBLUR_BLUR_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
+layout(set = 1, binding = REBLUR_BLUR_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
+layout(set = 1, binding = REBLUR_BLUR_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+
+float surfaceDepth(ivec2 q) { return imageLoad(surfaces, q).w; }
+DEFINE_REBLUR_DEPTH_SLOPE(surfaceDepth)
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (!inImage(pixel)) return;
+  vec4 centre = imageLoad(inputImage, pixel);
+  vec4 s = imageLoad(surfaces, pixel);
+  if (!hasSurface(s.w)) {
+    imageStore(outputImage, pixel, centre);
+    return;
+  }
+  bool post = (pc.flags & REBLUR_FLAG_POST_BLUR) != 0u;
+  float radius = max(pc.blurRadius / (1.0 + max(centre.a, 0.0)), pc.minBlurRadius) * (post ? 2.0 : 1.0);
+  float slope = depthSlope(pixel, s.w);
+  mat2 rotation = tapRotation(pixel, post ? 17u : 5u);
+  vec3 sum = centre.rgb;
+  float weightSum = 1.0;
+  for (uint i = 0u; i < REBLUR_POISSON_TAPS; ++i) {
+    vec2 offset = radius * (rotation * kPoisson[i]);
+    ivec2 q = pixel + ivec2(round(offset));
+    if (!inImage(q) || q == pixel) continue;
+    vec4 sq = imageLoad(surfaces, q);
+    float w = geometryWeight(s.w, slope, length(offset), s.xyz, sq.w, sq.xyz);
+    if (w <= 0.0) continue;
+    sum += w * imageLoad(inputImage, q).rgb;
+    weightSum += w;
+  }
+  imageStore(outputImage, pixel, vec4(sum / weightSum, centre.a));
+}

@@ -1,0 +1,67 @@
+// reblur-history-fix (NRD REBLUR "history fix" and fast-history clamping;
+// research/gi10_lux_denoisers.md §3.2 steps 5 and 8):
+//   - A history shorter than historyFixFrames (NRD 3) is rebuilt from a sparse 5x5 kernel of
+//     its neighbours on the same surface, stride historyFixStride pixels (NRD 14) for a history
+//     of 1 frame, shrinking linearly to 0 at historyFixFrames; neighbours with a longer history
+//     weigh more (weight 1 + their length), so a disoccluded pixel borrows converged light.
+//   - Anti-lag: the slow history is clamped to the fast history's 3x3 neighbourhood, mean +-
+//     sigmaScale (NRD 2) standard deviations; where it had to move, its length is cut by
+//     1 + antilagSensitivity x (the distance moved in those standard deviations), so a lighting
+//     change is followed at the fast history's pace rather than the slow one's.
+// The result (rgb, a the history length) goes to reblur-blur.
+#version 460
+#include "denoise/reblur_common.glsl"
+
+layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
+
+layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
+layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_FAST, rgba16f) uniform readonly image2D fastImage;
+layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
+layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+
+float surfaceDepth(ivec2 q) { return imageLoad(surfaces, q).w; }
+DEFINE_REBLUR_DEPTH_SLOPE(surfaceDepth)
+DEFINE_REBLUR_NEIGHBOURHOOD(fastImage, surfaces)
+
+vec3 fixHistory(ivec2 pixel, vec4 centre, float z, float slope, vec3 n) {
+  float stride = pc.historyFixStride * (1.0 - (centre.a - 1.0) / pc.historyFixFrames);
+  if (stride < 1.0) return centre.rgb;
+  vec3 sum = centre.rgb * (1.0 + centre.a);
+  float weightSum = 1.0 + centre.a;
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx) {
+      if (dx == 0 && dy == 0) continue;
+      vec2 offset = stride * vec2(dx, dy);
+      ivec2 q = pixel + ivec2(round(offset));
+      if (!inImage(q)) continue;
+      vec4 sq = imageLoad(surfaces, q);
+      float w = geometryWeight(z, slope, length(offset), n, sq.w, sq.xyz);
+      if (w <= 0.0) continue;
+      vec4 c = imageLoad(inputImage, q);
+      w *= 1.0 + c.a;
+      sum += w * c.rgb;
+      weightSum += w;
+    }
+  return sum / weightSum;
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (!inImage(pixel)) return;
+  vec4 centre = imageLoad(inputImage, pixel);
+  vec4 s = imageLoad(surfaces, pixel);
+  if (!hasSurface(s.w)) {
+    imageStore(outputImage, pixel, centre);
+    return;
+  }
+  float slope = depthSlope(pixel, s.w);
+  float frames = centre.a;
+  vec3 colour = frames < pc.historyFixFrames ? fixHistory(pixel, centre, s.w, slope, s.xyz) : centre.rgb;
+  vec3 mean, sigma;
+  neighbourhood(pixel, s.w, slope, s.xyz, mean, sigma);
+  vec3 clamped = clamp(colour, mean - pc.sigmaScale * sigma, mean + pc.sigmaScale * sigma);
+  // How far the clamp moved the history, in the neighbourhood's standard deviations of luminance.
+  float moved = abs(reblurLuminance(colour - clamped)) / max(reblurLuminance(sigma), 1e-6);
+  frames = max(1.0, frames / (1.0 + pc.antilagSensitivity * moved));
+  imageStore(outputImage, pixel, vec4(clamped, frames));
+}

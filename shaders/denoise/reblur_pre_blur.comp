@@ -1,0 +1,68 @@
+// reblur-pre-blur (NRD REBLUR "pre-pass"; research/gi10_lux_denoisers.md §3.2 step 3): a spatial
+// reuse of the noisy signal before it enters the temporal history, 8 Poisson taps in a disk of
+// blurRadius pixels (NRD: 30) with the geometry weights of reblur_common.glsl (plane, normal; no
+// luminance weight, so the mean is kept). It also writes reblur.surface (normal, view depth),
+// which every later pass reads, and divides the signal by the albedo (REBLUR_FLAG_ALBEDO).
+// Pixels without a surface pass the signal through.
+#version 460
+#include "denoise/reblur_common.glsl"
+
+layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
+
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_NOISY, rgba16f) uniform readonly image2D noisyImage;
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_DEPTH, r32f) uniform readonly image2D depths;
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_ALBEDO, rgba16f) uniform readonly image2D albedos;
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_SURFACE, rgba32f) uniform writeonly image2D surfaceOut;
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+
+float depthAt(ivec2 q) {
+  float z = imageLoad(depths, q).x;
+  return hasSurface(z) ? z : 0.0;
+}
+DEFINE_REBLUR_DEPTH_SLOPE(depthAt)
+
+// Octahedral decoding (Cigolle et al. 2014), as Bounce's gbuffer.normals are written.
+vec3 decodeOctahedralNormal(vec2 e) {
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+  return normalize(n);
+}
+
+vec3 normalAt(ivec2 q) {
+  vec4 n = imageLoad(normals, q);
+  return (pc.flags & REBLUR_FLAG_OCTAHEDRAL_NORMALS) != 0u ? decodeOctahedralNormal(n.xy) : normalize(n.xyz);
+}
+
+vec3 signalAt(ivec2 q) {
+  vec3 c = finiteOrZero(imageLoad(noisyImage, q).rgb);
+  if ((pc.flags & REBLUR_FLAG_ALBEDO) != 0u) c /= safeAlbedo(imageLoad(albedos, q).rgb);
+  return c;
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (!inImage(pixel)) return;
+  float z = depthAt(pixel);
+  if (!hasSurface(z)) {
+    imageStore(surfaceOut, pixel, vec4(0.0));
+    imageStore(outputImage, pixel, vec4(finiteOrZero(imageLoad(noisyImage, pixel).rgb), 0.0));
+    return;
+  }
+  vec3 n = normalAt(pixel);
+  imageStore(surfaceOut, pixel, vec4(n, z));
+  float slope = depthSlope(pixel, z);
+  mat2 rotation = tapRotation(pixel, 0u);
+  vec3 sum = signalAt(pixel);
+  float weightSum = 1.0;
+  for (uint i = 0u; i < REBLUR_POISSON_TAPS; ++i) {
+    vec2 offset = pc.blurRadius * (rotation * kPoisson[i]);
+    ivec2 q = pixel + ivec2(round(offset));
+    if (!inImage(q) || q == pixel) continue;
+    float w = geometryWeight(z, slope, length(offset), n, depthAt(q), normalAt(q));
+    if (w <= 0.0) continue;
+    sum += w * signalAt(q);
+    weightSum += w;
+  }
+  imageStore(outputImage, pixel, vec4(sum / weightSum, 0.0));
+}

@@ -1,0 +1,125 @@
+// reblur-pre-blur, reblur-temporal, reblur-history-fix, reblur-blur, reblur-post-blur,
+// reblur-stabilize (src/denoise/reblur.h; docs/denoise.md) and hybrid-blend
+// (src/denoise/hybrid_denoiser.h): push constants and image bindings (set 1) of the ReBLUR-style
+// diffuse denoiser (NRD REBLUR_DIFFUSE as the pattern; research/gi10_lux_denoisers.md §2.3 (e),
+// §3.2) and of the hybrid that blends it with SVGF (§2.3 (f)). Every pass runs at the signal's
+// resolution, one thread per pixel.
+//
+// Images (the caller's): noisy, depth, normals, motion, albedo as SVGF's (shared/svgf_io.h).
+// Images (ReBLUR's own):
+//   reblur.surface      RGBA32F  (history) xyz unit normal, w view depth (0: no surface)
+//   reblur.pre-blurred  RGBA16F  reblur-pre-blur's output (rgb; demodulated)
+//   reblur.fast         RGBA16F  (history) rgb the fast history (few frames), a its length
+//   reblur.accumulated  RGBA16F  (history) reblur-temporal's slow history: rgb, a its length in
+//                                frames; next frame's slow history (unblurred: docs/denoise.md)
+//   reblur.fixed        RGBA16F  reblur-history-fix's output: rgb, a the (anti-lagged) length
+//   reblur.blurred      RGBA16F  reblur-blur's output: rgb, a the length
+//   reblur.post-blurred RGBA16F  reblur-post-blur's output: rgb, a the length
+//   reblur.stable       RGBA16F  (history) reblur-stabilize's output: rgb, a its frame count
+#ifndef BOUNCE_SHARED_REBLUR_IO_H
+#define BOUNCE_SHARED_REBLUR_IO_H
+#include "shared/compat.h"
+
+BOUNCE_BEGIN_SHARED
+
+// Push constants of every ReBLUR shader; ReblurSettings (src/denoise/reblur.h) documents each.
+struct ReblurConstants {
+  uvec2 resolution;
+  uint flags;         // REBLUR_FLAG_*
+  uint historyValid;  // 0: the first frame or after a reset: no history is read
+  uint frame;         // frame index: rotates the Poisson taps
+  float blurRadius;   // reblur-pre-blur: its radius; reblur-blur / -post-blur: the radius at
+                      // history length 0 (it shrinks with the history)
+  float minBlurRadius;
+  float depthTolerance;   // disocclusion and the blurs' plane test: relative view-depth difference
+  float normalTolerance;  // disocclusion: cosine between normals at least this
+  float normalPower;      // the blurs' normal weight: max(0, n.n_q)^normalPower
+  float maxAccumulatedFrames;
+  float maxFastAccumulatedFrames;
+  float historyFixFrames;    // below this history length reblur-history-fix rebuilds the pixel
+  float historyFixStride;    // pixels between its 5x5 taps at history 0
+  float sigmaScale;          // clamps: mean +- sigmaScale standard deviations of the fast history
+  float antilagSensitivity;  // how fast a clamped history is shortened (0: no anti-lag)
+  float maxStabilizedFrames;
+  float pad0;
+};
+BOUNCE_CHECK_SIZE(ReblurConstants, 72);
+
+BOUNCE_CONST uint REBLUR_GROUP_SIZE = 8u;
+BOUNCE_CONST uint REBLUR_FLAG_OCTAHEDRAL_NORMALS = 1u;
+BOUNCE_CONST uint REBLUR_FLAG_ALBEDO = 2u;
+BOUNCE_CONST uint REBLUR_FLAG_POST_BLUR = 4u;  // reblur-blur's shader run as reblur-post-blur
+
+// reblur-pre-blur
+BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_NOISY = 0u;
+BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_DEPTH = 1u;
+BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_NORMALS = 2u;
+BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_ALBEDO = 3u;
+BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_SURFACE = 4u;  // reblur.surface (current), written
+BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_OUTPUT = 5u;   // reblur.pre-blurred
+BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_COUNT = 6u;
+
+// reblur-temporal
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_INPUT = 0u;  // reblur.pre-blurred
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_SURFACE = 1u;
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_MOTION = 2u;
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_PREVIOUS_SURFACE = 3u;
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY = 4u;  // reblur.accumulated (previous)
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST = 5u;
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_FAST = 6u;         // reblur.fast (current)
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_ACCUMULATED = 7u;  // reblur.accumulated (current)
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_COUNT = 8u;
+
+// reblur-history-fix
+BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_INPUT = 0u;  // reblur.accumulated
+BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_FAST = 1u;
+BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_SURFACE = 2u;
+BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_OUTPUT = 3u;  // reblur.fixed
+BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_COUNT = 4u;
+
+// reblur-blur and reblur-post-blur (one shader)
+BOUNCE_CONST uint REBLUR_BLUR_BINDING_INPUT = 0u;
+BOUNCE_CONST uint REBLUR_BLUR_BINDING_SURFACE = 1u;
+BOUNCE_CONST uint REBLUR_BLUR_BINDING_OUTPUT = 2u;
+BOUNCE_CONST uint REBLUR_BLUR_BINDING_COUNT = 3u;
+
+// reblur-stabilize
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_INPUT = 0u;  // reblur.post-blurred
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_FAST = 1u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_SURFACE = 2u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_MOTION = 3u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_PREVIOUS_SURFACE = 4u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE = 5u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_ALBEDO = 6u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_STABLE = 7u;  // reblur.stable (current)
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_OUTPUT = 8u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_COUNT = 9u;
+
+// The 8 Poisson-disk taps of the blurs (unit disk; NRD's pre-pass, blur and post-blur each take
+// 8), rotated per pixel and frame.
+BOUNCE_CONST uint REBLUR_POISSON_TAPS = 8u;
+
+// hybrid-blend (src/denoise/hybrid_denoiser.h)
+struct HybridBlendConstants {
+  uvec2 resolution;
+  float historySpatial;    // history length (frames) at or below which SVGF alone is used
+  float historyTemporal;   // at or above which ReBLUR may be used alone
+  float motionTemporal;    // |motion| (pixels) at or below which ReBLUR may be used alone
+  float motionSpatial;     // at or above which SVGF alone is used
+  float varianceTemporal;  // relative luminance variance at or below which ReBLUR may be alone
+  float varianceSpatial;   // at or above which SVGF alone is used
+  uint bandRadius;         // the spatial weight is averaged over (2 r + 1)^2 pixels
+  uint debugWeight;        // 1: output the spatial weight instead of the blend
+};
+BOUNCE_CHECK_SIZE(HybridBlendConstants, 40);
+
+BOUNCE_CONST uint HYBRID_BLEND_BINDING_SVGF = 0u;     // rgb SVGF's output
+BOUNCE_CONST uint HYBRID_BLEND_BINDING_REBLUR = 1u;   // rgb ReBLUR's output, a its history length
+BOUNCE_CONST uint HYBRID_BLEND_BINDING_MOMENTS = 2u;  // svgf.moments: x mu1, y mu2
+BOUNCE_CONST uint HYBRID_BLEND_BINDING_MOTION = 3u;
+BOUNCE_CONST uint HYBRID_BLEND_BINDING_OUTPUT = 4u;
+BOUNCE_CONST uint HYBRID_BLEND_BINDING_COUNT = 5u;
+
+BOUNCE_END_SHARED
+
+#endif

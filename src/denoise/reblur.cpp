@@ -1,0 +1,190 @@
+#include "denoise/reblur.h"
+
+#include "core/error.h"
+
+namespace bounce {
+
+using graph::Access;
+
+namespace {
+
+constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kRgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
+
+void dispatch(VkCommandBuffer cmd, const gpu::ReblurConstants& c) {
+  vk::ComputePipeline::dispatchCovering(cmd, c.resolution.x, c.resolution.y, gpu::REBLUR_GROUP_SIZE,
+                                        gpu::REBLUR_GROUP_SIZE);
+}
+
+bool finiteAtLeast(float v, float lo) {
+  return v >= lo && v < 1e30f;
+}
+
+}  // namespace
+
+void validate(const ReblurSettings& s) {
+  if (!finiteAtLeast(s.preBlurRadius, 0.0f) || s.preBlurRadius > 256.0f)
+    fail("ReBLUR: pre-blur radius {} must be 0 to 256 pixels", s.preBlurRadius);
+  if (!finiteAtLeast(s.maxBlurRadius, 0.0f) || s.maxBlurRadius > 256.0f ||
+      !finiteAtLeast(s.minBlurRadius, 0.0f) || s.minBlurRadius > s.maxBlurRadius)
+    fail("ReBLUR: blur radius {} (minimum {}) must be 0 to 256 pixels, minimum at most it",
+         s.maxBlurRadius, s.minBlurRadius);
+  if (!finiteAtLeast(s.maxAccumulatedFrames, 1.0f) || s.maxAccumulatedFrames > 1024.0f ||
+      !finiteAtLeast(s.maxFastAccumulatedFrames, 1.0f) ||
+      s.maxFastAccumulatedFrames > s.maxAccumulatedFrames)
+    fail("ReBLUR: history lengths slow {} and fast {} must be 1 to 1024 frames, fast <= slow",
+         s.maxAccumulatedFrames, s.maxFastAccumulatedFrames);
+  if (!finiteAtLeast(s.historyFixFrames, 0.0f) || s.historyFixFrames > 64.0f ||
+      !finiteAtLeast(s.historyFixStride, 0.0f) || s.historyFixStride > 64.0f)
+    fail("ReBLUR: history fix frames {} and stride {} must be 0 to 64", s.historyFixFrames,
+         s.historyFixStride);
+  if (!(s.sigmaScale > 0.0f) || !finiteAtLeast(s.sigmaScale, 0.0f))
+    fail("ReBLUR: sigma scale {} must be positive", s.sigmaScale);
+  if (!finiteAtLeast(s.antilagSensitivity, 0.0f))
+    fail("ReBLUR: anti-lag sensitivity {} must be 0 or more", s.antilagSensitivity);
+  if (!finiteAtLeast(s.maxStabilizedFrames, 1.0f) || s.maxStabilizedFrames > 1024.0f)
+    fail("ReBLUR: stabilised history {} frames must be 1 to 1024", s.maxStabilizedFrames);
+  if (!(s.depthTolerance > 0.0f) || !(s.normalTolerance >= -1.0f && s.normalTolerance <= 1.0f) ||
+      !finiteAtLeast(s.normalPower, 0.0f))
+    fail(
+        "ReBLUR: depth tolerance {} must be positive, normal tolerance {} in [-1, 1], normal "
+        "power {} at least 0",
+        s.depthTolerance, s.normalTolerance, s.normalPower);
+}
+
+Reblur::Reblur(vk::Context& context, const GpuScene& scene, const ReblurSettings& settings)
+    : settings_(settings),
+      preBlur_(context, scene, "denoise/reblur_pre_blur", gpu::REBLUR_PRE_BLUR_BINDING_COUNT,
+               sizeof(gpu::ReblurConstants)),
+      temporal_(context, scene, "denoise/reblur_temporal", gpu::REBLUR_TEMPORAL_BINDING_COUNT,
+                sizeof(gpu::ReblurConstants)),
+      historyFix_(context, scene, "denoise/reblur_history_fix",
+                  gpu::REBLUR_HISTORY_FIX_BINDING_COUNT, sizeof(gpu::ReblurConstants)),
+      blur_(context, scene, "denoise/reblur_blur", gpu::REBLUR_BLUR_BINDING_COUNT,
+            sizeof(gpu::ReblurConstants), 2),
+      stabilize_(context, scene, "denoise/reblur_stabilize", gpu::REBLUR_STABILIZE_BINDING_COUNT,
+                 sizeof(gpu::ReblurConstants)) {
+  validate(settings_);
+}
+
+gpu::ReblurConstants Reblur::constants(VkExtent2D resolution, const DenoiseInputs& in) const {
+  const ReblurSettings& s = settings_;
+  gpu::ReblurConstants c{};
+  c.resolution = {resolution.width, resolution.height};
+  c.flags = (in.octahedralNormals ? gpu::REBLUR_FLAG_OCTAHEDRAL_NORMALS : 0u) |
+            (in.albedo ? gpu::REBLUR_FLAG_ALBEDO : 0u);
+  c.blurRadius = s.maxBlurRadius;
+  c.minBlurRadius = s.minBlurRadius;
+  c.depthTolerance = s.depthTolerance;
+  c.normalTolerance = s.normalTolerance;
+  c.normalPower = s.normalPower;
+  c.maxAccumulatedFrames = s.maxAccumulatedFrames;
+  c.maxFastAccumulatedFrames = s.maxFastAccumulatedFrames;
+  c.historyFixFrames = s.historyFixFrames;
+  c.historyFixStride = s.historyFixStride;
+  c.sigmaScale = s.sigmaScale;
+  c.antilagSensitivity = s.antilagSensitivity;
+  c.maxStabilizedFrames = s.maxStabilizedFrames;
+  return c;
+}
+
+void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const DenoiseInputs& in,
+                     graph::ImageHandle output) {
+  graph::HistoryImage surface = graph.createHistoryImage("reblur.surface", {kRgba32f});
+  graph::HistoryImage fast = graph.createHistoryImage("reblur.fast", {kRgba16f});
+  graph::HistoryImage history = graph.createHistoryImage("reblur.accumulated", {kRgba16f});
+  const graph::ImageHandle accumulated = history.current;
+  graph::HistoryImage stable = graph.createHistoryImage("reblur.stable", {kRgba16f});
+  graph::ImageHandle preBlurred = graph.createImage("reblur.pre-blurred", {kRgba16f});
+  graph::ImageHandle postBlurred = graph.createImage("reblur.post-blurred", {kRgba16f});
+  graph::ImageHandle fixed = graph.createImage("reblur.fixed", {kRgba16f});
+  graph::ImageHandle blurred = graph.createImage("reblur.blurred", {kRgba16f});
+  const gpu::ReblurConstants c = constants(resolution, in);
+  const bool valid = !in.dropHistory;
+
+  graph::PassBuilder pre = graph.addPass("reblur-pre-blur", graph::QueueKind::Compute);
+  pre.read(in.noisy, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_NOISY)
+      .read(in.depth, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_DEPTH)
+      .read(in.normals, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_NORMALS)
+      .write(surface.current, Access::StorageWrite, gpu::REBLUR_PRE_BLUR_BINDING_SURFACE)
+      .write(preBlurred, Access::StorageWrite, gpu::REBLUR_PRE_BLUR_BINDING_OUTPUT);
+  if (in.albedo)
+    pre.read(*in.albedo, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO);
+  else
+    pre.readPlaceholder(in.noisy, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO);
+  pre.record([this, c](VkCommandBuffer cmd, const graph::PassResources& r) {
+    gpu::ReblurConstants k = c;
+    k.blurRadius = settings_.preBlurRadius;
+    k.frame = frame_;
+    preBlur_.bind(cmd, k, r);
+    dispatch(cmd, k);
+  });
+
+  graph.addPass("reblur-temporal", graph::QueueKind::Compute)
+      .read(preBlurred, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_INPUT)
+      .read(surface.current, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_SURFACE)
+      .read(in.motion, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_MOTION)
+      .read(surface.previous, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_SURFACE)
+      .read(history.previous, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY)
+      .read(fast.previous, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST)
+      .write(fast.current, Access::StorageWrite, gpu::REBLUR_TEMPORAL_BINDING_FAST)
+      .write(accumulated, Access::StorageWrite, gpu::REBLUR_TEMPORAL_BINDING_ACCUMULATED)
+      .record([this, c, valid, surface, history, fast](VkCommandBuffer cmd,
+                                                       const graph::PassResources& r) {
+        gpu::ReblurConstants k = c;
+        k.historyValid =
+            valid && r.historyValid(surface) && r.historyValid(history) && r.historyValid(fast);
+        k.frame = frame_;
+        temporal_.bind(cmd, k, r);
+        dispatch(cmd, k);
+      });
+
+  graph.addPass("reblur-history-fix", graph::QueueKind::Compute)
+      .read(accumulated, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_INPUT)
+      .read(fast.current, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_FAST)
+      .read(surface.current, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_SURFACE)
+      .write(fixed, Access::StorageWrite, gpu::REBLUR_HISTORY_FIX_BINDING_OUTPUT)
+      .record([this, c](VkCommandBuffer cmd, const graph::PassResources& r) {
+        historyFix_.bind(cmd, c, r);
+        dispatch(cmd, c);
+      });
+
+  // reblur-blur (set 0) and reblur-post-blur (set 1), one pipeline.
+  const graph::ImageHandle blurIn[2] = {fixed, blurred};
+  const graph::ImageHandle blurOut[2] = {blurred, postBlurred};
+  for (uint32_t i = 0; i < 2; ++i)
+    graph.addPass(i == 0 ? "reblur-blur" : "reblur-post-blur", graph::QueueKind::Compute)
+        .read(blurIn[i], Access::StorageRead, gpu::REBLUR_BLUR_BINDING_INPUT)
+        .read(surface.current, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_SURFACE)
+        .write(blurOut[i], Access::StorageWrite, gpu::REBLUR_BLUR_BINDING_OUTPUT)
+        .record([this, c, i](VkCommandBuffer cmd, const graph::PassResources& r) {
+          gpu::ReblurConstants k = c;
+          k.flags |= i == 1 ? gpu::REBLUR_FLAG_POST_BLUR : 0u;
+          k.frame = frame_;
+          blur_.bind(cmd, k, r, i);
+          dispatch(cmd, k);
+        });
+
+  graph::PassBuilder st = graph.addPass("reblur-stabilize", graph::QueueKind::Compute);
+  st.read(postBlurred, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_INPUT)
+      .read(fast.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FAST)
+      .read(surface.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_SURFACE)
+      .read(in.motion, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_MOTION)
+      .read(surface.previous, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_PREVIOUS_SURFACE)
+      .read(stable.previous, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE)
+      .write(stable.current, Access::StorageWrite, gpu::REBLUR_STABILIZE_BINDING_STABLE)
+      .write(output, Access::StorageWrite, gpu::REBLUR_STABILIZE_BINDING_OUTPUT);
+  if (in.albedo)
+    st.read(*in.albedo, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_ALBEDO);
+  else
+    st.readPlaceholder(in.noisy, gpu::REBLUR_STABILIZE_BINDING_ALBEDO);
+  st.record([this, c, valid, surface, stable](VkCommandBuffer cmd, const graph::PassResources& r) {
+    gpu::ReblurConstants k = c;
+    k.historyValid = valid && r.historyValid(surface) && r.historyValid(stable);
+    k.frame = frame_++;
+    stabilize_.bind(cmd, k, r);
+    dispatch(cmd, k);
+  });
+}
+
+}  // namespace bounce
