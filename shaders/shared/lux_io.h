@@ -9,10 +9,10 @@ BOUNCE_BEGIN_SHARED
 
 // Push constants of every lux-* pass.
 struct LuxPassConstants {
-  DeviceAddress frame;  // FrameConstants (shared/hybrid_frame_io.h)
-  DeviceAddress gi;     // RestirGiConstants (its cache address is the probe field)
-  uint candidates;      // lux-candidates: cosine candidates per GI pixel (M)
-  float targetFloor;    // lux-candidates: p_hat's floor, a fraction of the probe's mean radiance
+  DeviceAddress frame;   // FrameConstants (shared/hybrid_frame_io.h)
+  DeviceAddress gi;      // RestirGiConstants (its cache address is the probe field)
+  uint candidates;       // lux-candidates: cosine candidates per GI pixel (M)
+  float targetFloor;     // lux-candidates: p_hat's floor, a fraction of the probe's mean radiance
   uint integralSamples;  // lux-probe-integral: directions per GI pixel
   uint integralUniform;  // lux-probe-integral: 1 uniform hemisphere, 0 cosine-distributed
 };

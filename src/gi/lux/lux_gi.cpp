@@ -18,8 +18,8 @@ constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
 void recordPass(ComputePass& pass, VkCommandBuffer cmd, const graph::PassResources& r,
                 const gpu::LuxPassConstants& constants, VkExtent2D extent) {
   pass.bind(cmd, constants, r);
-  vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height,
-                                        gpu::RESTIR_GI_GROUP_SIZE, gpu::RESTIR_GI_GROUP_SIZE);
+  vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, gpu::RESTIR_GI_GROUP_SIZE,
+                                        gpu::RESTIR_GI_GROUP_SIZE);
 }
 
 }  // namespace
@@ -67,6 +67,7 @@ LuxGi::LuxGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
       resolve_(context, gpuScene, reuse_) {
   validate(settings_);
   validate(reuse_);
+  settleFramesLeft_ = reuse_.settleFrames;  // the first frames: the probe field starts empty
   if (settings_.svgf) svgf_ = std::make_unique<Svgf>(context, gpuScene, reuse_.svgf);
   giResolution_ = graph::ImageSize::dividedRes(reuse_.divisor).resolve(resolution);
   const gpu::RestirGiConstants c = restirGiConstants(reuse_, giResolution_, lights_.address(),
@@ -78,11 +79,18 @@ LuxGi::LuxGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
 void LuxGi::afterFrame() {
   cache_.afterFrame();
   lightCutPending_ = false;
+  if (settleFramesLeft_ > 0) --settleFramesLeft_;
+}
+
+void LuxGi::resetHistory() {
+  cache_.resetHistory();
+  settleFramesLeft_ = reuse_.settleFrames;
 }
 
 void LuxGi::lightingCut() {
   cache_.beginFullRefresh();
   lightCutPending_ = true;
+  settleFramesLeft_ = reuse_.settleFrames;
 }
 
 gpu::LuxPassConstants LuxGi::passConstants(const RestirFrame& f) const {
@@ -102,6 +110,7 @@ RestirFrame LuxGi::beginFrame(const GiInputs& inputs) {
   f.giSize = graph::ImageSize::dividedRes(reuse_.divisor);
   f.giResolution = giResolution_;
   f.constants = constants_.address();
+  f.historyScale = settleFramesLeft_ > 0 ? reuse_.settleHistoryScale : 1.0f;
   f.lightCutPending = lightCutPending_;
   return f;
 }
@@ -131,7 +140,7 @@ DiffuseGiOutput LuxGi::declare(graph::FrameGraph& graph, const GiInputs& in) {
     const GBuffer& g = in.gbuffer;
     SvgfInputs s{resolved.diffuse, g.depth.current, g.normals, g.velocity};
     s.octahedralNormals = true;
-    s.dropHistory = f.lightCutPending;
+    s.dropHistory = f.lightCutPending || settleFramesLeft_ > 0;
     svgf_->declare(graph, in.frame.resolution, s, output);
   }
   return {output};

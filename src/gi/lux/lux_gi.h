@@ -44,7 +44,7 @@ class LuxGi final : public DiffuseGi {
   DiffuseGiOutput declare(graph::FrameGraph& graph, const GiInputs& inputs) override;
   void afterFrame() override;
   std::vector<GiStatistic> statistics() const override { return cache_.statistics(); }
-  void resetHistory() override { cache_.resetHistory(); }
+  void resetHistory() override;
   void lightingCut() override;
   const ClipmapCache* clipmapCache() const override { return &cache_; }
 
@@ -73,6 +73,10 @@ class LuxGi final : public DiffuseGi {
   VkExtent2D giResolution_{};
   vk::Buffer constants_;  // gpu::RestirGiConstants
   bool lightCutPending_ = false;
+  // Frames of settling still to come (RestirGiSettings::settleFrames, as RestirGi does): after a
+  // reset or a lighting cut the probe field is still filling, so the reservoirs keep a short
+  // history (settleHistoryScale) and SVGF none, or the dark samples of those frames linger.
+  uint32_t settleFramesLeft_ = 0;
   ComputePass candidates_, resolveCandidates_, integral_;
   RestirGiPass trace_, traceNee_;
   TemporalStage temporal_;
