@@ -119,6 +119,8 @@ bounce::GiMode toInternal(GiMode gi, const char* where) {
       return bounce::GiMode::Cache;
     case GiMode::None:
       return bounce::GiMode::None;
+    case GiMode::Lux:
+      return bounce::GiMode::Lux;
   }
   fail("{}: unknown GI mode {}", where, int(gi));
 }

@@ -10,11 +10,12 @@ std::optional<GiMode> giModeFromName(const std::string& name) {
   if (name == "none") return GiMode::None;
   if (name == "cache") return GiMode::Cache;
   if (name == "evolve") return GiMode::Evolve;
+  if (name == "lux") return GiMode::Lux;
   return std::nullopt;
 }
 
 const char* giModeNames() {
-  return "none, evolve, cache";
+  return "none, evolve, cache, lux";
 }
 
 void validate(const HybridSettings& s) {
@@ -34,7 +35,8 @@ void validate(const HybridSettings& s) {
     fail("sky ambient {}: must be >= 0", s.skyAmbientStrength);
   if (s.di.enabled()) validate(s.di);
   if (s.gi == GiMode::Evolve) validate(s.restirGi);
-  if (s.gi == GiMode::Cache ||
+  if (s.gi == GiMode::Lux) validate(s.lux);
+  if (s.gi == GiMode::Cache || s.gi == GiMode::Lux ||
       (s.gi == GiMode::Evolve && s.restirGi.secondVertex == RestirGiSecondVertex::Cache))
     validate(s.cache);
 }

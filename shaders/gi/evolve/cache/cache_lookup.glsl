@@ -100,14 +100,13 @@ uint clipmapAllocate(ClipmapCacheView cache, uint slot, ivec3 coord, uint cascad
   return cell + 1u;
 }
 
-// The general query: finds the cell for `position` (the chosen cascade, else the first coarser
-// one holding a cell with SH) and evaluates its SH for `normal`. touch: CLIPMAP_TOUCH_* to mark
-// the cells used (0: a pure read, as the debug view does); allocate: take a cell for a missing
-// one in the chosen cascade. Returns false when no cell with SH serves the point; `cascadeUsed`
-// is the cascade that did (CLIPMAP_CASCADES when none).
-bool clipmapQueryCell(ClipmapCacheView cache, vec3 position, vec3 normal, vec2 jitter,
-                      uint touch, bool allocate, out vec3 irradianceOverPi, out uint cascadeUsed) {
-  irradianceOverPi = vec3(0.0);
+// Finds the cell serving `position`: the chosen cascade's, else the first coarser one holding a
+// cell with SH. touch: CLIPMAP_TOUCH_* to mark the cells used (0: a pure read, as the debug view
+// does); allocate: take a cell for a missing one in the chosen cascade. Returns the cell + 1, or
+// 0 when no cell with SH serves the point; `cascadeUsed` is the cascade that did
+// (CLIPMAP_CASCADES when none). Lux's candidates read the cell's SH itself (gi/lux/).
+uint clipmapFindCell(ClipmapCacheView cache, vec3 position, vec3 normal, vec2 jitter, uint touch,
+                     bool allocate, out uint cascadeUsed) {
   cascadeUsed = CLIPMAP_CASCADES;
   uint first = clipmapCascadeFor(cache, position);
   for (uint cascade = first; cascade < CLIPMAP_CASCADES; ++cascade) {
@@ -123,16 +122,27 @@ bool clipmapQueryCell(ClipmapCacheView cache, vec3 position, vec3 normal, vec2 j
     if (touch != 0u && (cache.cells.v[cell].touched & touch) != touch)
       atomicOr(cache.cells.v[cell].touched, touch);
     if ((cache.cells.v[cell].flags & CLIPMAP_CELL_SH_VALID) == 0u) continue;
-    vec3 e = vec3(shIrradianceOverPi(cache.cells.v[cell].shR, normal),
-                  shIrradianceOverPi(cache.cells.v[cell].shG, normal),
-                  shIrradianceOverPi(cache.cells.v[cell].shB, normal)) *
-             clipmapIrradianceScale(cache.cells.v[cell].irradianceScale,
-                                    cache.cells.v[cell].normal, normal);
-    irradianceOverPi = clipmapFinite(e) ? e : vec3(0.0);
     cascadeUsed = cascade;
-    return true;
+    return value;
   }
-  return false;
+  return 0u;
+}
+
+// The general query: clipmapFindCell's cell, its SH evaluated for `normal`. Returns false when
+// no cell with SH serves the point.
+bool clipmapQueryCell(ClipmapCacheView cache, vec3 position, vec3 normal, vec2 jitter,
+                      uint touch, bool allocate, out vec3 irradianceOverPi, out uint cascadeUsed) {
+  irradianceOverPi = vec3(0.0);
+  uint value = clipmapFindCell(cache, position, normal, jitter, touch, allocate, cascadeUsed);
+  if (value == 0u) return false;
+  uint cell = value - 1u;
+  vec3 e = vec3(shIrradianceOverPi(cache.cells.v[cell].shR, normal),
+                shIrradianceOverPi(cache.cells.v[cell].shG, normal),
+                shIrradianceOverPi(cache.cells.v[cell].shB, normal)) *
+           clipmapIrradianceScale(cache.cells.v[cell].irradianceScale,
+                                  cache.cells.v[cell].normal, normal);
+  irradianceOverPi = clipmapFinite(e) ? e : vec3(0.0);
+  return true;
 }
 
 // clipmapQueryCell's irradiance / pi, zero where no cell serves the point.

@@ -83,11 +83,12 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
   constants_ = upload(context, std::span<const gpu::RestirGiConstants>(&c, 1), "gi.constants");
 }
 
-gpu::RestirGiConstants RestirGi::makeConstants() const {
-  const RestirGiSettings& s = settings_;
+gpu::RestirGiConstants restirGiConstants(const RestirGiSettings& s, VkExtent2D giResolution,
+                                         VkDeviceAddress lights, VkDeviceAddress cache,
+                                         VkDeviceAddress blueNoise, bool evolveDenoise) {
   gpu::RestirGiConstants c{};
-  c.lights = lights_.address();
-  c.giResolution = {giResolution_.width, giResolution_.height};
+  c.lights = lights;
+  c.giResolution = {giResolution.width, giResolution.height};
   c.divisor = s.divisor;
   c.secondVertex = s.secondVertex == RestirGiSecondVertex::Path ? gpu::RESTIR_GI_SECOND_VERTEX_PATH
                    : s.secondVertex == RestirGiSecondVertex::Cache
@@ -95,7 +96,7 @@ gpu::RestirGiConstants RestirGi::makeConstants() const {
                        : gpu::RESTIR_GI_SECOND_VERTEX_NEE;
   c.flags =
       (s.temporalReuse ? gpu::RESTIR_GI_FLAG_TEMPORAL : 0u) |
-      (evolveDenoise() ? gpu::RESTIR_GI_FLAG_DENOISE : 0u) |
+      (evolveDenoise ? gpu::RESTIR_GI_FLAG_DENOISE : 0u) |
       (s.resolveSamples > 1 ? gpu::RESTIR_GI_FLAG_RESOLVE_REUSE : 0u) |
       (s.spatialReuse ? gpu::RESTIR_GI_FLAG_SPATIAL : 0u) |
       (s.spatialReuse && s.spatialValidation ? gpu::RESTIR_GI_FLAG_SPATIAL_VALIDATION : 0u) |
@@ -110,7 +111,7 @@ gpu::RestirGiConstants RestirGi::makeConstants() const {
   c.denoiseClipSigma = s.denoiseClipSigma;
   c.resolveRadius = s.resolveRadius;
   c.resolveSamples = s.resolveSamples;
-  c.cache = cache_ ? cache_->constantsAddress() : 0;
+  c.cache = cache;
   for (int i = 0; i < 2; ++i) {
     c.spatialSamples[i] = s.spatialSamples[i];
     c.spatialRadius[i] = s.spatialRadius[i];
@@ -125,11 +126,17 @@ gpu::RestirGiConstants RestirGi::makeConstants() const {
   c.historyBrightening = s.historyBrightening;
   c.fireflyRatio = s.fireflyRatio;
   c.materialTextureSide = s.materialTextureSide;
-  c.blueNoise = s.blueNoise ? blueNoise_.address() : 0;
+  c.blueNoise = s.blueNoise ? blueNoise : 0;
   c.flags |= s.validationPeriod > 0 ? gpu::RESTIR_GI_FLAG_VALIDATION : 0u;
   c.flags |= s.occluderVisibility ? gpu::RESTIR_GI_FLAG_OCCLUDER_VISIBILITY : 0u;
   c.flags |= s.producerNormalisation ? gpu::RESTIR_GI_FLAG_PRODUCER_NORMALISATION : 0u;
   return c;
+}
+
+gpu::RestirGiConstants RestirGi::makeConstants() const {
+  return restirGiConstants(settings_, giResolution_, lights_.address(),
+                           cache_ ? cache_->constantsAddress() : 0, blueNoise_.address(),
+                           evolveDenoise());
 }
 
 bool RestirGi::evolveDenoise() const {

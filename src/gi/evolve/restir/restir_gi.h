@@ -43,6 +43,13 @@
 
 namespace bounce {
 
+// The chain's constants for `settings` (shared with Lux's chain, src/gi/lux/lux_gi.h, which reuses
+// the temporal, spatial and resolve stages): `cache` 0 without the clipmap cache, `blueNoise` the
+// direction map or 0, `evolveDenoise` whether gi-temporal-denoise runs.
+gpu::RestirGiConstants restirGiConstants(const RestirGiSettings& settings, VkExtent2D giResolution,
+                                         VkDeviceAddress lights, VkDeviceAddress cache,
+                                         VkDeviceAddress blueNoise, bool evolveDenoise);
+
 class RestirGi final : public DiffuseGi {
  public:
   // `cache`: the clipmap cache's settings, used when settings.secondVertex is Cache;
