@@ -10,11 +10,12 @@ std::optional<GiMode> giModeFromName(const std::string& name) {
   if (name == "none") return GiMode::None;
   if (name == "cache") return GiMode::Cache;
   if (name == "evolve") return GiMode::Evolve;
+  if (name == "gi10") return GiMode::Gi10;
   return std::nullopt;
 }
 
 const char* giModeNames() {
-  return "none, evolve, cache";
+  return "none, evolve, cache, gi10";
 }
 
 void validate(const HybridSettings& s) {
@@ -34,6 +35,7 @@ void validate(const HybridSettings& s) {
     fail("sky ambient {}: must be >= 0", s.skyAmbientStrength);
   if (s.di.enabled()) validate(s.di);
   if (s.gi == GiMode::Evolve) validate(s.restirGi);
+  if (s.gi == GiMode::Gi10) validate(s.gi10);
   if (s.gi == GiMode::Cache ||
       (s.gi == GiMode::Evolve && s.restirGi.secondVertex == RestirGiSecondVertex::Cache))
     validate(s.cache);

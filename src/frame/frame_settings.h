@@ -11,6 +11,7 @@
 #include "di/di_settings.h"
 #include "gi/evolve/cache/clipmap_cache_settings.h"
 #include "gi/evolve/restir/restir_gi_settings.h"
+#include "gi/gi10/gi10_settings.h"
 #include "passes/auto_exposure.h"
 #include "passes/reflections_denoise.h"
 #include "passes/reflections_trace.h"
@@ -23,9 +24,11 @@ namespace bounce {
 // Which diffuse GI the composite receives. `None`: the GI slot reads zero, so the frame shows
 // direct light (plus the optional placeholder ambient below). `Evolve`: seed 000's ReSTIR GI
 // chain (src/gi/evolve/restir/restir_gi.h, settings in `restirGi`). `Cache`: Evolve's clipmap
-// irradiance cache alone (src/gi/evolve/cache_gi.h): irradiance at the primary hit.
-enum class GiMode { None, Evolve, Cache };
-std::optional<GiMode> giModeFromName(const std::string& name);  // "none", "evolve", "cache"
+// irradiance cache alone (src/gi/evolve/cache_gi.h): irradiance at the primary hit. `Gi10`:
+// AMD's GI-1.0 (src/gi/gi10/gi10_gi.h, settings in `gi10`).
+enum class GiMode { None, Evolve, Cache, Gi10 };
+// "none", "evolve", "cache", "gi10"
+std::optional<GiMode> giModeFromName(const std::string& name);
 const char* giModeNames();
 
 struct HybridSettings {
@@ -69,6 +72,7 @@ struct HybridSettings {
   TaaSettings taa;
   RestirGiSettings restirGi;   // --gi evolve
   ClipmapCacheSettings cache;  // --gi cache (and the cache ReSTIR GI reads)
+  Gi10Settings gi10;           // --gi gi10
   // Added to the frame index that seeds every pass's random numbers: frames of two seeds draw
   // independent noise (tests compare independent runs of one view). 0 by default.
   uint32_t noiseSeed = 0;

@@ -9,6 +9,7 @@
 #include "gi/evolve/cache/clipmap_cache.h"
 #include "gi/evolve/cache_gi.h"
 #include "gi/evolve/restir/restir_gi.h"
+#include "gi/gi10/gi10_gi.h"
 #include "graph/debug_view_image.h"
 #include "lighting/light_table.h"
 #include "passes/primary_view.h"
@@ -41,6 +42,9 @@ std::unique_ptr<DiffuseGi> makeDiffuseGi(vk::Context& context, GpuScene& gpuScen
                                         settings.resolution());
     case GiMode::Cache:
       return std::make_unique<CacheGi>(context, gpuScene, scene, settings.cache);
+    case GiMode::Gi10:
+      return std::make_unique<Gi10Gi>(context, gpuScene, scene, settings.gi10,
+                                      settings.resolution());
   }
   return nullptr;
 }
