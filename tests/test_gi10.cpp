@@ -40,6 +40,9 @@ HybridSettings gi10Settings(uint32_t width, uint32_t height, GiMode gi = GiMode:
   s.height = height;
   s.shadows.divisor = 1;
   s.lambert = true;
+  // Every material is Lambert: no glossy lobe for reflection rays to find (and their passes
+  // would double the test's time on lavapipe).
+  s.reflections.divisor = 0;
   s.gi = gi;
   return s;
 }
@@ -129,6 +132,82 @@ TEST(Gi10, EveryPassProducesOutput) {
   std::printf("cornell %ux%u composite mean: gi10 %.4f, none %.4f\n", size, size,
               meanLuminance(with), meanLuminance(without));
   EXPECT_GT(meanLuminance(with), 1.1 * meanLuminance(without));
+  EXPECT_EQ(run.context.validationErrorCount(), 0u);
+}
+
+// White furnace (the built-in `furnace`: albedo 0.5, emission 1 everywhere): radiance
+// Le / (1 - albedo) = 2 in every direction, so irradiance / pi = 2 at every pixel. Every bounce
+// after the first reaches the probes through feedback (§1.6) and the cache; off-screen hits
+// have no feedback, so the level is below 2 by what they miss (docs/gi/gi10.md).
+TEST(Gi10, FurnaceMatchesAnalyticIrradiance) {
+  Gi10Run run(loadScene("furnace"), gi10Settings(64, 48));
+  Camera camera = effectiveCamera(run.scene);
+  for (const char* view : {"gi10.irradiance", "gi10.cache-view", "gi10.probes-view"})
+    run.frame->requestDebugView(view);
+  ImageRGBA32F gi = renderAveraged(run, camera, "gi.diffuse", 96, 16);
+  double mean = meanLuminance(gi);
+  // The stages' levels, for docs/gi/gi10.md.
+  for (const char* view : {"gi10.irradiance", "gi10.cache-view", "gi10.probes-view"})
+    std::printf("  %s mean %.4f\n", view, meanLuminance(run.frame->debugViewImage(view)));
+  std::printf("furnace 64x48, 96 frames (last 16 averaged): mean irradiance/pi %.4f (analytic 2)\n",
+              mean);
+  writeDebugPng(gi, "furnace", 0.4f);
+  EXPECT_NEAR(mean, 2.0, 0.06);
+  EXPECT_EQ(statistic(run.frame->giStatistics(), "gi10_cache_overflow"), 0.0);
+}
+
+// The Cornell box against Cycles (Blender 3.4.1, 4096 spp, 256x256, every material Lambert;
+// tests/test_reference.cpp checks our path tracer against the same image): the composite after
+// 64 static frames at 256x256 (camera rays through pixel centres, no TAA) within HDR-FLIP 0.12
+// and a mean luminance within 5 % (issue 23's gates). AMD reports GI-1.1 darker than path
+// tracing (the cache holds two bounces plus what feedback recovers).
+TEST(Gi10, CornellBoxAgainstCycles) {
+  const std::string dir = test::sharedDir();
+  Gi10Run run(loadScene(dir + "/scenes/cornell_box/cornell_box.gltf"), gi10Settings(256, 256));
+  Camera camera = effectiveCamera(run.scene);
+  ImageRGBA32F composite = renderAveraged(run, camera, "composite", 64, 1);
+  ImageRGBA32F cycles = readImage(dir + "/references/cornell_box/cycles_4096spp.exr");
+  FlipResult flip = computeHdrFlip(composite, cycles);
+  double ratio = meanLuminance(composite) / meanLuminance(cycles);
+  std::vector<GiStatistic> s = run.frame->giStatistics();
+  std::printf("cornell_box 256x256, 64 frames: HDR-FLIP %.4f, mean ratio %.4f, live cells %.0f, "
+              "overflow %.0f\n",
+              flip.statistics.mean, ratio, statistic(s, "gi10_live_cells"),
+              statistic(s, "gi10_cache_overflow"));
+  writeImage(test::tempDir("gi10") + "/cornell_box.exr", composite);
+  EXPECT_LE(flip.statistics.mean, 0.12);
+  EXPECT_NEAR(ratio, 1.0, 0.05);
+  EXPECT_EQ(statistic(s, "gi10_cache_overflow"), 0.0);
+}
+
+// 300 animated frames of `sunroom` (its scripted door and cube, the camera swaying, the sun
+// turning) at 24x16 with the validation layers on: gi.diffuse and the composite stay finite.
+TEST(Gi10, AnimatedRunStaysFinite) {
+  Scene scene = loadScene("sunroom");
+  Camera camera = effectiveCamera(scene);
+  Gi10Run run(scene, gi10Settings(24, 16), true);
+  run.frame->requestDebugView("composite");
+  run.frame->requestDebugView("gi.diffuse");
+  CameraPath path = swayCameraPath(camera, 20.0f, 0.3f, 8.0f);
+  std::vector<glm::mat4> transforms(scene.instances.size());
+  for (size_t i = 0; i < transforms.size(); ++i) transforms[i] = scene.instances[i].transform;
+  size_t nonFinite = 0;
+  for (int i = 0; i < 300; ++i) {
+    float t = float(i) / 30.0f;
+    evaluateTransforms(scene.animation, t, transforms);
+    run.frame->setInstanceTransforms(transforms);
+    Sun sun = scene.sun;
+    float a = 0.5f * t;
+    sun.direction = glm::normalize(glm::vec3(std::cos(a), -0.8f, std::sin(a)));
+    run.frame->setSunAndSky(sun, scene.sky);
+    run.frame->render(evaluateCameraPath(path, t));
+    if (i % 10 == 9) {
+      nonFinite += countNonFinitePixels(run.frame->debugViewImage("composite"));
+      nonFinite += countNonFinitePixels(run.frame->debugViewImage("gi.diffuse"));
+    }
+  }
+  EXPECT_EQ(nonFinite, 0u);
+  EXPECT_EQ(statistic(run.frame->giStatistics(), "gi10_cache_overflow"), 0.0);
   EXPECT_EQ(run.context.validationErrorCount(), 0u);
 }
 

@@ -14,6 +14,8 @@
 //                             some probe matched the pixel (the denoiser's hint, §1.3)
 //   gi10.gi          RGBA16F  (history) gi10-reproject-gi: accumulated irradiance / pi,
 //                             a = history length in frames
+//   gi10.gi-delta    RG16F    (history) gi10-reproject-gi: x = exponential mean of the luma
+//                             change (§1.7's alpha blend)
 //   gi10.filter-x    RGBA16F  gi10-filter-gi's first (horizontal) pass
 #ifndef BOUNCE_SHARED_GI10_IO_H
 #define BOUNCE_SHARED_GI10_IO_H
@@ -144,7 +146,9 @@ BOUNCE_CONST uint GI10_REPROJECT_GI_BINDING_PREVIOUS_DEPTH = 2u;
 BOUNCE_CONST uint GI10_REPROJECT_GI_BINDING_VELOCITY = 3u;
 BOUNCE_CONST uint GI10_REPROJECT_GI_BINDING_PREVIOUS = 4u;
 BOUNCE_CONST uint GI10_REPROJECT_GI_BINDING_OUTPUT = 5u;
-BOUNCE_CONST uint GI10_REPROJECT_GI_BINDING_COUNT = 6u;
+BOUNCE_CONST uint GI10_REPROJECT_GI_BINDING_PREVIOUS_DELTA = 6u;
+BOUNCE_CONST uint GI10_REPROJECT_GI_BINDING_DELTA = 7u;
+BOUNCE_CONST uint GI10_REPROJECT_GI_BINDING_COUNT = 8u;
 
 BOUNCE_CONST uint GI10_FILTER_BINDING_INPUT = 0u;
 BOUNCE_CONST uint GI10_FILTER_BINDING_HISTORY = 1u;  // gi10.gi: the history length in a

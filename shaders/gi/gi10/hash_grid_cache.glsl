@@ -1,7 +1,7 @@
 // GI-1.0's world-space hash-grid radiance cache (research/gi10_lux_denoisers.md §1.4), the
 // second cache level: cells sized by their distance to the camera (a power-of-two multiple of
-// 1 mm covering about cacheCellPixels pixels), keyed by that level, the cell, the probe ray's
-// direction (quantised) and a near-hit flag; buckets of GI10_BUCKET_SLOTS cells found by one
+// 1 mm covering about cacheCellPixels pixels), keyed by that level, the cell and the hit
+// surface's normal (quantised); buckets of GI10_BUCKET_SLOTS cells found by one
 // hash, a cell within its bucket by a second hash (the checksum), inserted by compare-and-swap.
 // A full bucket drops the sample and counts it (Gi10Counters::cacheOverflow).
 #ifndef BOUNCE_GI_GI10_HASH_GRID_CACHE_GLSL
@@ -32,23 +32,24 @@ struct Gi10CellKey {
   float size;     // the cell's edge in metres
 };
 
-// The key of the cell that a probe ray from `origin` hitting `hit` along `dir` lands in.
+// The key of the cell of surface point `hit` with geometric normal n (facing the ray).
 // §1.4: step = max(distance x footprint of cacheCellPixels pixels, minCellSize), cell = 1 mm x
-// 2^floor(log2(1e3 step)). Direction: 3 bins per axis (Capsaicin has 5; fewer bins give each
-// cell more samples at Bounce's small test budgets), enough to keep the two sides of a wall in
-// different cells. near: the ray was shorter than the cell (the leak guard's case).
-Gi10CellKey gi10CellKey(Gi10Constants k, FrameConstants f, vec3 hit, vec3 dir, float hitDistance) {
+// 2^floor(log2(1e3 step)). Capsaicin keys on the probe ray's direction (5 bins per axis) and a
+// near-hit flag; here on the surface's normal (3 bins per axis): it keeps the two sides of a
+// wall, and the faces of a corner, in different cells as the direction does, and every ray
+// that hits a surface finds the same cell, so that secondary rays from other directions
+// (indirectCacheRadiance) find the cells the probe rays filled (docs/gi/gi10.md).
+Gi10CellKey gi10CellKey(Gi10Constants k, FrameConstants f, vec3 hit, vec3 n) {
   float distanceToEye = length(hit - f.camera.position);
   float step = max(distanceToEye * k.pixelFootprint * k.cacheCellPixels, k.minCellSize);
   int level = int(floor(log2(1e3 * step)));
   float size = 1e-3 * exp2(float(level));
   ivec3 c = ivec3(floor(hit / size));
-  uvec3 d = uvec3(clamp(floor(0.5 + (0.5 * dir + 0.5) * 2.0), vec3(0.0), vec3(2.0)));
-  uint near = hitDistance < size ? 1u : 0u;
+  uvec3 d = uvec3(clamp(floor(0.5 + (0.5 * n + 0.5) * 2.0), vec3(0.0), vec3(2.0)));
   uint h = gi10Pcg(uint(level + 64) + gi10Pcg(uint(c.x) + gi10Pcg(uint(c.y) + gi10Pcg(uint(c.z) +
-           gi10Pcg(d.x + 3u * d.y + 9u * d.z + 27u * near)))));
+           gi10Pcg(d.x + 3u * d.y + 9u * d.z)))));
   uint s = gi10XxHash(uint(level + 64) + gi10XxHash(uint(c.x) + gi10XxHash(uint(c.y) + gi10XxHash(uint(c.z) +
-           gi10XxHash(d.x + 3u * d.y + 9u * d.z + 27u * near)))));
+           gi10XxHash(d.x + 3u * d.y + 9u * d.z)))));
   Gi10CellKey key;
   key.bucket = h & k.bucketMask;
   key.checksum = max(s, 1u);
@@ -67,6 +68,14 @@ uint gi10FindOrInsertCell(Gi10CacheRef cache, Gi10CellKey key) {
     uint previous = atomicCompSwap(cache.v[first + i].checksum, 0u, key.checksum);
     if (previous == 0u || previous == key.checksum) return first + i;
   }
+  return GI10_NO_CELL;
+}
+
+// The slot of `key` when the cell exists; GI10_NO_CELL otherwise (a read, never an insert).
+uint gi10FindCell(Gi10CacheRef cache, Gi10CellKey key) {
+  uint first = key.bucket * GI10_BUCKET_SLOTS;
+  for (uint i = 0u; i < GI10_BUCKET_SLOTS; ++i)
+    if (cache.v[first + i].checksum == key.checksum) return first + i;
   return GI10_NO_CELL;
 }
 

@@ -3,8 +3,10 @@
 // hemisphere. A miss sees the sky. At a hit: emission (not that of emitters ReSTIR DI already
 // lights the pixel with, FRAME_FLAG_DI_LIGHTS), and the hit's outgoing diffuse radiance:
 // direct light (the sun, one light of the light tables, the KHR directional lights, each with
-// a shadow ray; §1.5 uses a light grid instead) plus, by temporal radiance feedback (§1.6),
-// the hit's albedo times last frame's GI where the hit is on screen. That sample goes into the
+// a shadow ray; §1.5 uses a light grid instead) plus the hit's albedo times the light arriving
+// there: by temporal radiance feedback (§1.6) last frame's GI where the hit is on screen, else
+// the cache's radiance along one cosine ray from the hit (indirectCacheRadiance, a stand-in for
+// GI-1.2's multibounce, so that off-screen hits get more than one bounce). That sample goes into the
 // hash-grid cell of the hit (hash_grid_cache.glsl); the probe later reads the cell's filtered
 // radiance (gi10-resolve-radiance-cache). The leak guard (§1.4): a hit closer than its cell's
 // size takes its own sample instead, as does one whose bucket is full.
@@ -72,6 +74,17 @@ bool feedback(FrameConstants f, Gi10Constants k, vec3 p, vec3 n, out vec3 irradi
   return true;
 }
 
+// Radiance leaving surface s back along a secondary ray, from the cache: the
+// cell it lands in (last frame's running mean: direct light and the bounces before), plus the
+// emission of large emitters, which the first hit's light sampling does not cover (the light
+// tables leave them to rays, src/lighting/gpu_light_tables.h). GI-1.2's "multibounce" traces
+// rays from the cells instead; this gives off-screen hits (no feedback) their bounces.
+vec3 indirectCacheRadiance(FrameConstants f, Gi10Constants k, Gi10CacheRef cache, Surface s) {
+  vec3 emission = lightTablesSampleMaterial(s.material) ? vec3(0.0) : s.emission;
+  uint slot = gi10FindCell(cache, gi10CellKey(k, f, s.position, s.geometricNormal));
+  return emission + (slot != GI10_NO_CELL ? cache.v[slot].radiance : vec3(0.0));
+}
+
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
   Gi10Constants k = Gi10ConstantsRef(pc.gi10).v;
@@ -88,27 +101,48 @@ void main() {
   vec2 u = uniformFromHash(seed).xy;
   vec2 square = (vec2(cellIndex % GI10_PROBE_SIZE, cellIndex / GI10_PROBE_SIZE) + u) / float(GI10_PROBE_SIZE);
   vec3 dir = gi10HemisphereDirection(probe.normal, square);
-  vec3 origin = offsetRayOrigin(probe.position, probe.normal);
-  TraceHit hit = traceClosest(origin, dir, 0.0, FAR, alphaTest);
   Gi10Ray ray;
   ray.cell = GI10_NO_CELL;
-  if (!traceHitFound(hit)) {
-    ray.radiance = skyRadianceToward(f, dir);
-    ray.hitDistance = GI10_MISS_DISTANCE;
-  } else {
-    Surface s = loadSurfaceAtCoarseMip(hit, dir, (f.flags & FRAME_FLAG_LAMBERT) != 0u, k.materialTextureSide);
+  ray.radiance = vec3(0.0);
+  ray.hitDistance = GI10_MISS_DISTANCE;
+  Gi10CacheRef cache = Gi10CacheRef(k.cache);
+  bool lambert = (f.flags & FRAME_FLAG_LAMBERT) != 0u;
+  // The probe ray, then (when feedback cannot light its hit) one cosine ray from the hit into
+  // the cache: one traceClosest call in a loop (a CPU driver compiles each inlined copy).
+  vec3 rayOrigin = offsetRayOrigin(probe.position, probe.normal), rayDir = dir;
+  vec3 hitPosition = vec3(0.0), hitNormal = vec3(0.0), direct = vec3(0.0), albedo = vec3(0.0), indirect = vec3(0.0);
+  bool hitSurface = false;
+  for (uint bounce = 0u; bounce < 2u; ++bounce) {
+    TraceHit hit = traceClosest(rayOrigin, rayDir, 0.0, FAR, alphaTest);
+    if (!traceHitFound(hit)) {
+      if (bounce == 0u) ray.radiance = skyRadianceToward(f, rayDir);
+      else indirect = skyRadianceToward(f, rayDir);
+      break;
+    }
+    Surface s = loadSurfaceAtCoarseMip(hit, rayDir, lambert, k.materialTextureSide);
+    if (bounce == 1u) {
+      indirect = indirectCacheRadiance(f, k, cache, s);
+      break;
+    }
+    hitSurface = true;
+    hitPosition = s.position;
+    hitNormal = s.geometricNormal;
+    ray.hitDistance = hit.t;
     bool diLit = (f.flags & FRAME_FLAG_DI_LIGHTS) != 0u && lightTablesSampleMaterial(s.material);
     ray.radiance = diLit ? vec3(0.0) : s.emission;
-    ray.hitDistance = hit.t;
-    vec3 hitSample = directLight(f, s, -dir, seed.yzwx, alphaTest);
-    vec3 irradianceOverPi;
-    if (feedback(f, k, s.position, s.geometricNormal, irradianceOverPi)) {
-      hitSample += indirectHitReflectance(f.specularAlbedo, s.brdf, s.shadingNormal, -dir) * irradianceOverPi;
+    direct = directLight(f, s, -rayDir, seed.yzwx, alphaTest);
+    albedo = indirectHitReflectance(f.specularAlbedo, s.brdf, s.shadingNormal, -rayDir);
+    if (feedback(f, k, s.position, s.geometricNormal, indirect)) {
       atomicAdd(Gi10CountersRef(k.counters).v.feedbackHits, 1u);
+      break;
     }
+    rayOrigin = offsetRayOrigin(s.position, s.geometricNormal);
+    rayDir = sampleCosineHemisphere(s.geometricNormal, uniformFromHash(seed.zwxy).xy);
+  }
+  if (hitSurface) {
+    vec3 hitSample = direct + albedo * indirect;
     if (any(isnan(hitSample)) || any(isinf(hitSample))) hitSample = vec3(0.0);
-    Gi10CellKey key = gi10CellKey(k, f, s.position, dir, hit.t);
-    Gi10CacheRef cache = Gi10CacheRef(k.cache);
+    Gi10CellKey key = gi10CellKey(k, f, hitPosition, hitNormal);
     uint slot = gi10FindOrInsertCell(cache, key);
     if (slot != GI10_NO_CELL) {
       gi10AddCellSample(cache, slot, hitSample, k.frame);
@@ -116,7 +150,7 @@ void main() {
     } else {
       atomicAdd(Gi10CountersRef(k.counters).v.cacheOverflow, 1u);
     }
-    if (slot == GI10_NO_CELL || hit.t < key.size) ray.radiance += hitSample;
+    if (slot == GI10_NO_CELL || ray.hitDistance < key.size) ray.radiance += hitSample;
     else ray.cell = slot;
   }
   uint rayIndex = spawnIndex * GI10_PROBE_CELLS + cellIndex;

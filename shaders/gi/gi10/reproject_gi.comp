@@ -1,9 +1,13 @@
 // gi10-reproject-gi (§1.2 #24, §1.7 "ReprojectGI"): temporal accumulation of the interpolated
 // irradiance. Last frame's result is fetched through the velocity (bilinear over the taps whose
-// view depth agrees within 5 %), and the running mean counts at most historyCap frames
-// (Capsaicin: up to 64, fewer where the luma changes; here a fixed cap). Pixels whose probes
-// did not fit (alpha 0 in gi10.irradiance) keep their history when they have one. Writes
-// gi10.gi: rgb, a = history length.
+// view depth agrees within 5 %). The running mean counts at most
+// max(lerp(4, 8 min(N, 8), alphaBlend), 1) frames (N: the history length; at most historyCap),
+// with alphaBlend = 1 - |delta| / luma_history, delta an exponential mean (1/8) of the luma
+// change between the new value and the history (Capsaicin's ReprojectGI; its vignette factor
+// is left out): where the light changes the history shortens, so multi-bounce light that
+// arrives through feedback is not held back by 64 frames of the past. Pixels whose probes did
+// not fit (alpha 0 in gi10.irradiance) keep their history when they have one. Writes gi10.gi
+// (rgb, a = history length) and gi10.gi-delta (x = delta).
 #version 460
 #include "gi/gi10/gi10_common.glsl"
 
@@ -15,9 +19,12 @@ layout(set = 1, binding = GI10_REPROJECT_GI_BINDING_PREVIOUS_DEPTH, r32f) unifor
 layout(set = 1, binding = GI10_REPROJECT_GI_BINDING_VELOCITY, rg16f) uniform readonly image2D velocities;
 layout(set = 1, binding = GI10_REPROJECT_GI_BINDING_PREVIOUS, rgba16f) uniform readonly image2D previous;
 layout(set = 1, binding = GI10_REPROJECT_GI_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+layout(set = 1, binding = GI10_REPROJECT_GI_BINDING_PREVIOUS_DELTA, rg16f) uniform readonly image2D previousDelta;
+layout(set = 1, binding = GI10_REPROJECT_GI_BINDING_DELTA, rg16f) uniform writeonly image2D deltaOutput;
 
-// Last frame's accumulation at this pixel: rgb, a = history length (0: none).
-vec4 history(FrameConstants f, ivec2 pixel, float depth) {
+// Last frame's accumulation at this pixel: rgb, a = history length (0: none); its luma delta.
+vec4 history(FrameConstants f, ivec2 pixel, float depth, out float delta) {
+  delta = 0.0;
   vec2 p = vec2(pixel) + 0.5 - imageLoad(velocities, pixel).xy - 0.5;
   ivec2 base = ivec2(floor(p));
   vec2 fraction = p - vec2(base);
@@ -34,9 +41,12 @@ vec4 history(FrameConstants f, ivec2 pixel, float depth) {
     vec2 bilinear = mix(1.0 - fraction, fraction, vec2(offset));
     float w = bilinear.x * bilinear.y + 1e-4;
     sum += w * h;
+    delta += w * imageLoad(previousDelta, q).x;
     weightSum += w;
   }
-  return weightSum > 0.0 ? sum / weightSum : vec4(0.0);
+  if (!(weightSum > 0.0)) return vec4(0.0);
+  delta /= weightSum;
+  return sum / weightSum;
 }
 
 void main() {
@@ -48,17 +58,24 @@ void main() {
   vec4 current = imageLoad(irradiance, pixel);
   if (!(depth > 0.0)) {
     imageStore(outputImage, pixel, vec4(0.0));
+    imageStore(deltaOutput, pixel, vec4(0.0));
     return;
   }
-  vec4 h = k.historyValid != 0u ? history(f, pixel, depth) : vec4(0.0);
+  float delta = 0.0;
+  vec4 h = k.historyValid != 0u ? history(f, pixel, depth, delta) : vec4(0.0);
   float length = h.w;
   vec3 result = current.rgb;
   if (current.w > 0.0 || !(length > 0.0)) {
-    length = min(floor(length + 0.5) + 1.0, k.historyCap);
+    float lumaHistory = gi10Luma(h.rgb);
+    delta = length > 0.0 ? mix(delta, abs(gi10Luma(current.rgb) - lumaHistory), 0.125) : 0.0;
+    float alphaBlend = lumaHistory > 0.0 ? clamp(1.0 - delta / lumaHistory, 0.0, 1.0) : 1.0;
+    float cap = min(max(mix(4.0, 8.0 * min(length, 8.0), alphaBlend), 1.0), k.historyCap);
+    length = min(floor(length + 0.5) + 1.0, cap);
     result = mix(h.rgb, current.rgb, 1.0 / length);
   } else {
     result = h.rgb;
   }
+  imageStore(deltaOutput, pixel, vec4(isnan(delta) || isinf(delta) ? 0.0 : delta, 0.0, 0.0, 0.0));
   bool finite = !any(isnan(result)) && !any(isinf(result));
   imageStore(outputImage, pixel, finite ? vec4(result, max(length, 1.0)) : vec4(0.0, 0.0, 0.0, 1.0));
 }

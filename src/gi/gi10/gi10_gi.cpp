@@ -78,7 +78,9 @@ Gi10Gi::Gi10Gi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
       reprojectGi_(context, gpuScene, "gi/gi10/reproject_gi", gpu::GI10_REPROJECT_GI_BINDING_COUNT,
                    sizeof(gpu::Gi10PassConstants)),
       filter_(context, gpuScene, "gi/gi10/filter_gi", gpu::GI10_FILTER_BINDING_COUNT,
-              sizeof(gpu::Gi10PassConstants), 2) {
+              sizeof(gpu::Gi10PassConstants), 2),
+      probesDebug_(context, gpuScene, "gi/gi10/probes_debug", 1, sizeof(gpu::Gi10PassConstants)),
+      cacheDebug_(context, gpuScene, "gi/gi10/cache_debug", 3, sizeof(gpu::Gi10PassConstants)) {
   const VkDeviceSize tiles = VkDeviceSize(probeGrid_.x) * probeGrid_.y;
   const VkDeviceSize spawnTiles = VkDeviceSize(spawnGrid_.x) * spawnGrid_.y;
   const VkDeviceSize cells = gpu::GI10_PROBE_CELLS;
@@ -167,6 +169,7 @@ DiffuseGiOutput Gi10Gi::declare(graph::FrameGraph& graph, const GiInputs& inputs
   declareProbes(graph, inputs, b, push, gi.previous);
   graph::ImageHandle output = declareResolve(graph, inputs, b, push, gi);
   declareStatisticsReadback(graph, b);
+  declareDebugViews(graph, inputs, b, push);
   return {output};
 }
 

@@ -19,6 +19,11 @@
 //   gi10-filter-gi-x, -y           bilateral blur of short-history pixels -> gi.diffuse
 //   gi10-read-statistics           the counters copied for statistics()
 //
+// Debug views (culled unless requested, `--view NAME`): `gi10.probes-view` (each tile's probe cells;
+// gi10-probes-debug), `gi10.cache-view` (the hash-grid cell at each pixel's surface, alpha its
+// confidence; gi10-cache-debug), and every image above (gi10.irradiance, gi10.gi,
+// gi10.filter-x).
+//
 // Memory is made in the constructor, sized from the resolution (docs/gi/gi10.md: bytes at
 // 1920x1080).
 #pragma once
@@ -62,6 +67,8 @@ class Gi10Gi final : public DiffuseGi {
                                     const Buffers& b, const gpu::Gi10PassConstants& push,
                                     graph::HistoryImage gi);
   void declareStatisticsReadback(graph::FrameGraph& graph, const Buffers& b);
+  void declareDebugViews(graph::FrameGraph& graph, const GiInputs& inputs, const Buffers& b,
+                         const gpu::Gi10PassConstants& push);
 
   vk::Context& context_;
   Gi10Settings settings_;
@@ -72,7 +79,7 @@ class Gi10Gi final : public DiffuseGi {
   vk::Buffer constants_, probes_[2], radiance_[2], sh_, spawn_, rays_, cache_, counters_;
   vk::Buffer readback_;  // Gi10Counters, host-visible
   ComputePass purge_, spawnPass_, reproject_, populate_, update_, resolve_, blend_, project_,
-      interpolate_, reprojectGi_, filter_;
+      interpolate_, reprojectGi_, filter_, probesDebug_, cacheDebug_;
   uint32_t parity_ = 0;  // which of probes_/radiance_ is this frame's
   uint32_t frame_ = 0;   // frames since the last reset
   bool resetPending_ = true;

@@ -121,6 +121,7 @@ graph::ImageHandle Gi10Gi::declareResolve(graph::FrameGraph& graph, const GiInpu
   const GBuffer& g = inputs.gbuffer;
   const VkExtent2D extent = inputs.frame.resolution;
   graph::ImageHandle irradiance = graph.createImage("gi10.irradiance", {rgba16f});
+  graph::HistoryImage delta = graph.createHistoryImage("gi10.gi-delta", {VK_FORMAT_R16G16_SFLOAT});
   graph.addPass("gi10-interpolate-screen-probes", QueueKind::Compute)
       .read(b.constants, Access::StorageRead)
       .read(inputs.frame.constants, Access::StorageRead)
@@ -142,6 +143,8 @@ graph::ImageHandle Gi10Gi::declareResolve(graph::FrameGraph& graph, const GiInpu
       .read(g.velocity, Access::StorageRead, gpu::GI10_REPROJECT_GI_BINDING_VELOCITY)
       .read(gi.previous, Access::StorageRead, gpu::GI10_REPROJECT_GI_BINDING_PREVIOUS)
       .write(gi.current, Access::StorageWrite, gpu::GI10_REPROJECT_GI_BINDING_OUTPUT)
+      .read(delta.previous, Access::StorageRead, gpu::GI10_REPROJECT_GI_BINDING_PREVIOUS_DELTA)
+      .write(delta.current, Access::StorageWrite, gpu::GI10_REPROJECT_GI_BINDING_DELTA)
       .record([this, push, extent](VkCommandBuffer cmd, const graph::PassResources& r) {
         reprojectGi_.bind(cmd, push, r);
         vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, 8, 8);
@@ -171,6 +174,36 @@ graph::ImageHandle Gi10Gi::declareResolve(graph::FrameGraph& graph, const GiInpu
         });
   }
   return output;
+}
+
+void Gi10Gi::declareDebugViews(graph::FrameGraph& graph, const GiInputs& inputs,
+                               const Buffers& b, const gpu::Gi10PassConstants& push) {
+  constexpr VkFormat rgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
+  const uint32_t current = parity_;
+  const VkExtent2D extent = inputs.frame.resolution;
+  graph::ImageHandle probes = graph.createImage("gi10.probes-view", {rgba16f});
+  graph.addPass("gi10-probes-debug", QueueKind::Compute)
+      .read(b.constants, Access::StorageRead)
+      .read(inputs.frame.constants, Access::StorageRead)
+      .read(b.probes[current], Access::StorageRead)
+      .read(b.radiance[current], Access::StorageRead)
+      .write(probes, Access::StorageWrite, 0)
+      .record([this, push, extent](VkCommandBuffer cmd, const graph::PassResources& r) {
+        probesDebug_.bind(cmd, push, r);
+        vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, 8, 8);
+      });
+  graph::ImageHandle cache = graph.createImage("gi10.cache-view", {rgba16f});
+  graph.addPass("gi10-cache-debug", QueueKind::Compute)
+      .read(b.constants, Access::StorageRead)
+      .read(inputs.frame.constants, Access::StorageRead)
+      .read(b.cache, Access::StorageRead)
+      .read(inputs.gbuffer.depth.current, Access::StorageRead, 0)
+      .write(cache, Access::StorageWrite, 1)
+      .read(inputs.gbuffer.normals, Access::StorageRead, 2)
+      .record([this, push, extent](VkCommandBuffer cmd, const graph::PassResources& r) {
+        cacheDebug_.bind(cmd, push, r);
+        vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, 8, 8);
+      });
 }
 
 }  // namespace bounce
