@@ -23,8 +23,8 @@
 
 BOUNCE_BEGIN_SHARED
 
-BOUNCE_CONST uint GI10_PROBE_SIZE = 8u;    // probe: 8x8 cells; probe tile: 8x8 pixels (§1.3)
-BOUNCE_CONST uint GI10_PROBE_CELLS = 64u;  // GI10_PROBE_SIZE^2
+BOUNCE_CONST uint GI10_PROBE_SIZE = 8u;     // probe: 8x8 cells; probe tile: 8x8 pixels (§1.3)
+BOUNCE_CONST uint GI10_PROBE_CELLS = 64u;   // GI10_PROBE_SIZE^2
 BOUNCE_CONST uint GI10_BUCKET_SLOTS = 16u;  // cells per hash bucket, probed linearly (§1.4)
 BOUNCE_CONST uint GI10_NO_CELL = 0xFFFFFFFFu;
 BOUNCE_CONST uint GI10_NO_SPAWN = 0xFFFFFFFFu;

@@ -23,7 +23,9 @@ vk::Buffer deviceBuffer(vk::Context& context, VkDeviceSize bytes, const std::str
   return vk::Buffer(context, bytes, kStorage, vk::MemoryUse::DeviceOnly, name);
 }
 
-uint32_t divideUp(uint32_t a, uint32_t b) { return (a + b - 1) / b; }
+uint32_t divideUp(uint32_t a, uint32_t b) {
+  return (a + b - 1) / b;
+}
 
 uint32_t cacheBuckets(const Gi10Settings& s, VkExtent2D resolution) {
   uint64_t pixels = uint64_t(resolution.width) * resolution.height;
@@ -147,8 +149,8 @@ Gi10Gi::Buffers Gi10Gi::importBuffers(graph::FrameGraph& graph) const {
   Buffers b;
   b.constants = graph.importBuffer("gi10.constants", ImportedBuffer::from(constants_));
   for (uint32_t i = 0; i < 2; ++i) {
-    b.probes[i] =
-        graph.importBuffer(i == 0 ? "gi10.probes-0" : "gi10.probes-1", ImportedBuffer::from(probes_[i]));
+    b.probes[i] = graph.importBuffer(i == 0 ? "gi10.probes-0" : "gi10.probes-1",
+                                     ImportedBuffer::from(probes_[i]));
     b.radiance[i] = graph.importBuffer(i == 0 ? "gi10.radiance-0" : "gi10.radiance-1",
                                        ImportedBuffer::from(radiance_[i]));
   }
@@ -175,8 +177,7 @@ DiffuseGiOutput Gi10Gi::declare(graph::FrameGraph& graph, const GiInputs& inputs
 
 // gi10-clear-counters: after a reset (or a lighting cut) the cache and both probe buffers are
 // zeroed (no cell, no probe); every frame the constants are written and the counters zeroed.
-void Gi10Gi::declareStart(graph::FrameGraph& graph, const Buffers& b,
-                          const gpu::Gi10Constants& k) {
+void Gi10Gi::declareStart(graph::FrameGraph& graph, const Buffers& b, const gpu::Gi10Constants& k) {
   const bool clear = k.historyValid == 0;
   graph.addPass("gi10-clear-counters", QueueKind::Compute)
       .write(b.constants, Access::TransferDst)

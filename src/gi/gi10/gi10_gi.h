@@ -19,9 +19,9 @@
 //   gi10-filter-gi-x, -y           bilateral blur of short-history pixels -> gi.diffuse
 //   gi10-read-statistics           the counters copied for statistics()
 //
-// Debug views (culled unless requested, `--view NAME`): `gi10.probes-view` (each tile's probe cells;
-// gi10-probes-debug), `gi10.cache-view` (the hash-grid cell at each pixel's surface, alpha its
-// confidence; gi10-cache-debug), and every image above (gi10.irradiance, gi10.gi,
+// Debug views (culled unless requested, `--view NAME`): `gi10.probes-view` (each tile's probe
+// cells; gi10-probes-debug), `gi10.cache-view` (the hash-grid cell at each pixel's surface, alpha
+// its confidence; gi10-cache-debug), and every image above (gi10.irradiance, gi10.gi,
 // gi10.filter-x).
 //
 // Memory is made in the constructor, sized from the resolution (docs/gi/gi10.md: bytes at
@@ -40,8 +40,8 @@ namespace bounce {
 
 class Gi10Gi final : public DiffuseGi {
  public:
-  Gi10Gi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
-         const Gi10Settings& settings, VkExtent2D resolution);
+  Gi10Gi(vk::Context& context, GpuScene& gpuScene, const Scene& scene, const Gi10Settings& settings,
+         VkExtent2D resolution);
 
   DiffuseGiOutput declare(graph::FrameGraph& graph, const GiInputs& inputs) override;
   void afterFrame() override;

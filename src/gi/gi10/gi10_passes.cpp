@@ -65,8 +65,7 @@ void Gi10Gi::declareProbes(graph::FrameGraph& graph, const GiInputs& inputs, con
       .read(g.normals, Access::StorageRead, gpu::GI10_POPULATE_BINDING_NORMALS)
       .read(g.depth.current, Access::StorageRead, gpu::GI10_POPULATE_BINDING_DEPTH)
       .read(g.velocity, Access::StorageRead, gpu::GI10_POPULATE_BINDING_VELOCITY)
-      .read(previousGi, Access::StorageRead,
-            gpu::GI10_POPULATE_BINDING_PREVIOUS_GI)
+      .read(previousGi, Access::StorageRead, gpu::GI10_POPULATE_BINDING_PREVIOUS_GI)
       .read(b.spawn, Access::StorageRead)
       .read(b.probes[current], Access::StorageRead)
       .write(b.rays, Access::StorageWrite)
@@ -160,15 +159,16 @@ graph::ImageHandle Gi10Gi::declareResolve(graph::FrameGraph& graph, const GiInpu
         graph.addPass(axis == 0 ? "gi10-filter-gi-x" : "gi10-filter-gi-y", QueueKind::Compute);
     pass.read(in, Access::StorageRead, gpu::GI10_FILTER_BINDING_INPUT);
     // The history length: the same image as the input in the first pass.
-    if (axis == 0) pass.readPlaceholder(gi.current, gpu::GI10_FILTER_BINDING_HISTORY);
-    else pass.read(gi.current, Access::StorageRead, gpu::GI10_FILTER_BINDING_HISTORY);
+    if (axis == 0)
+      pass.readPlaceholder(gi.current, gpu::GI10_FILTER_BINDING_HISTORY);
+    else
+      pass.read(gi.current, Access::StorageRead, gpu::GI10_FILTER_BINDING_HISTORY);
     pass.read(b.constants, Access::StorageRead)
         .read(inputs.frame.constants, Access::StorageRead)
         .read(g.normals, Access::StorageRead, gpu::GI10_FILTER_BINDING_NORMALS)
         .read(g.depth.current, Access::StorageRead, gpu::GI10_FILTER_BINDING_DEPTH)
         .write(out, Access::StorageWrite, gpu::GI10_FILTER_BINDING_OUTPUT)
-        .record([this, axisPush, axis, extent](VkCommandBuffer cmd,
-                                               const graph::PassResources& r) {
+        .record([this, axisPush, axis, extent](VkCommandBuffer cmd, const graph::PassResources& r) {
           filter_.bind(cmd, axisPush, r, axis);
           vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, 8, 8);
         });
@@ -176,8 +176,8 @@ graph::ImageHandle Gi10Gi::declareResolve(graph::FrameGraph& graph, const GiInpu
   return output;
 }
 
-void Gi10Gi::declareDebugViews(graph::FrameGraph& graph, const GiInputs& inputs,
-                               const Buffers& b, const gpu::Gi10PassConstants& push) {
+void Gi10Gi::declareDebugViews(graph::FrameGraph& graph, const GiInputs& inputs, const Buffers& b,
+                               const gpu::Gi10PassConstants& push) {
   constexpr VkFormat rgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
   const uint32_t current = parity_;
   const VkExtent2D extent = inputs.frame.resolution;

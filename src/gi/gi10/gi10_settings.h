@@ -23,8 +23,10 @@ struct Gi10Settings {
   // each. 2 gives 1,048,576 slots (40 MiB) at 1920x1080 and keeps the table under a third
   // full on the test scenes (a fuller table overflows buckets: docs/gi/gi10.md). 1 to 1024.
   uint32_t pixelsPerCacheSlot = 2;
-  // gi10-reproject-gi averages at most this many frames (Capsaicin: up to 64). At least 1.
-  float historyCap = 64.0f;
+  // gi10-reproject-gi averages at most this many frames (Capsaicin: up to 64). 16: feedback
+  // (§1.6) reads this history, so each bounce waits on it; at 64 the furnace reached 1.86 of 2
+  // after 96 frames, at 16 1.97 (docs/gi/gi10.md). At least 1.
+  float historyCap = 16.0f;
   // Temporal radiance feedback (§1.6): probe hits on screen take last frame's GI there.
   bool feedback = true;
   // gi10-filter-gi blurs pixels with fewer than 8 frames of history (§1.7).
