@@ -20,8 +20,9 @@ enum class Preset { Mobile, Desktop };
 // Which diffuse global illumination the frame gets. Evolve: seed 000's ReSTIR GI over the
 // clipmap irradiance cache (the full system). Cache: the irradiance cache alone, looked up at
 // the primary hit (cheaper, blurrier). None: direct light only (sun, sky, emitters). Lux: seed
-// 002's ReSTIR indirect over the same cache as a probe field (docs/gi/lux.md).
-enum class GiMode { Evolve, Cache, None, Lux };
+// 002's ReSTIR indirect over the same cache as a probe field (docs/gi/lux.md). Gi10: AMD's
+// GI-1.0, screen probes over a world-space hash-grid radiance cache (docs/gi/gi10.md).
+enum class GiMode { Evolve, Cache, None, Lux, Gi10 };
 
 // The defaults are presetSettings(Preset::Mobile).
 struct RendererSettings {

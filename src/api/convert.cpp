@@ -121,6 +121,8 @@ bounce::GiMode toInternal(GiMode gi, const char* where) {
       return bounce::GiMode::None;
     case GiMode::Lux:
       return bounce::GiMode::Lux;
+    case GiMode::Gi10:
+      return bounce::GiMode::Gi10;
   }
   fail("{}: unknown GI mode {}", where, int(gi));
 }

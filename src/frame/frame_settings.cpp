@@ -11,11 +11,12 @@ std::optional<GiMode> giModeFromName(const std::string& name) {
   if (name == "cache") return GiMode::Cache;
   if (name == "evolve") return GiMode::Evolve;
   if (name == "lux") return GiMode::Lux;
+  if (name == "gi10") return GiMode::Gi10;
   return std::nullopt;
 }
 
 const char* giModeNames() {
-  return "none, evolve, cache, lux";
+  return "none, evolve, cache, lux, gi10";
 }
 
 void validate(const HybridSettings& s) {
@@ -36,6 +37,7 @@ void validate(const HybridSettings& s) {
   if (s.di.enabled()) validate(s.di);
   if (s.gi == GiMode::Evolve) validate(s.restirGi);
   if (s.gi == GiMode::Lux) validate(s.lux);
+  if (s.gi == GiMode::Gi10) validate(s.gi10);
   if (s.gi == GiMode::Cache || s.gi == GiMode::Lux ||
       (s.gi == GiMode::Evolve && s.restirGi.secondVertex == RestirGiSecondVertex::Cache))
     validate(s.cache);

@@ -11,6 +11,7 @@
 #include "di/di_settings.h"
 #include "gi/evolve/cache/clipmap_cache_settings.h"
 #include "gi/evolve/restir/restir_gi_settings.h"
+#include "gi/gi10/gi10_settings.h"
 #include "gi/lux/lux_settings.h"
 #include "passes/auto_exposure.h"
 #include "passes/reflections_denoise.h"
@@ -26,8 +27,10 @@ namespace bounce {
 // chain (src/gi/evolve/restir/restir_gi.h, settings in `restirGi`). `Cache`: Evolve's clipmap
 // irradiance cache alone (src/gi/evolve/cache_gi.h): irradiance at the primary hit. `Lux`: seed
 // 002's ReSTIR indirect over the cache as a probe field (src/gi/lux/lux_gi.h, settings in `lux`).
-enum class GiMode { None, Evolve, Cache, Lux };
-std::optional<GiMode> giModeFromName(const std::string& name);  // "none", "evolve", "cache", "lux"
+// `Gi10`: AMD's GI-1.0 (src/gi/gi10/gi10_gi.h, settings in `gi10`).
+enum class GiMode { None, Evolve, Cache, Lux, Gi10 };
+// "none", "evolve", "cache", "lux", "gi10"
+std::optional<GiMode> giModeFromName(const std::string& name);
 const char* giModeNames();
 
 struct HybridSettings {
@@ -72,6 +75,7 @@ struct HybridSettings {
   RestirGiSettings restirGi;   // --gi evolve
   ClipmapCacheSettings cache;  // --gi cache (and the cache ReSTIR GI reads)
   LuxSettings lux;             // --gi lux (its reuse takes restirGi's settings)
+  Gi10Settings gi10;           // --gi gi10
   // Added to the frame index that seeds every pass's random numbers: frames of two seeds draw
   // independent noise (tests compare independent runs of one view). 0 by default.
   uint32_t noiseSeed = 0;

@@ -9,6 +9,7 @@
 #include "gi/evolve/cache/clipmap_cache.h"
 #include "gi/evolve/cache_gi.h"
 #include "gi/evolve/restir/restir_gi.h"
+#include "gi/gi10/gi10_gi.h"
 #include "gi/lux/lux_gi.h"
 #include "graph/debug_view_image.h"
 #include "lighting/light_table.h"
@@ -45,6 +46,9 @@ std::unique_ptr<DiffuseGi> makeDiffuseGi(vk::Context& context, GpuScene& gpuScen
     case GiMode::Lux:
       return std::make_unique<LuxGi>(context, gpuScene, scene, settings.lux, settings.restirGi,
                                      settings.cache, settings.resolution());
+    case GiMode::Gi10:
+      return std::make_unique<Gi10Gi>(context, gpuScene, scene, settings.gi10,
+                                      settings.resolution());
   }
   return nullptr;
 }

@@ -28,6 +28,8 @@ HybridSettings presetSettings(Preset preset) {
       s.cache.raysPerCell = 1;
       s.cache.validationRaysPerCell = 0;
       s.cache.alphaTest = false;
+      s.gi10.spawnTile = 32;  // GI-1.0's SixteenthSpp: 1/16 probe ray per pixel
+      s.gi10.alphaTest = false;
       break;
     case Preset::Desktop:
       s.width = 1920;
