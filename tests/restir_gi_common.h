@@ -78,7 +78,7 @@ struct SunJumpRun {
   double converged() const;
 };
 // Mean luminances of `stages` (debug views, e.g. "cache", "gi.resolved") are recorded for the
-// first 20 frames after the jump.
+// 64 frames after the jump.
 SunJumpRun runSunJump(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
                       const Camera& camera, const HybridSettings& settings,
                       const ImageRGBA32F& reference, const std::vector<std::string>& stages = {});

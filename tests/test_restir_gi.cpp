@@ -359,7 +359,9 @@ RestirGiSettings jumpingLightSettings() {
 // together. Its converged value is that of the same run long after the jump (mean of frames
 // 49-64); "within 10 frames" is the mean of frames 8-10 (one frame's error varies by +-30 %).
 // DISABLED: not met. 64x48, three runs: 1.72x, 1.78x and 2.11x (frames 8-10 0.065-0.079
-// against 0.036-0.041; the error is within 1.5x from frame 11-12 on). At
+// against 0.036-0.041; the error is within 1.5x from frame 11-12 on). With session 15's
+// settling anti-lag in gi-temporal-denoise (full history, sensitive anti-lag) four runs gave
+// 1.50x, 1.63x, 1.82x and 1.94x (frames 8-10 0.061-0.073; docs/gi/restir-gi.md). At
 // 32x24, where this test ran until session 13, five runs gave 1.08-1.57x (converged 0.052-0.068:
 // at that size a few low-frequency blotches decide the converged level), so it passed or failed
 // by chance; sessions before the clipmap cache's reset fix measured 1.19-1.33x there, with a

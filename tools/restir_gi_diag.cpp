@@ -398,7 +398,7 @@ void runConfigurations(const Options& o) {
 }
 
 // test_restir_gi's sun jump and camera cut (test::runSunJump) in another configuration; with
-// --trace every frame's error and, for the first 20, the mean of each stage of the chain.
+// --trace every frame's error and the mean of each stage of the chain.
 void runJump(const Options& o) {
   Setup setup(o);
   const ImageRGBA32F reference = setup.reference();

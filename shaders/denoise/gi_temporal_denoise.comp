@@ -16,6 +16,10 @@
 // The history length shrinks with the reservoir validity (gi-resolve-diffuse-rays) and grows
 // where the spatial occlusion validity is low (gi-trace-spatial-validation-rays). Writes
 // gi.diffuse. Nothing non-finite enters history. Outliers are clamped first (withoutFirefly).
+// While the light settles after a reset or a lighting cut (pc.historyScale < 1) the history
+// keeps its full length, since a shorter one measured far noisier frames, and the anti-lag
+// follows the new light instead: a two-frame fast history and a threshold of the fast
+// neighbourhood mean's standard error rather than its spread (docs/gi/restir-gi.md).
 #version 460
 #include "gi/evolve/restir/restir_gi_common.glsl"
 
@@ -38,6 +42,11 @@ layout(set = 1, binding = GI_DENOISE_BINDING_CURRENT_FAST, rgba16f) uniform writ
 
 const float HISTORY_DEPTH_TOLERANCE = 0.03;
 const float FAST_FRAMES = 4.0;
+// While settling: the fast history's length, and how many times more sensitive the anti-lag is
+// (the fast mean's standard error over 3x3 samples is sigma / 3; ReBLUR's anti-lag sensitivity
+// is 3 as well, gi10_lux_denoisers.md section 3.2).
+const float SETTLE_FAST_FRAMES = 2.0;
+const float SETTLE_LAG_SENSITIVITY = 3.0;
 
 DEFINE_NEIGHBOURHOOD_LUMINANCES(reservoirValidity)
 
@@ -102,8 +111,7 @@ ClipBox fastHistoryBox(FrameConstants f, RestirGiConstants gi, ivec2 p, vec3 cen
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
-  // Shorter while the light settles after a reset or a lighting cut.
-  gi.denoiseMaxHistory = max(gi.denoiseMaxHistory * pc.historyScale, 1.0);
+  bool settling = pc.historyScale < 1.0;  // after a reset or a lighting cut
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
   if ((imageLoad(flags, pixel).x & GBUFFER_FLAG_SURFACE) == 0u) {
@@ -120,7 +128,7 @@ void main() {
     history = finiteOrZero(imageLoad(previous, p));
     fastHistory = finiteOrZero(imageLoad(previousFast, p));
   }
-  float fastFrames = min(fastHistory.a + 1.0, FAST_FRAMES);
+  float fastFrames = min(fastHistory.a + 1.0, settling ? SETTLE_FAST_FRAMES : FAST_FRAMES);
   vec3 fast = mix(fastHistory.rgb, value, 1.0 / fastFrames);
   imageStore(currentFast, pixel, finiteOrZero(vec4(fast, fastFrames)));
   vec3 clipped = history.rgb;
@@ -128,7 +136,9 @@ void main() {
   if (p.x >= 0) {
     ClipBox box = fastHistoryBox(f, gi, p, fast);
     clipped = clamp(history.rgb, box.low, box.high);
-    lag = abs(brdfLuminance(history.rgb - fast)) / max(brdfLuminance(box.sigma), 1e-4);
+    float sensitivity = settling ? SETTLE_LAG_SENSITIVITY : 1.0;
+    float drift = abs(brdfLuminance(history.rgb - fast));
+    lag = sensitivity * drift / max(brdfLuminance(box.sigma), 1e-4);
   }
   // Less accumulation where the reservoir validity is low (seed 000): a validation ray found
   // moved geometry or changed light there, so history is stale.
@@ -142,8 +152,9 @@ void main() {
   float maxFrames = max(gi.denoiseMaxHistory * (isFiniteValue(validity) ? validity : 1.0), 1.0);
   // More accumulation where the spatial occlusion validity is low (seed 000): there spatial
   // reuse keeps failing its visibility test, the validated reservoirs boil (pepper noise that
-  // gi-restir-patch-reservoir only partly repairs); up to twice the history.
-  if ((gi.flags & RESTIR_GI_FLAG_SPATIAL_VALIDATION) != 0u) {
+  // gi-restir-patch-reservoir only partly repairs); up to twice the history. Not while settling:
+  // there the history must follow the light.
+  if ((gi.flags & RESTIR_GI_FLAG_SPATIAL_VALIDATION) != 0u && !settling) {
     float occlusion = clamp(imageLoad(occlusionValidity, g).x, 0.0, 1.0);
     if (isFiniteValue(occlusion)) maxFrames *= 2.0 - occlusion;
   }

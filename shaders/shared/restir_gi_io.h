@@ -98,8 +98,8 @@ struct RestirGiPassConstants {
   DeviceAddress gi;     // RestirGiConstants
   uint historyValid;    // 0 in the first frame and after a reset
   uint variant;         // which of a shared shader's passes (gi-restir-spatial-0 / -1)
-  // Scales temporalMaxM and denoiseMaxHistory: settleHistoryScale while the light settles
-  // after a reset or a lighting cut (RestirGiSettings::settleFrames), else 1.
+  // Scales temporalMaxM: settleHistoryScale while the light settles after a reset or a
+  // lighting cut (RestirGiSettings::settleFrames), else 1 (gi-temporal-denoise: < 1 = settling).
   float historyScale;
   uint pad0;
 };

@@ -152,10 +152,12 @@ struct RestirGiSettings {
   // wider box: smoother, more ghosting after a change. Off for unbiased measurements.
   // After a reset (the first frames) or a lighting cut, while the cache rebuilds its light
   // (ClipmapCacheSettings::fullRefreshFrames), the stored radiance of every history is that of
-  // a darker (or otherwise different) cache: for settleFrames frames temporalMaxM and
-  // denoiseMaxHistory are scaled by settleHistoryScale (at least 1 frame), so that reservoirs
-  // and the denoiser follow the new light instead of averaging it with the old. Longer or
-  // lower: faster convergence of the mean, noisier frames while it lasts. 0 frames = off.
+  // a darker (or otherwise different) cache: for settleFrames frames temporalMaxM is scaled by
+  // settleHistoryScale (at least 1 candidate), so that reservoirs follow the new light instead
+  // of averaging it with the old, and gi-temporal-denoise keeps its history length but follows
+  // the light with a more sensitive anti-lag (a shorter history there was far noisier:
+  // docs/gi/restir-gi.md). Longer or lower: faster convergence of the mean, noisier frames
+  // while it lasts. 0 frames = off.
   // (A lighting cut also drops the light-holding histories for one frame: RestirGi::lightingCut.)
   uint32_t settleFrames = 16;
   float settleHistoryScale = 0.2f;
