@@ -23,11 +23,13 @@ namespace {
 constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr const char* kOutput = "denoiser.output";
 
+// The frame graph reads imported inputs as sampled images (shader-read-only layout), so they need
+// the sampled usage as well as the storage one.
 vk::Image storageImage(vk::Context& context, VkFormat format, uint32_t w, uint32_t h,
                        const char* name) {
   return vk::Image(context, format, w, h, 1, 1,
-                   VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
-                       VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                   VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                       VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                    name, VK_IMAGE_VIEW_TYPE_2D);
 }
 
