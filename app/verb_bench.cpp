@@ -62,6 +62,7 @@ struct BenchOptions {
   bool soak = false;
   int64_t soakWarmup = 100;
   double soakResidentGrowthMiB = 8.0;
+  bool countRays = true;  // rays per pass, counted on the GPU (HybridFrame::countRays)
 };
 
 // A soak whose checks failed (NaN or Inf pixels, memory growth): the report is still written.
@@ -190,15 +191,17 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// A pass's GPU milliseconds in every frame (0 in a frame that did not run it).
+// A pass's GPU milliseconds and rays in every frame (0 in a frame that did not run it).
 struct PassSeries {
   std::string name;
   std::vector<double> ms;
+  std::vector<double> rays;  // empty when rays were not counted
 };
 
 struct RunRecord {
   std::vector<PassSeries> passes;  // in first-recorded order
   std::vector<double> frameGpuMs, frameWallMs, hours;
+  std::vector<double> frameRays;  // empty when rays were not counted
   std::vector<uint32_t> contactFrameIndices;
   std::vector<ImageRGBA32F> contactTiles;
   uint64_t deviceBytes = 0, deviceAllocations = 0;  // Bounce's, frame and scene, at the end
@@ -207,20 +210,31 @@ struct RunRecord {
 
 void addTimings(RunRecord& record, uint32_t frame, uint32_t frames,
                 const std::vector<vk::PassTiming>& timings) {
-  double total = 0.0;
+  double total = 0.0, rays = 0.0;
+  bool counted = false;
   for (const vk::PassTiming& t : timings) {
     // The debug-view copies feed the contact sheet; they are not part of the frame.
     if (t.name.rfind("debug-view:", 0) == 0) continue;
     auto it = std::find_if(record.passes.begin(), record.passes.end(),
                            [&](const PassSeries& p) { return p.name == t.name; });
     if (it == record.passes.end()) {
-      record.passes.push_back({t.name, std::vector<double>(frames, 0.0)});
+      record.passes.push_back({t.name, std::vector<double>(frames, 0.0), {}});
       it = record.passes.end() - 1;
     }
     it->ms[frame] += t.milliseconds;
     total += t.milliseconds;
+    if (t.rays) {
+      if (it->rays.empty()) it->rays.assign(frames, 0.0);
+      it->rays[frame] += double(*t.rays);
+      rays += double(*t.rays);
+      counted = true;
+    }
   }
   record.frameGpuMs.push_back(total);
+  if (counted) {
+    record.frameRays.resize(frame, 0.0);
+    record.frameRays.push_back(rays);
+  }
 }
 
 // The frames of the contact sheet: `count` at even intervals from the first to the last.
@@ -263,6 +277,7 @@ ImageRGBA32F contactSheet(const std::vector<ImageRGBA32F>& tiles) {
 RunRecord runFrames(const BenchOptions& o, const BenchRun& run, const Scene& scene,
                     vk::Context& context, GpuScene& gpuScene) {
   HybridFrame frame(context, gpuScene, scene, settingsFor(o, run));
+  frame.countRays(o.countRays);
   frame.requestDebugView("tonemap");
   // The linear frame before tone mapping: a NaN anywhere in the chain reaches it.
   if (o.soak) frame.requestDebugView("composite");
@@ -304,35 +319,54 @@ RunRecord runFrames(const BenchOptions& o, const BenchRun& run, const Scene& sce
   return record;
 }
 
-// Per pass: mean, median and worst rolling average, and its share of the mean frame.
-nlohmann::json tableJson(const RunRecord& r, size_t window) {
+// Per pass: mean, median and worst rolling average, and its share of the mean frame; with
+// rays counted, the median rays per frame, per pixel and the rate (rays over milliseconds,
+// both medians, in Grays/s).
+nlohmann::json tableJson(const RunRecord& r, size_t window, uint64_t pixels) {
   nlohmann::json table = nlohmann::json::array();
   const double frameMean = mean(r.frameGpuMs);
-  auto row = [&](const std::string& name, const std::vector<double>& ms, bool gpu = true) {
+  auto row = [&](const std::string& name, const std::vector<double>& ms,
+                 const std::vector<double>& rays, bool gpu = true) {
     const std::vector<double> rolling = rollingMean(ms, window);
-    table.push_back({{"pass", name},
-                     {"mean_ms", mean(ms)},
-                     {"median_ms", median(ms)},
-                     {"max_rolling_ms", *std::max_element(rolling.begin(), rolling.end())},
-                     // Of the frame's GPU time; the host's wall time is no part of it.
-                     {"share", gpu && frameMean > 0.0 ? nlohmann::json(mean(ms) / frameMean)
-                                                      : nlohmann::json()}});
+    nlohmann::json row = {{"pass", name},
+                          {"mean_ms", mean(ms)},
+                          {"median_ms", median(ms)},
+                          {"max_rolling_ms", *std::max_element(rolling.begin(), rolling.end())},
+                          // Of the frame's GPU time; the host's wall time is no part of it.
+                          {"share", gpu && frameMean > 0.0 ? nlohmann::json(mean(ms) / frameMean)
+                                                           : nlohmann::json()}};
+    if (!rays.empty()) {
+      const double medianRays = median(rays), medianMs = median(ms);
+      row["median_rays"] = medianRays;
+      row["rays_per_pixel"] = medianRays / double(pixels);
+      row["grays_per_s"] = medianRays > 0.0 && medianMs > 0.0
+                               ? nlohmann::json(medianRays / medianMs * 1e-6)
+                               : nlohmann::json();
+    }
+    table.push_back(row);
   };
-  for (const PassSeries& p : r.passes) row(p.name, p.ms);
-  row("frame (GPU)", r.frameGpuMs);
-  row("frame (wall, host)", r.frameWallMs, false);
+  for (const PassSeries& p : r.passes) row(p.name, p.ms, p.rays);
+  row("frame (GPU)", r.frameGpuMs, r.frameRays);
+  row("frame (wall, host)", r.frameWallMs, {}, false);
   return table;
 }
 
 void printTable(const std::string& title, const nlohmann::json& table) {
-  std::printf("%s\n  %-32s %10s %10s %12s %7s\n", title.c_str(), "pass", "mean ms", "median ms",
-              "max rolling", "share");
+  std::printf("%s\n  %-32s %10s %10s %12s %7s %10s %8s\n", title.c_str(), "pass", "mean ms",
+              "median ms", "max rolling", "share", "rays/px", "Grays/s");
   for (const nlohmann::json& row : table) {
     const std::string share =
         row["share"].is_null() ? "" : fmt::format("{:.1f}%", 100.0 * row["share"].get<double>());
-    std::printf("  %-32s %10.3f %10.3f %12.3f %7s\n", row["pass"].get<std::string>().c_str(),
-                row["mean_ms"].get<double>(), row["median_ms"].get<double>(),
-                row["max_rolling_ms"].get<double>(), share.c_str());
+    const bool counted = row.contains("rays_per_pixel");
+    const std::string perPixel =
+        counted ? fmt::format("{:.3f}", row["rays_per_pixel"].get<double>()) : "";
+    const std::string rate = counted && !row["grays_per_s"].is_null()
+                                 ? fmt::format("{:.2f}", row["grays_per_s"].get<double>())
+                                 : "";
+    std::printf("  %-32s %10.3f %10.3f %12.3f %7s %10s %8s\n",
+                row["pass"].get<std::string>().c_str(), row["mean_ms"].get<double>(),
+                row["median_ms"].get<double>(), row["max_rolling_ms"].get<double>(), share.c_str(),
+                perPixel.c_str(), rate.c_str());
   }
 }
 
@@ -398,12 +432,14 @@ nlohmann::json reportRun(const BenchOptions& o, const BenchRun& run, const RunRe
     const std::vector<double> rolling = rollingMean(p.ms, window);
     plot.series.push_back({p.name, rolling});
     j["passes"].push_back({{"name", p.name}, {"ms", p.ms}, {"rolling_ms", rolling}});
+    if (!p.rays.empty()) j["passes"].back()["rays"] = p.rays;
   }
+  if (!r.frameRays.empty()) j["frame_rays"] = r.frameRays;
   j["frame_gpu_ms"] = r.frameGpuMs;
   j["frame_gpu_rolling_ms"] = rollingMean(r.frameGpuMs, window);
   j["frame_wall_ms"] = r.frameWallMs;
   j["hours"] = r.hours;
-  j["table"] = tableJson(r, window);
+  j["table"] = tableJson(r, window, uint64_t(settings.width) * settings.height);
   j["device_bytes"] = r.deviceBytes;
   j["device_allocations"] = r.deviceAllocations;
   if (r.soak) j["soak"] = soakJson(*r.soak);
@@ -622,6 +658,10 @@ void addBenchVerb(CLI::App& app, VerbAction& action) {
       ->capture_default_str();
   cmd->add_option("--soak-rss-growth", options->soakResidentGrowthMiB,
                   "MiB the resident set may grow after the warm-up (--soak)")
+      ->capture_default_str();
+  cmd->add_flag("--count-rays,!--no-count-rays", options->countRays,
+                "Count every pass's rays on the GPU (rays per frame, per pixel, Grays/s in the "
+                "table and bench.json); adds a barrier after each pass")
       ->capture_default_str();
   cmd->callback([&action, options, cmd] {
     options->common.given.record(*cmd);

@@ -66,6 +66,26 @@ TEST(Bench, SunroomWritesReportPlotAndContactSheet) {
   EXPECT_TRUE(day);
   // The table: every pass plus the frame's GPU and wall times.
   EXPECT_EQ(run["table"].size(), run["passes"].size() + 2);
+  // Rays (counted by default): a series per pass; the frame's rays are the passes' sum; the
+  // sun's shadow rays are at most one per shadow pixel (a quarter of the pixels, desktop); the
+  // passes that trace nothing count none (HybridFrame.CountedRaysMatchWhatEachPassTraces checks
+  // the counts exactly).
+  ASSERT_EQ(run["frame_rays"].size(), size_t(kFrames));
+  for (int f = 0; f < kFrames; ++f) {
+    double sum = 0.0;
+    for (const nlohmann::json& pass : run["passes"]) sum += pass["rays"][f].get<double>();
+    EXPECT_EQ(sum, run["frame_rays"][f].get<double>()) << "frame " << f;
+  }
+  auto rowOf = [&](const std::string& pass) {
+    for (const nlohmann::json& row : run["table"])
+      if (row["pass"] == pass) return row;
+    ADD_FAILURE() << "no table row " << pass;
+    return nlohmann::json();
+  };
+  EXPECT_GT(rowOf("shadows-trace")["rays_per_pixel"].get<double>(), 0.0);
+  EXPECT_LE(rowOf("shadows-trace")["rays_per_pixel"].get<double>(), 0.25);
+  EXPECT_EQ(rowOf("composite")["rays_per_pixel"].get<double>(), 0.0);
+  EXPECT_GT(rowOf("frame (GPU)")["median_rays"].get<double>(), 0.0);
 
   const ImageRGBA32F plot =
       readImage((fs::path(dir) / run["plot_png"].get<std::string>()).string());

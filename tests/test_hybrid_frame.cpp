@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -270,6 +271,46 @@ TEST(HybridFrame, SunlitLambertFloorHasRadianceECosThetaOverPi) {
     for (int x = 0; x < hdr.width; ++x)
       for (int c = 0; c < 3; ++c)
         ASSERT_NEAR(hdr.at(x, y)[c], expected, 0.01f * expected) << "pixel " << x << "," << y;
+}
+
+// Rays counted on the GPU (HybridFrame::countRays, what `bounce bench` reports per pass)
+// against what each pass must trace on a view that is all sunlit floor: the ray-cast vbuffer
+// one ray per pixel, shadows-trace one per shadow pixel (every one sees the sun in front of the
+// floor), the passes that trace nothing none; counting off gives no count.
+TEST(HybridFrame, CountedRaysMatchWhatEachPassTraces) {
+  vk::Context context(vk::contextOptionsFromEnvironment({}));
+  Scene scene = sunlitFloor(3.0f, 50.0f);
+  GpuScene gpuScene(context, scene);
+  HybridSettings settings = presetSettings(Preset::Desktop);
+  settings.gi = GiMode::Evolve;
+  settings.vbuffer = VBufferMode::Trace;
+  settings.width = 32;
+  settings.height = 24;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.countRays(true);
+  std::vector<vk::PassTiming> timings;
+  for (int i = 0; i < 3; ++i) timings = frame.render(*scene.camera);
+  auto raysOf = [&](const std::string& pass) -> std::optional<uint64_t> {
+    for (const vk::PassTiming& t : timings)
+      if (t.name == pass) return t.rays;
+    ADD_FAILURE() << "no pass " << pass;
+    return std::nullopt;
+  };
+  const VkExtent2D shadow = settings.shadows.resolution(settings.resolution());
+  EXPECT_EQ(raysOf("vbuffer"), std::optional<uint64_t>(32 * 24));
+  EXPECT_EQ(raysOf("shadows-trace"), std::optional<uint64_t>(shadow.width * shadow.height));
+  for (const char* none : {"gbuffer", "composite", "tonemap"})
+    EXPECT_EQ(raysOf(none), std::optional<uint64_t>(0)) << none;
+  uint64_t giRays = 0;
+  for (const vk::PassTiming& t : timings) {
+    ASSERT_TRUE(t.rays.has_value()) << t.name;
+    if (t.name.rfind("gi-", 0) == 0 || t.name.rfind("cache-", 0) == 0) giRays += *t.rays;
+  }
+  EXPECT_GT(giRays, 0u) << "the GI traced no counted ray";
+
+  frame.countRays(false);
+  timings = frame.render(*scene.camera);
+  for (const vk::PassTiming& t : timings) EXPECT_FALSE(t.rays.has_value()) << t.name;
 }
 
 TEST(HybridFrame, ViewProjectionMapsPixelRaysBackToTheirPixels) {

@@ -207,12 +207,25 @@ TraceHit traceScene(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax, boo
   return best;
 }
 
+layout(buffer_reference, scalar, buffer_reference_align = 4) buffer RayCounter { uint rays; };
+
+// Counts one ray when the scene asks for it (GpuSceneRefs::rayCounting, a uniform branch that
+// costs nothing when off). The lanes tracing together add their count with one atomic: one per
+// ray would serialise millions of atomics on one address.
+void countRay() {
+  if (scene.rayCounting == 0u) return;
+  uint lanes = subgroupBallotBitCount(subgroupBallot(true));
+  if (subgroupElect()) atomicAdd(RayCounter(scene.rayCounter).rays, lanes);
+}
+
 TraceHit traceClosest(vec3 origin, vec3 dir, float tMin, float tMax, bool alphaTest) {
+  countRay();
   return traceScene(origin, dir, tMin, tMax, alphaTest, false);
 }
 
 // True when nothing blocks the segment (tMin, tMax) of the ray.
 bool traceVisibility(vec3 origin, vec3 dir, float tMin, float tMax, bool alphaTest) {
+  countRay();
   return !traceHitFound(traceScene(origin, dir, tMin, tMax, alphaTest, true));
 }
 

@@ -43,6 +43,8 @@ using glm::normalize;
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 // [[dont_unroll]]: loops whose unrolled copies a CPU driver would compile (docs/startup.md).
 #extension GL_EXT_control_flow_attributes : require
+// Ray counting (shaders/rt/trace.glsl) adds a subgroup's rays with one atomic.
+#extension GL_KHR_shader_subgroup_ballot : require
 #define BOUNCE_BEGIN_SHARED
 #define BOUNCE_END_SHARED
 #define BOUNCE_CHECK_SIZE(Type, bytes)

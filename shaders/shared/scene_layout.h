@@ -130,11 +130,14 @@ struct GpuSceneRefs {
   uint materialCount;
   uint triangleCount;
   vec3 boundsMin;
-  float pad0;
+  // Non-zero: every traceClosest/traceVisibility adds one to *rayCounter (GpuScene::
+  // setRayCounting; `bounce bench` reports rays per pass with it).
+  uint rayCounting;
   vec3 boundsMax;
   float pad1;
+  DeviceAddress rayCounter;  // uint, zeroed per frame by vk::GpuTimer
 };
-BOUNCE_CHECK_SIZE(GpuSceneRefs, 144);
+BOUNCE_CHECK_SIZE(GpuSceneRefs, 152);
 
 BOUNCE_CONST uint SCENE_SET = 0u;
 BOUNCE_CONST uint SCENE_BINDING_REFS = 0u;

@@ -242,6 +242,11 @@ std::vector<vk::PassTiming> HybridFrame::submitFrame(bool afterHostWork) {
   return timer_.available() ? timer_.read() : std::vector<vk::PassTiming>{};
 }
 
+void HybridFrame::countRays(bool on) {
+  gpuScene_.setRayCounting(on);
+  timer_.countRays(on ? gpuScene_.rayCounter().handle() : VK_NULL_HANDLE);
+}
+
 void HybridFrame::requestDebugView(const std::string& passOrResource) {
   graph_.requestDebugView(di_ && isDiDerivedView(passOrResource) ? kDiInfoResource
                                                                  : passOrResource);

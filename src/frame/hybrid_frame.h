@@ -89,6 +89,11 @@ class HybridFrame {
   // Declares, records, submits and waits for one frame seen from `camera`. Returns the GPU
   // time of each pass (debug-view copies included), in recording order.
   std::vector<vk::PassTiming> render(const Camera& camera);
+  // From the next frame on, each PassTiming also has the rays its pass traced (every
+  // traceClosest/traceVisibility call, counted on the GPU: GpuScene::setRayCounting). Waits
+  // for the device. Counting adds a barrier after each pass; bench times with it on unless
+  // told otherwise (docs/benchmarks.md gives the cost).
+  void countRays(bool on);
 
   // Bring your own G-buffer (issue 17): one frame seen from `camera` whose GBuffer comes from
   // the host's images (`gbuffer-import` instead of vbuffer + gbuffer) and that ends at the GI

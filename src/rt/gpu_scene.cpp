@@ -103,9 +103,34 @@ void GpuScene::uploadArrays() {
   refs.triangleCount = uint32_t(bvh_.triangles.size());
   refs.boundsMin = bounds_.empty() ? glm::vec3(0.0f) : bounds_.min;
   refs.boundsMax = bounds_.empty() ? glm::vec3(0.0f) : bounds_.max;
+  rayCounter_ = vk::Buffer(context_, 16,
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                               VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           vk::MemoryUse::DeviceOnly, "scene.ray-counter");
+  refs.rayCounter = rayCounter_.address();
+  refs.rayCounting = 0u;
+  refsHost_ = refs;
   refs_ = vk::uploadBuffer(context_, std::as_bytes(std::span(&refs, 1)),
                            VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "scene.refs");
   stats_.bvhBytes = bytesOf(bvh_.blasNodes) + bytesOf(bvh_.tlasNodes) + bytesOf(bvh_.triangles);
+}
+
+void GpuScene::setRayCounting(bool on) {
+  if (rayCounting() == on) return;
+  refsHost_.rayCounting = on ? 1u : 0u;
+  context_.submitAndWait([&](VkCommandBuffer cmd) {
+    vkCmdUpdateBuffer(cmd, refs_.handle(), 0, sizeof(refsHost_), &refsHost_);
+    // Later submissions' shaders read the new refs.
+    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+    barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dependency);
+  });
 }
 
 void GpuScene::uploadTextures() {

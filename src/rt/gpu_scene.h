@@ -62,6 +62,14 @@ class GpuScene {
   const vk::Buffer& previousInstanceBuffer() const { return previousInstances_; }
   const vk::Buffer& tlasBuffer() const { return buffers_[tlasBufferIndex_]; }
 
+  // ---- ray counting ----
+  // On: every ray traced through shaders/rt/trace.glsl adds one to rayCounter() (a uint).
+  // Rewrites the scene's refs and waits for the device; call between frames. Off by default:
+  // a counted ray costs a subgroup ballot and, per subgroup, one atomic.
+  void setRayCounting(bool on);
+  bool rayCounting() const { return refsHost_.rayCounting != 0u; }
+  const vk::Buffer& rayCounter() const { return rayCounter_; }
+
  private:
   void uploadArrays();
   void uploadTextures();
@@ -81,6 +89,8 @@ class GpuScene {
   bool uploadPending_ = false;
   bool previousDiffers_ = false;  // the device's previous instances differ from the current
   vk::Buffer refs_;
+  gpu::GpuSceneRefs refsHost_{};          // what refs_ holds
+  vk::Buffer rayCounter_;                 // one uint, storage and transfer source/destination
   std::vector<vk::Image> textureImages_;  // one per binding slot (placeholder when unused)
   VkSampler sampler_ = VK_NULL_HANDLE;
   vk::DescriptorSetLayout setLayout_;

@@ -20,10 +20,42 @@ GpuTimer::~GpuTimer() {
   if (pool_) vkDestroyQueryPool(context_.device(), pool_, nullptr);
 }
 
+namespace {
+
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+  barrier.srcStageMask = srcStage;
+  barrier.srcAccessMask = srcAccess;
+  barrier.dstStageMask = dstStage;
+  barrier.dstAccessMask = dstAccess;
+  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+  dependency.memoryBarrierCount = 1;
+  dependency.pMemoryBarriers = &barrier;
+  vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+}  // namespace
+
+void GpuTimer::countRays(VkBuffer counter) {
+  rayCounter_ = counter;
+  if (counter && !rayReadback_)
+    rayReadback_ = Buffer(context_, maxScopes_ * sizeof(uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                          MemoryUse::Readback, "gpu-timer.ray-readback");
+}
+
 void GpuTimer::reset(VkCommandBuffer cmd) {
   names_.clear();
   open_ = false;
   if (supported_) vkCmdResetQueryPool(cmd, pool_, 0, maxScopes_ * 2);
+  if (countingRays()) {
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                  VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+    vkCmdFillBuffer(cmd, rayCounter_, 0, sizeof(uint32_t), 0u);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                  VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+  }
 }
 
 void GpuTimer::begin(VkCommandBuffer cmd, const std::string& name) {
@@ -42,6 +74,15 @@ void GpuTimer::end(VkCommandBuffer cmd) {
   if (supported_)
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, pool_,
                          uint32_t(names_.size() - 1) * 2 + 1);
+  if (countingRays()) {
+    // The scope's atomics land before the copy, and the copy reads before later scopes add.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkBufferCopy region{0, (names_.size() - 1) * sizeof(uint32_t), sizeof(uint32_t)};
+    vkCmdCopyBuffer(cmd, rayCounter_, rayReadback_.handle(), 1, &region);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0,
+                  VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0);
+  }
 }
 
 std::vector<PassTiming> GpuTimer::read() {
@@ -55,6 +96,11 @@ std::vector<PassTiming> GpuTimer::read() {
   double nsPerTick = context_.info().timestampPeriodNs;
   for (size_t i = 0; i < names_.size(); ++i)
     timings.push_back({names_[i], double(stamps[2 * i + 1] - stamps[2 * i]) * nsPerTick * 1e-6});
+  if (countingRays()) {
+    const uint32_t* counts = rayReadback_.mappedAs<const uint32_t>();
+    for (size_t i = 0; i < names_.size(); ++i)
+      timings[i].rays = uint64_t(counts[i] - (i == 0 ? 0u : counts[i - 1]));
+  }
   return timings;
 }
 

@@ -1,19 +1,23 @@
 // Named GPU timestamps: begin(cmd, "pass") / end(cmd) around each pass, read back in
 // milliseconds after the work completes. Query slots are allocated once (no per-frame
-// allocation).
+// allocation). With countRays(), each scope also reports the rays its shaders counted.
 #pragma once
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
 #include "vk/context.h"
+#include "vk/resources.h"
 
 namespace bounce::vk {
 
 struct PassTiming {
   std::string name;
   double milliseconds = 0.0;
+  std::optional<uint64_t> rays;  // set while counting rays (GpuTimer::countRays)
 };
 
 class GpuTimer {
@@ -30,6 +34,14 @@ class GpuTimer {
   // After the submission finished: one entry per scope, in recording order.
   std::vector<PassTiming> read();
 
+  // Rays per scope from a device counter (a uint that shaders increment, e.g. GpuScene::
+  // rayCounter()): reset() zeroes it and end() copies it to a readback slot, so a scope's rays
+  // are the difference to the previous scope's copy. The barriers this adds around every scope
+  // serialise the passes a little; time without counting for the best figures. Pass a null
+  // handle to stop. The readback buffer is made here, once.
+  void countRays(VkBuffer counter);
+  bool countingRays() const { return rayCounter_ != VK_NULL_HANDLE; }
+
  private:
   Context& context_;
   VkQueryPool pool_ = VK_NULL_HANDLE;
@@ -37,6 +49,8 @@ class GpuTimer {
   bool supported_ = false;
   std::vector<std::string> names_;
   bool open_ = false;
+  VkBuffer rayCounter_ = VK_NULL_HANDLE;
+  Buffer rayReadback_;  // maxScopes_ uints
 };
 
 }  // namespace bounce::vk
