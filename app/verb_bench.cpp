@@ -301,7 +301,7 @@ RunRecord runFrames(const BenchOptions& o, const BenchRun& run, const Scene& sce
     if (record.soak)
       record.soak->add({i, countNonFinitePixels(frame.debugViewImage("composite")),
                         residentSetBytes(), context.liveAllocationBytes(),
-                        context.liveAllocationCount()});
+                        context.liveAllocationCount(), heapInUseBytes()});
     const auto& picks = record.contactFrameIndices;
     if (std::find(picks.begin(), picks.end(), i) != picks.end()) {
       record.contactTiles.push_back(contactTile(frame.debugViewImage("tonemap")));
@@ -393,6 +393,7 @@ nlohmann::json soakJson(const SoakCheck& soak) {
     return nlohmann::json{{"frame", s->frame},
                           {"non_finite_pixels", s->nonFinitePixels},
                           {"resident_bytes", s->residentBytes},
+                          {"heap_in_use_bytes", s->heapInUseBytes},
                           {"device_bytes", s->deviceBytes},
                           {"device_allocations", s->deviceAllocations}};
   };

@@ -44,4 +44,4 @@ for s in sunroom city; do
   $B bench --scene $s --res 1920x1080 --gi evolve,gi10,lux,cache --frames 240 \
     --out /tmp/cmp/bench-$s 2>&1 | tr '\r' '\n' | grep -E "frame \(GPU\)|error|^sunroom|^city"
 done
-tar czf $OUT/cmp.tgz -C /tmp cmp --exclude='*.exr' --exclude='*-contact.png'
+tar czf $OUT/cmp.tgz --exclude='*.exr' --exclude='*-contact.png' -C /tmp cmp

@@ -27,5 +27,5 @@ sleep 150; smaps > /tmp/rss-b.txt; grep VmRSS /proc/$pid/status
 echo "Rss growth by mapping (kB, 150 s apart):"
 join -a2 -e0 -o 0,1.2,2.2 /tmp/rss-a.txt /tmp/rss-b.txt | awk '$3-$2 != 0 {print $3-$2, $1}' | sort -rn | head -15
 kill $pid; wait
-tar czf $OUT/rays.tgz -C /tmp rays --exclude='*.png' --exclude='*.svg'
+tar czf $OUT/rays.tgz --exclude='*.png' --exclude='*.svg' -C /tmp rays
 cp /tmp/rays/sunroom/desktop-evolve-passes.png $OUT/ 2>/dev/null

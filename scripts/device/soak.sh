@@ -19,7 +19,7 @@ bash .devicepack/run.sh bounce bench --scene sunroom --preset mobile,desktop --g
 bash .devicepack/run.sh bounce render --scene sunroom --res 16384x16384 --frames 1 \
   --out /tmp/huge.png > /tmp/huge.log 2>&1
 echo "huge exit: $?"; tail -2 /tmp/huge.log
-tar czf $OUT/soak.tgz -C /tmp soak compare --exclude='*.png' --exclude='*.svg'
+tar czf $OUT/soak.tgz --exclude='*.png' --exclude='*.svg' -C /tmp soak compare
 cp /tmp/compare/comparison.png /tmp/compare/comparison.svg $OUT/
 cp /tmp/soak/city/desktop-evolve-contact.png $OUT/city-soak-contact.png
 cp /tmp/soak/sunroom/desktop-evolve-passes.png $OUT/sunroom-soak-passes.png

@@ -1,5 +1,6 @@
 #include "tools/soak_check.h"
 
+#include <malloc.h>
 #include <unistd.h>
 
 #include <fstream>
@@ -13,6 +14,15 @@ uint64_t residentSetBytes() {
   uint64_t sizePages = 0, residentPages = 0;
   if (!(statm >> sizePages >> residentPages)) return 0;
   return residentPages * uint64_t(sysconf(_SC_PAGESIZE));
+}
+
+uint64_t heapInUseBytes() {
+#if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 33))
+  const struct mallinfo2 info = mallinfo2();
+  return uint64_t(info.uordblks) + uint64_t(info.hblkhd);
+#else
+  return 0;
+#endif
 }
 
 SoakCheck::SoakCheck(uint32_t warmupFrames, uint64_t maxResidentGrowthBytes)

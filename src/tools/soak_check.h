@@ -11,6 +11,10 @@ namespace bounce {
 
 // The process's resident set now (Linux: /proc/self/statm); 0 where it cannot be read.
 uint64_t residentSetBytes();
+// Bytes the C heap has handed out and not had back (glibc mallinfo2: arena and mmapped chunks
+// in use), every thread's arena included; 0 where unknown. Against the resident set it tells a
+// leak (both grow) from fragmentation or pages touched late (only the resident set grows).
+uint64_t heapInUseBytes();
 
 struct SoakSample {
   uint32_t frame = 0;
@@ -18,6 +22,7 @@ struct SoakSample {
   uint64_t residentBytes = 0;
   uint64_t deviceBytes = 0;  // Bounce's live device memory (vk::Context)
   uint64_t deviceAllocations = 0;
+  uint64_t heapInUseBytes = 0;  // a diagnostic beside residentBytes, not checked
 };
 
 class SoakCheck {
