@@ -1,5 +1,7 @@
 #include "denoise/reblur.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 
 namespace bounce {
@@ -23,6 +25,8 @@ bool finiteAtLeast(float v, float lo) {
 }  // namespace
 
 void validate(const ReblurSettings& s) {
+  if (!finiteAtLeast(s.radiusReferenceHeight, 0.0f) || s.radiusReferenceHeight > 16384.0f)
+    fail("ReBLUR: radius reference height {} must be 0 to 16384 pixels", s.radiusReferenceHeight);
   if (!finiteAtLeast(s.preBlurRadius, 0.0f) || s.preBlurRadius > 256.0f)
     fail("ReBLUR: pre-blur radius {} must be 0 to 256 pixels", s.preBlurRadius);
   if (!finiteAtLeast(s.maxBlurRadius, 0.0f) || s.maxBlurRadius > 256.0f ||
@@ -67,13 +71,19 @@ Reblur::Reblur(vk::Context& context, const GpuScene& scene, const ReblurSettings
   validate(settings_);
 }
 
+float Reblur::scaled(float pixels, VkExtent2D resolution, float floor) const {
+  const float reference = settings_.radiusReferenceHeight;
+  if (!(reference > 0.0f)) return pixels;
+  return std::max(pixels * float(resolution.height) / reference, floor);
+}
+
 gpu::ReblurConstants Reblur::constants(VkExtent2D resolution, const DenoiseInputs& in) const {
   const ReblurSettings& s = settings_;
   gpu::ReblurConstants c{};
   c.resolution = {resolution.width, resolution.height};
   c.flags = (in.octahedralNormals ? gpu::REBLUR_FLAG_OCTAHEDRAL_NORMALS : 0u) |
             (in.albedo ? gpu::REBLUR_FLAG_ALBEDO : 0u);
-  c.blurRadius = s.maxBlurRadius;
+  c.blurRadius = scaled(s.maxBlurRadius, resolution, s.minBlurRadius);
   c.minBlurRadius = s.minBlurRadius;
   c.depthTolerance = s.depthTolerance;
   c.normalTolerance = s.normalTolerance;
@@ -81,7 +91,8 @@ gpu::ReblurConstants Reblur::constants(VkExtent2D resolution, const DenoiseInput
   c.maxAccumulatedFrames = s.maxAccumulatedFrames;
   c.maxFastAccumulatedFrames = s.maxFastAccumulatedFrames;
   c.historyFixFrames = s.historyFixFrames;
-  c.historyFixStride = s.historyFixStride;
+  c.historyFixStride =
+      s.historyFixStride > 0.0f ? scaled(s.historyFixStride, resolution, 1.0f) : 0.0f;
   c.sigmaScale = s.sigmaScale;
   c.antilagSensitivity = s.antilagSensitivity;
   c.maxStabilizedFrames = s.maxStabilizedFrames;
@@ -112,9 +123,13 @@ void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const Deno
     pre.read(*in.albedo, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO);
   else
     pre.readPlaceholder(in.noisy, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO);
-  pre.record([this, c](VkCommandBuffer cmd, const graph::PassResources& r) {
+  const float preBlurRadius =
+      settings_.preBlurRadius > 0.0f
+          ? scaled(settings_.preBlurRadius, resolution, settings_.minBlurRadius)
+          : 0.0f;
+  pre.record([this, c, preBlurRadius](VkCommandBuffer cmd, const graph::PassResources& r) {
     gpu::ReblurConstants k = c;
-    k.blurRadius = settings_.preBlurRadius;
+    k.blurRadius = preBlurRadius;
     k.frame = frame_;
     preBlur_.bind(cmd, k, r);
     dispatch(cmd, k);
