@@ -95,7 +95,12 @@ std::vector<glm::vec4> DenoiseRig::frame(const DenoiseFrame& f, const Declare& d
 graph::FrameGraph& DenoiseRig::beginFrame(const std::string& view) {
   graph_.beginFrame();
   graph_.requestDebugView(view);
+  for (const std::string& name : views_) graph_.requestDebugView(name);
   return graph_;
+}
+
+std::vector<glm::vec4> DenoiseRig::view(const std::string& name) {
+  return pixelsOf(graph::debugViewImage(graph_.readDebugView(name)));
 }
 
 graph::ImageHandle DenoiseRig::import(const std::string& name, vk::Image& image) {

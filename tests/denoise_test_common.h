@@ -61,6 +61,9 @@ class DenoiseRig {
   // For a frame of the test's own making: begins it with `view` (the image run() returns)
   // requested, imports `image` (uploaded again between frames) and runs what was declared.
   graph::FrameGraph& beginFrame(const std::string& view);
+  // Another image of the graph kept for view() after each frame (a debug view).
+  void requestView(const std::string& name) { views_.push_back(name); }
+  std::vector<glm::vec4> view(const std::string& name);
   graph::ImageHandle import(const std::string& name, vk::Image& image);
   std::vector<glm::vec4> run(const std::string& view);
 
@@ -70,6 +73,7 @@ class DenoiseRig {
   GpuScene gpuScene_;
   uint32_t width_, height_;
   vk::Image noisy_, depth_, normals_, motion_;
+  std::vector<std::string> views_;
   graph::FrameGraph graph_;  // after what it imports: destroyed first
 };
 

@@ -58,6 +58,8 @@ class DenoiserHarness {
         });
   }
 
+  DenoiseRig& rig() { return rig_; }
+
   DenoiseStep step() {
     return [this](const DenoiseFrame& f) { return frame(f); };
   }
@@ -191,12 +193,19 @@ TEST_F(ReblurGiTest, SunroomHybridVarianceLower) {
 TEST_F(ReblurGiTest, SunroomHybridWeights) {
   const GiSamples& samples = sunroomSamples(context_);
   DenoiserHarness harness(context_, Kind::Hybrid, samples.width, samples.height);
+  harness.rig().requestView("hybrid.tiles");
   DenoiseFrame f = samples.surface;
   std::vector<std::vector<glm::vec4>> pictures;
   for (int k = 0; k < 16; ++k) {
     f.noisy = samples.frames[32 + k];
     std::vector<glm::vec4> w = harness.frame(f, true);
     if (k != 0 && k != 3 && k != 7 && k != 15) continue;
+    size_t tiles[4] = {};  // by class: red (SVGF) + 2 green (ReBLUR)
+    for (const glm::vec4& t : harness.rig().view("hybrid.tiles"))
+      ++tiles[(t.x > 0.5f ? 1 : 0) + (t.y > 0.5f ? 2 : 0)];
+    std::printf(
+        "hybrid tiles (8x8), frame %d: SVGF alone %zu, ReBLUR alone %zu, both %zu, none %zu\n",
+        k + 1, tiles[1], tiles[2], tiles[3], tiles[0]);
     double sum = 0.0;
     size_t n = 0, svgf = 0, reblur = 0;
     for (size_t i = 0; i < w.size(); ++i) {

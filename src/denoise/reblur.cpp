@@ -101,15 +101,17 @@ gpu::ReblurConstants Reblur::constants(VkExtent2D resolution, const DenoiseInput
 
 void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const DenoiseInputs& in,
                      graph::ImageHandle output) {
+  declareSpatial(graph, resolution, in, declareTemporal(graph, resolution, in), output);
+}
+
+Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
+                                         const DenoiseInputs& in) {
   graph::HistoryImage surface = graph.createHistoryImage("reblur.surface", {kRgba32f});
   graph::HistoryImage fast = graph.createHistoryImage("reblur.fast", {kRgba16f});
   graph::HistoryImage history = graph.createHistoryImage("reblur.accumulated", {kRgba16f});
   const graph::ImageHandle accumulated = history.current;
-  graph::HistoryImage stable = graph.createHistoryImage("reblur.stable", {kRgba16f});
   graph::ImageHandle preBlurred = graph.createImage("reblur.pre-blurred", {kRgba16f});
-  graph::ImageHandle postBlurred = graph.createImage("reblur.post-blurred", {kRgba16f});
   graph::ImageHandle fixed = graph.createImage("reblur.fixed", {kRgba16f});
-  graph::ImageHandle blurred = graph.createImage("reblur.blurred", {kRgba16f});
   const gpu::ReblurConstants c = constants(resolution, in);
   const bool valid = !in.dropHistory;
 
@@ -164,25 +166,46 @@ void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const Deno
         dispatch(cmd, c);
       });
 
+  return {fixed, fast.current, surface};
+}
+
+void Reblur::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution,
+                            const DenoiseInputs& in, const Temporal& temporal,
+                            graph::ImageHandle output, std::optional<graph::ImageHandle> tiles) {
+  graph::HistoryImage stable = graph.createHistoryImage("reblur.stable", {kRgba16f});
+  graph::ImageHandle postBlurred = graph.createImage("reblur.post-blurred", {kRgba16f});
+  graph::ImageHandle blurred = graph.createImage("reblur.blurred", {kRgba16f});
+  const graph::ImageHandle fixed = temporal.fixed;
+  const graph::HistoryImage surface = temporal.surface;
+  gpu::ReblurConstants c = constants(resolution, in);
+  if (tiles) c.flags |= gpu::REBLUR_FLAG_TILES;
+  const bool valid = !in.dropHistory;
+
   // reblur-blur (set 0) and reblur-post-blur (set 1), one pipeline.
   const graph::ImageHandle blurIn[2] = {fixed, blurred};
   const graph::ImageHandle blurOut[2] = {blurred, postBlurred};
-  for (uint32_t i = 0; i < 2; ++i)
-    graph.addPass(i == 0 ? "reblur-blur" : "reblur-post-blur", graph::QueueKind::Compute)
-        .read(blurIn[i], Access::StorageRead, gpu::REBLUR_BLUR_BINDING_INPUT)
+  for (uint32_t i = 0; i < 2; ++i) {
+    graph::PassBuilder blur =
+        graph.addPass(i == 0 ? "reblur-blur" : "reblur-post-blur", graph::QueueKind::Compute);
+    blur.read(blurIn[i], Access::StorageRead, gpu::REBLUR_BLUR_BINDING_INPUT)
         .read(surface.current, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_SURFACE)
-        .write(blurOut[i], Access::StorageWrite, gpu::REBLUR_BLUR_BINDING_OUTPUT)
-        .record([this, c, i](VkCommandBuffer cmd, const graph::PassResources& r) {
-          gpu::ReblurConstants k = c;
-          k.flags |= i == 1 ? gpu::REBLUR_FLAG_POST_BLUR : 0u;
-          k.frame = frame_;
-          blur_.bind(cmd, k, r, i);
-          dispatch(cmd, k);
-        });
+        .write(blurOut[i], Access::StorageWrite, gpu::REBLUR_BLUR_BINDING_OUTPUT);
+    if (tiles)
+      blur.read(*tiles, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_TILES);
+    else
+      blur.readPlaceholder(blurIn[i], gpu::REBLUR_BLUR_BINDING_TILES);
+    blur.record([this, c, i](VkCommandBuffer cmd, const graph::PassResources& r) {
+      gpu::ReblurConstants k = c;
+      k.flags |= i == 1 ? gpu::REBLUR_FLAG_POST_BLUR : 0u;
+      k.frame = frame_;
+      blur_.bind(cmd, k, r, i);
+      dispatch(cmd, k);
+    });
+  }
 
   graph::PassBuilder st = graph.addPass("reblur-stabilize", graph::QueueKind::Compute);
   st.read(postBlurred, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_INPUT)
-      .read(fast.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FAST)
+      .read(temporal.fast, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FAST)
       .read(surface.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_SURFACE)
       .read(in.motion, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_MOTION)
       .read(surface.previous, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_PREVIOUS_SURFACE)

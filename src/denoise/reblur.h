@@ -19,6 +19,7 @@
 // image is at the frame graph's render resolution (formats: shared/reblur_io.h).
 #pragma once
 #include <cstdint>
+#include <optional>
 
 #include "denoise/denoise_inputs.h"
 #include "graph/frame_graph.h"
@@ -86,6 +87,23 @@ class Reblur {
   // resolution.
   void declare(graph::FrameGraph& graph, VkExtent2D resolution, const DenoiseInputs& inputs,
                graph::ImageHandle output);
+
+  // declare() in two halves, for the hybrid denoiser, which classifies tiles between them: the
+  // first declares reblur-pre-blur, -temporal and -history-fix; the second the blurs and
+  // reblur-stabilize.
+  struct Temporal {
+    graph::ImageHandle fixed;  // reblur.fixed: rgb, a the history length after anti-lag
+    graph::ImageHandle fast;   // reblur.fast (current)
+    graph::HistoryImage surface;
+  };
+  Temporal declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
+                           const DenoiseInputs& inputs);
+  // `tiles` (RGBA16F, one texel per 8x8 tile, REBLUR_GROUP_SIZE): where its green is 0 the
+  // blurs copy their input instead of filtering (the hybrid uses SVGF alone there);
+  // reblur-stabilize runs everywhere (it keeps reblur.stable).
+  void declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution, const DenoiseInputs& inputs,
+                      const Temporal& temporal, graph::ImageHandle output,
+                      std::optional<graph::ImageHandle> tiles = std::nullopt);
 
   const ReblurSettings& settings() const { return settings_; }
 
