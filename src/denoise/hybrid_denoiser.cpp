@@ -73,8 +73,10 @@ void HybridDenoiser::declare(graph::FrameGraph& graph, VkExtent2D resolution,
 
   // Both spatial halves dispatch every tile; the tiles whose output the blend will not read
   // copy their input instead of filtering.
-  svgf_.declareSpatial(graph, resolution, in, svgf, spatial, tiles);
-  reblur_.declareSpatial(graph, resolution, in, reblur, temporal, tiles);
+  const std::optional<graph::ImageHandle> skip =
+      s.skipTiles ? std::optional<graph::ImageHandle>(tiles) : std::nullopt;
+  svgf_.declareSpatial(graph, resolution, in, svgf, spatial, skip);
+  reblur_.declareSpatial(graph, resolution, in, reblur, temporal, skip);
 
   graph.addPass("hybrid-blend", graph::QueueKind::Compute)
       .read(spatial, Access::StorageRead, gpu::HYBRID_BLEND_BINDING_SVGF)

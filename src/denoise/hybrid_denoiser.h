@@ -39,6 +39,10 @@ struct HybridDenoiseSettings {
   // w is averaged over (2 bandRadius + 1)^2 pixels: the band over which one filter hands over
   // to the other. 0: per pixel (seams where the inputs jump, e.g. at a disocclusion's border).
   uint32_t bandRadius = 2;
+  // SVGF's à-trous iterations and ReBLUR's blurs filter only the 8x8 tiles whose output the
+  // blend reads (hybrid-classify's classes) and copy elsewhere. false: both filter every tile
+  // (the output is the same where both are read; for measuring what the tiles save).
+  bool skipTiles = true;
 };
 
 void validate(const HybridDenoiseSettings& settings);
