@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -234,6 +235,68 @@ TEST_F(ReblurGiTest, DISABLED_SunroomHybridMeanKept) {
 // Met (lavapipe): depth-edge pixels err 1.46x the rest.
 TEST_F(ReblurGiTest, SunroomHybridEdgesKept) {
   expectEdgesKept(giGates(context_, Kind::Hybrid));
+}
+
+// ---- the hybrid's tiles ------------------------------------------------------------------------
+
+// Where the blend reads a filter (its band-averaged weight w above 0: SVGF; below 1: ReBLUR) that
+// filter must have run: the pixel's 8x8 tile in hybrid.tiles (red: SVGF, green: ReBLUR) must
+// say so. Returns the pixels where it does not; counts the tiles of each class.
+struct TileCheck {
+  size_t uncovered = 0;
+  size_t svgfAlone = 0, reblurAlone = 0, both = 0;
+};
+TileCheck checkTiles(DenoiserHarness& harness, const DenoiseFrame& f, uint32_t w, uint32_t h) {
+  const std::vector<glm::vec4> weight = harness.frame(f, true);
+  const std::vector<glm::vec4> tiles = harness.rig().view("hybrid.tiles");
+  const uint32_t tilesWide = (w + 7) / 8;
+  TileCheck check;
+  for (uint32_t y = 0; y < h; ++y)
+    for (uint32_t x = 0; x < w; ++x) {
+      const glm::vec4& t = tiles[(y / 8) * tilesWide + x / 8];
+      const float v = weight[y * w + x].x;
+      if ((v > 0.0f && t.x < 0.5f) || (v < 1.0f && t.y < 0.5f)) ++check.uncovered;
+    }
+  for (const glm::vec4& t : tiles) {
+    check.svgfAlone += t.x > 0.5f && t.y < 0.5f ? 1 : 0;
+    check.reblurAlone += t.x < 0.5f && t.y > 0.5f ? 1 : 0;
+    check.both += t.x > 0.5f && t.y > 0.5f ? 1 : 0;
+  }
+  return check;
+}
+
+// Two planes (means 1 and 0.25) with low-variance noise (uniform, relative variance 1/12, below
+// varianceTemporal), static, 32 frames: every history starts young (SVGF's tiles), then the rule
+// gives ReBLUR the planes. Every pixel's blend must read only filters that ran on its tile; on
+// the first 4 frames (history <= historySpatial) no tile needs ReBLUR; later some tiles need
+// ReBLUR alone (so SVGF's à-trous skip them).
+TEST_F(ReblurGiTest, HybridTilesCoverTheBlend) {
+  constexpr uint32_t w = 64, h = 48;
+  DenoiserHarness harness(context_, Kind::Hybrid, w, h);
+  harness.rig().requestView("hybrid.tiles");
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> noise(0.5f, 1.5f);
+  size_t uncovered = 0;
+  for (int frame = 0; frame < 32; ++frame) {
+    DenoiseFrame f;
+    for (uint32_t y = 0; y < h; ++y)
+      for (uint32_t x = 0; x < w; ++x) {
+        const bool near = x < w / 2;
+        f.depth.push_back(near ? 2.0f : 6.0f);
+        f.normals.push_back({0.0f, 0.0f, 1.0f, 0.0f});
+        f.motion.push_back({0.0f, 0.0f});
+        const float v = (near ? 1.0f : 0.25f) * noise(rng);
+        f.noisy.push_back({v, v, v, 1.0f});
+      }
+    const TileCheck check = checkTiles(harness, f, w, h);
+    uncovered += check.uncovered;
+    if (frame < 4) EXPECT_EQ(check.reblurAlone + check.both, 0u) << "frame " << frame + 1;
+    if (frame == 3 || frame == 31)
+      std::printf("hybrid tiles, frame %d: SVGF alone %zu, ReBLUR alone %zu, both %zu\n", frame + 1,
+                  check.svgfAlone, check.reblurAlone, check.both);
+    if (frame == 31) EXPECT_GT(check.reblurAlone, 0u);
+  }
+  EXPECT_EQ(uncovered, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Denoisers, ReblurTest, ::testing::Values(Kind::Reblur, Kind::Hybrid),
