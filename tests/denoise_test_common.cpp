@@ -9,8 +9,6 @@
 
 #include <gtest/gtest.h>
 
-#include <glm/gtc/packing.hpp>
-
 #include "frame/hybrid_frame.h"
 #include "frame/presets.h"
 #include "graph/debug_view_image.h"
@@ -26,15 +24,6 @@ constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
 
 double luminance(const glm::vec4& c) {
   return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
-}
-
-std::vector<uint8_t> halfBytes(std::span<const float> values) {
-  std::vector<uint8_t> bytes(values.size() * 2);
-  for (size_t i = 0; i < values.size(); ++i) {
-    uint16_t h = glm::packHalf1x16(values[i]);
-    std::memcpy(&bytes[2 * i], &h, 2);
-  }
-  return bytes;
 }
 
 std::vector<uint8_t> floatBytes(std::span<const float> values) {
@@ -57,14 +46,6 @@ std::vector<glm::vec4> pixelsOf(const ImageRGBA32F& image) {
   return out;
 }
 
-vk::Image storageImage(vk::Context& context, VkFormat format, uint32_t w, uint32_t h,
-                       const char* name) {
-  return vk::Image(context, format, w, h, 1, 1,
-                   VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                       VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                   name, VK_IMAGE_VIEW_TYPE_2D);
-}
-
 // ---- DenoiseRig --------------------------------------------------------------------------------
 
 DenoiseRig::DenoiseRig(vk::Context& context, uint32_t width, uint32_t height)
@@ -73,10 +54,10 @@ DenoiseRig::DenoiseRig(vk::Context& context, uint32_t width, uint32_t height)
       gpuScene_(context, scene_),
       width_(width),
       height_(height),
-      noisy_(storageImage(context, kRgba16f, width, height, "test.noisy")),
-      depth_(storageImage(context, VK_FORMAT_R32_SFLOAT, width, height, "test.depth")),
-      normals_(storageImage(context, kRgba16f, width, height, "test.normals")),
-      motion_(storageImage(context, VK_FORMAT_R16G16_SFLOAT, width, height, "test.motion")) {}
+      noisy_(denoiseInputImage(context, kRgba16f, width, height, "test.noisy")),
+      depth_(denoiseInputImage(context, VK_FORMAT_R32_SFLOAT, width, height, "test.depth")),
+      normals_(denoiseInputImage(context, kRgba16f, width, height, "test.normals")),
+      motion_(denoiseInputImage(context, VK_FORMAT_R16G16_SFLOAT, width, height, "test.motion")) {}
 
 std::vector<glm::vec4> DenoiseRig::frame(const DenoiseFrame& f, const Declare& declare) {
   vk::uploadImage(context_, noisy_, halfBytes(flatten(f.noisy)), 8);

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "denoise/denoise_inputs.h"
+#include "denoise/denoise_upload.h"
 #include "graph/frame_graph.h"
 #include "rt/gpu_scene.h"
 #include "scene/scene.h"
@@ -24,15 +25,10 @@ namespace bounce::test {
 // Rec. 709 luminance of an RGB(A) value.
 double luminance(const glm::vec4& c);
 
-// Image bytes for vk::uploadImage: fp16 / fp32 values.
-std::vector<uint8_t> halfBytes(std::span<const float> values);
+// Image bytes for vk::uploadImage: fp32 values (fp16: halfBytes, denoise/denoise_upload.h).
 std::vector<uint8_t> floatBytes(std::span<const float> values);
 std::vector<float> flatten(const std::vector<glm::vec4>& pixels);
 std::vector<glm::vec4> pixelsOf(const ImageRGBA32F& image);
-
-// A 2D image the tests upload to and the passes read and write.
-vk::Image storageImage(vk::Context& context, VkFormat format, uint32_t w, uint32_t h,
-                       const char* name);
 
 // What the caller of a denoiser has per frame, on the CPU.
 struct DenoiseFrame {

@@ -46,8 +46,8 @@ class SvgfHarness {
   SvgfHarness(vk::Context& context, uint32_t width, uint32_t height,
               const SvgfSettings& settings = {})
       : context_(context),
-        input_(storageImage(context, kRgba16f, width, height, "test.input")),
-        surface_(storageImage(context, kRgba32f, width, height, "test.surface")),
+        input_(denoiseInputImage(context, kRgba16f, width, height, "test.input")),
+        surface_(denoiseInputImage(context, kRgba32f, width, height, "test.surface")),
         rig_(context, width, height),
         svgf_(context, rig_.gpuScene(), settings) {}
 
