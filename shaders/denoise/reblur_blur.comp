@@ -5,7 +5,8 @@
 // 1 / (1 + k n), k = 1) but at least minBlurRadius: a young history is blurred wide, a converged
 // one barely. As reblur-post-blur (REBLUR_FLAG_POST_BLUR) the radius is twice that (NRD) and the
 // taps are rotated differently; its output goes to reblur-stabilize. The history length
-// (alpha) passes through. Pixels without a surface pass through.
+// (alpha) passes through. Pixels without a surface pass through, and so do the 8x8 tiles the
+// hybrid denoiser does not read ReBLUR on (REBLUR_FLAG_TILES).
 #version 460
 #include "denoise/reblur_common.glsl"
 

@@ -6,7 +6,8 @@
 // luminance, its variance first blurred by a 3x3 Gaussian (Schied eq. 5). The variance in alpha
 // is filtered with the squared weights (Schied eq. 2), so later iterations stop at a smaller
 // luminance difference. Iteration 0 writes svgf.illumination, next frame's colour history; the
-// last multiplies the albedo back in (SVGF_FLAG_ALBEDO). Pixels without a surface pass through.
+// last multiplies the albedo back in (SVGF_FLAG_ALBEDO). Pixels without a surface pass through,
+// and so do the 8x8 tiles the hybrid denoiser does not read SVGF on (SVGF_FLAG_TILES).
 #version 460
 #include "denoise/svgf_common.glsl"
 
