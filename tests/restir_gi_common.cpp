@@ -1,6 +1,7 @@
 #include "restir_gi_common.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +12,9 @@
 #include "frame/hybrid_frame.h"
 #include "harness.h"
 #include "reference/path_tracer.h"
+#include "scene/animation.h"
+#include "scene/load.h"
+#include "scene/scene_options.h"
 #include "tools/metrics.h"
 
 namespace bounce::test {
@@ -255,6 +259,39 @@ void printSunJump(const SunJumpRun& run, bool everyFrame) {
               run.converged(), run.recovered() / run.converged());
   std::printf("camera cut: mean luminance of the first frame %.4g, after 16 frames %.4g\n",
               run.firstCutLuminance, run.settledCutLuminance);
+}
+
+AnimatedRun runAnimated(const std::string& sceneName, HybridSettings settings, int frames,
+                        const std::vector<std::string>& views) {
+  Scene scene = loadScene(sceneName);
+  Camera camera = effectiveCamera(scene);
+  vk::ContextOptions options = vk::contextOptionsFromEnvironment();
+  options.validation = true;
+  vk::Context context(options);
+  GpuScene gpuScene(context, scene);
+  settings.cache.raysPerCell = 1;
+  settings.cache.validationRaysPerCell = 1;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  for (const std::string& view : views) frame.requestDebugView(view);
+  CameraPath path = swayCameraPath(camera, 20.0f, 0.3f, 8.0f);
+  std::vector<glm::mat4> transforms(scene.instances.size());
+  for (size_t i = 0; i < transforms.size(); ++i) transforms[i] = scene.instances[i].transform;
+  AnimatedRun run;
+  for (int i = 0; i < frames; ++i) {
+    float t = float(i) / 30.0f;
+    evaluateTransforms(scene.animation, t, transforms);
+    frame.setInstanceTransforms(transforms);
+    Sun sun = scene.sun;
+    float a = 0.5f * t;
+    sun.direction = glm::normalize(glm::vec3(std::cos(a), -0.8f, std::sin(a)));
+    frame.setSunAndSky(sun, scene.sky);
+    frame.render(evaluateCameraPath(path, t));
+    if (i % 8 == 7)
+      for (const std::string& view : views)
+        run.nonFinite += countNonFinitePixels(frame.debugViewImage(view));
+  }
+  run.validationErrors = context.validationErrorCount();
+  return run;
 }
 
 }  // namespace bounce::test

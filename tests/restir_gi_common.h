@@ -87,4 +87,17 @@ SunJumpRun runSunJump(vk::Context& context, GpuScene& gpuScene, const Scene& sce
 // the camera cut's luminances.
 void printSunJump(const SunJumpRun& run, bool everyFrame);
 
+// The long animated runs (RestirGi.LongAnimatedRunStaysFinite, LuxGi.AnimatedRunStaysFinite):
+// `frames` frames of `sceneName` at 30 frames a second with its scripted motion, the camera
+// swaying (20 degrees, 0.3 dolly, 8 s) and the sun turning (0.5 rad/s), the Vulkan validation
+// layers on. The cache casts one candidate and one validation ray per cell and frame: its
+// validation path is covered at a quarter of the desktop preset's rays (its ~5,000 cells' rays,
+// not a small view's pixels, set these tests' time on lavapipe).
+struct AnimatedRun {
+  size_t nonFinite = 0;  // NaN/Inf pixels of the `views`, read every 8th frame
+  uint32_t validationErrors = 0;
+};
+AnimatedRun runAnimated(const std::string& sceneName, HybridSettings settings, int frames,
+                        const std::vector<std::string>& views);
+
 }  // namespace bounce::test

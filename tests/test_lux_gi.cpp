@@ -36,8 +36,10 @@
 namespace bounce {
 namespace {
 
+using test::AnimatedRun;
 using test::luminance;
 using test::meanLuminance;
+using test::runAnimated;
 
 // The desktop preset's cache and reuse with Lux as the GI, at a test's size; full-resolution
 // GI when `fullResGi` (the variance and bias tests compare per GI pixel).
@@ -300,39 +302,10 @@ TEST(LuxGi, DISABLED_CornellBoxAgreesWithCycles) {
 // Two hundred animated frames (sunroom: its animated instances, a swaying camera, a turning
 // sun) without a NaN or Inf in the composite or Lux's candidates, validation layers silent.
 TEST(LuxGi, AnimatedRunStaysFinite) {
-  const uint32_t width = 16, height = 16;
-  Scene scene = loadScene("sunroom");
-  Camera camera = effectiveCamera(scene);
-  vk::ContextOptions options = vk::contextOptionsFromEnvironment();
-  options.validation = true;
-  vk::Context context(options);
-  GpuScene gpuScene(context, scene);
-  HybridSettings settings = luxSettings(width, height);
-  settings.cache.raysPerCell = 1;  // the cache's cells, not the pixels, set the time here
-  settings.cache.validationRaysPerCell = 1;
-  HybridFrame frame(context, gpuScene, scene, settings);
-  frame.requestDebugView("composite");
-  frame.requestDebugView("lux-resolve-candidates");
-  CameraPath path = swayCameraPath(camera, 20.0f, 0.3f, 8.0f);
-  std::vector<glm::mat4> transforms(scene.instances.size());
-  for (size_t i = 0; i < transforms.size(); ++i) transforms[i] = scene.instances[i].transform;
-  size_t nonFinite = 0;
-  for (int i = 0; i < 200; ++i) {
-    float t = float(i) / 30.0f;
-    evaluateTransforms(scene.animation, t, transforms);
-    frame.setInstanceTransforms(transforms);
-    Sun sun = scene.sun;
-    float a = 0.5f * t;
-    sun.direction = glm::normalize(glm::vec3(std::cos(a), -0.8f, std::sin(a)));
-    frame.setSunAndSky(sun, scene.sky);
-    frame.render(evaluateCameraPath(path, t));
-    if (i % 8 == 7) {
-      nonFinite += countNonFinitePixels(frame.debugViewImage("composite"));
-      nonFinite += countNonFinitePixels(frame.debugViewImage("lux-resolve-candidates"));
-    }
-  }
-  EXPECT_EQ(nonFinite, 0u);
-  EXPECT_EQ(context.validationErrorCount(), 0u);
+  AnimatedRun run =
+      runAnimated("sunroom", luxSettings(16, 16), 200, {"composite", "lux-resolve-candidates"});
+  EXPECT_EQ(run.nonFinite, 0u);
+  EXPECT_EQ(run.validationErrors, 0u);
 }
 
 }  // namespace

@@ -37,12 +37,14 @@ namespace bounce {
 namespace {
 
 using test::accumulate;
+using test::AnimatedRun;
 using test::compare;
 using test::Comparison;
 using test::giSettings;
 using test::luminance;
 using test::meanLuminance;
 using test::referenceImage;
+using test::runAnimated;
 using test::scaled;
 using test::storedReferenceImage;
 
@@ -418,45 +420,13 @@ TEST(RestirGi, CameraCutFirstFrameIsFiniteAndLit) {
 // covered here) and the cache's validation rays: no NaN/Inf in gi.diffuse or composite, silent
 // validation layers.
 TEST(RestirGi, LongAnimatedRunStaysFinite) {
-  const uint32_t width = 16, height = 16;
-  Scene scene = loadScene("sunroom");
-  Camera camera = effectiveCamera(scene);
-  vk::ContextOptions options = vk::contextOptionsFromEnvironment();
-  options.validation = true;
-  vk::Context context(options);
-  GpuScene gpuScene(context, scene);
   RestirGiSettings gi = presetSettings(Preset::Desktop).restirGi;
   gi.validationPeriod = 3;
   gi.historyBrightening = 1.3f;
-  HybridSettings settings = giSettings(width, height, gi);
-  // One candidate and one validation ray per cache cell and frame: the cache's validation path
-  // is covered at a quarter of the desktop preset's rays (its ~5,000 cells' rays, not the
-  // 16x16 pixels, set this test's time on lavapipe).
-  settings.cache.raysPerCell = 1;
-  settings.cache.validationRaysPerCell = 1;
-  HybridFrame frame(context, gpuScene, scene, settings);
-  frame.requestDebugView("composite");
-  frame.requestDebugView("gi-restir-temporal");
-  CameraPath path = swayCameraPath(camera, 20.0f, 0.3f, 8.0f);
-  std::vector<glm::mat4> transforms(scene.instances.size());
-  for (size_t i = 0; i < transforms.size(); ++i) transforms[i] = scene.instances[i].transform;
-  size_t nonFinite = 0;
-  for (int i = 0; i < 1000; ++i) {
-    float t = float(i) / 30.0f;
-    evaluateTransforms(scene.animation, t, transforms);
-    frame.setInstanceTransforms(transforms);
-    Sun sun = scene.sun;
-    float a = 0.5f * t;
-    sun.direction = glm::normalize(glm::vec3(std::cos(a), -0.8f, std::sin(a)));
-    frame.setSunAndSky(sun, scene.sky);
-    frame.render(evaluateCameraPath(path, t));
-    if (i % 8 == 7) {
-      nonFinite += countNonFinitePixels(frame.debugViewImage("composite"));
-      nonFinite += countNonFinitePixels(frame.debugViewImage("gi-restir-temporal"));
-    }
-  }
-  EXPECT_EQ(nonFinite, 0u);
-  EXPECT_EQ(context.validationErrorCount(), 0u);
+  AnimatedRun run =
+      runAnimated("sunroom", giSettings(16, 16, gi), 1000, {"composite", "gi-restir-temporal"});
+  EXPECT_EQ(run.nonFinite, 0u);
+  EXPECT_EQ(run.validationErrors, 0u);
 }
 
 }  // namespace

@@ -68,7 +68,7 @@ class Denoiser {
 
   DenoiserKind kind() const;
   // The compute pipelines it compiled (issue 21's permutation budget): SVGF 3, ReBLUR 5,
-  // hybrid 9.
+  // hybrid 10.
   uint32_t pipelineCount() const;
   std::string deviceName() const;
 

@@ -5,7 +5,8 @@
 // 1 / (1 + k n), k = 1) but at least minBlurRadius: a young history is blurred wide, a converged
 // one barely. As reblur-post-blur (REBLUR_FLAG_POST_BLUR) the radius is twice that (NRD) and the
 // taps are rotated differently; its output goes to reblur-stabilize. The history length
-// (alpha) passes through. Pixels without a surface pass through.
+// (alpha) passes through. Pixels without a surface pass through, and so do the 8x8 tiles the
+// hybrid denoiser does not read ReBLUR on (REBLUR_FLAG_TILES).
 #version 460
 #include "denoise/reblur_common.glsl"
 
@@ -14,6 +15,12 @@ layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
 layout(set = 1, binding = REBLUR_BLUR_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
 layout(set = 1, binding = REBLUR_BLUR_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
 layout(set = 1, binding = REBLUR_BLUR_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+layout(set = 1, binding = REBLUR_BLUR_BINDING_TILES, rgba16f) uniform readonly image2D tiles;
+
+// The hybrid denoiser's tile classes (hybrid_classify.comp): a workgroup is one 8x8 tile.
+bool tileSkipped() {
+  return (pc.flags & REBLUR_FLAG_TILES) != 0u && imageLoad(tiles, ivec2(gl_WorkGroupID.xy)).g == 0.0;
+}
 
 float surfaceDepth(ivec2 q) { return imageLoad(surfaces, q).w; }
 DEFINE_REBLUR_DEPTH_SLOPE(surfaceDepth)
@@ -23,7 +30,8 @@ void main() {
   if (!inImage(pixel)) return;
   vec4 centre = imageLoad(inputImage, pixel);
   vec4 s = imageLoad(surfaces, pixel);
-  if (!hasSurface(s.w)) {
+  // A skipped tile copies, so that neighbouring tiles' taps read finite values.
+  if (!hasSurface(s.w) || tileSkipped()) {
     imageStore(outputImage, pixel, centre);
     return;
   }

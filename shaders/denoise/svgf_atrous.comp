@@ -6,7 +6,8 @@
 // luminance, its variance first blurred by a 3x3 Gaussian (Schied eq. 5). The variance in alpha
 // is filtered with the squared weights (Schied eq. 2), so later iterations stop at a smaller
 // luminance difference. Iteration 0 writes svgf.illumination, next frame's colour history; the
-// last multiplies the albedo back in (SVGF_FLAG_ALBEDO). Pixels without a surface pass through.
+// last multiplies the albedo back in (SVGF_FLAG_ALBEDO). Pixels without a surface pass through,
+// and so do the 8x8 tiles the hybrid denoiser does not read SVGF on (SVGF_FLAG_TILES).
 #version 460
 #include "denoise/svgf_common.glsl"
 
@@ -16,6 +17,12 @@ layout(set = 1, binding = SVGF_ATROUS_BINDING_INPUT, rgba16f) uniform readonly i
 layout(set = 1, binding = SVGF_ATROUS_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
 layout(set = 1, binding = SVGF_ATROUS_BINDING_ALBEDO, rgba16f) uniform readonly image2D albedos;
 layout(set = 1, binding = SVGF_ATROUS_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+layout(set = 1, binding = SVGF_ATROUS_BINDING_TILES, rgba16f) uniform readonly image2D tiles;
+
+// The hybrid denoiser's tile classes (hybrid_classify.comp): a workgroup is one 8x8 tile.
+bool tileSkipped() {
+  return (pc.flags & SVGF_FLAG_TILES) != 0u && imageLoad(tiles, ivec2(gl_WorkGroupID.xy)).r == 0.0;
+}
 
 float surfaceDepth(ivec2 q) { return imageLoad(surfaces, q).w; }
 DEFINE_DEPTH_GRADIENT(surfaceDepth)
@@ -39,7 +46,9 @@ void main() {
   if (!inImage(pixel)) return;
   vec4 centre = imageLoad(inputImage, pixel);
   vec4 s = imageLoad(surfaces, pixel);
-  if (!hasSurface(s.w)) {
+  // A skipped tile copies: iteration 0's copy is the colour history, and later iterations of
+  // neighbouring tiles read finite values.
+  if (!hasSurface(s.w) || tileSkipped()) {
     imageStore(outputImage, pixel, centre);
     return;
   }

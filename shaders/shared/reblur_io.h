@@ -49,6 +49,9 @@ BOUNCE_CONST uint REBLUR_GROUP_SIZE = 8u;
 BOUNCE_CONST uint REBLUR_FLAG_OCTAHEDRAL_NORMALS = 1u;
 BOUNCE_CONST uint REBLUR_FLAG_ALBEDO = 2u;
 BOUNCE_CONST uint REBLUR_FLAG_POST_BLUR = 4u;  // reblur-blur's shader run as reblur-post-blur
+// reblur-blur / -post-blur: the hybrid's tile classes are bound (REBLUR_BLUR_BINDING_TILES); a
+// workgroup whose tile does not need ReBLUR (green 0) copies its input.
+BOUNCE_CONST uint REBLUR_FLAG_TILES = 8u;
 
 // reblur-pre-blur
 BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_NOISY = 0u;
@@ -81,7 +84,8 @@ BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_COUNT = 4u;
 BOUNCE_CONST uint REBLUR_BLUR_BINDING_INPUT = 0u;
 BOUNCE_CONST uint REBLUR_BLUR_BINDING_SURFACE = 1u;
 BOUNCE_CONST uint REBLUR_BLUR_BINDING_OUTPUT = 2u;
-BOUNCE_CONST uint REBLUR_BLUR_BINDING_COUNT = 3u;
+BOUNCE_CONST uint REBLUR_BLUR_BINDING_TILES = 3u;  // hybrid.tiles with REBLUR_FLAG_TILES
+BOUNCE_CONST uint REBLUR_BLUR_BINDING_COUNT = 4u;
 
 // reblur-stabilize
 BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_INPUT = 0u;  // reblur.post-blurred
@@ -113,12 +117,23 @@ struct HybridBlendConstants {
 };
 BOUNCE_CHECK_SIZE(HybridBlendConstants, 40);
 
-BOUNCE_CONST uint HYBRID_BLEND_BINDING_SVGF = 0u;     // rgb SVGF's output
-BOUNCE_CONST uint HYBRID_BLEND_BINDING_REBLUR = 1u;   // rgb ReBLUR's output, a its history length
-BOUNCE_CONST uint HYBRID_BLEND_BINDING_MOMENTS = 2u;  // svgf.moments: x mu1, y mu2
-BOUNCE_CONST uint HYBRID_BLEND_BINDING_MOTION = 3u;
-BOUNCE_CONST uint HYBRID_BLEND_BINDING_OUTPUT = 4u;
-BOUNCE_CONST uint HYBRID_BLEND_BINDING_COUNT = 5u;
+BOUNCE_CONST uint HYBRID_BLEND_BINDING_SVGF = 0u;    // rgb SVGF's output
+BOUNCE_CONST uint HYBRID_BLEND_BINDING_REBLUR = 1u;  // rgb ReBLUR's output
+BOUNCE_CONST uint HYBRID_BLEND_BINDING_WEIGHT = 2u;  // hybrid.weight: r each pixel's own w
+BOUNCE_CONST uint HYBRID_BLEND_BINDING_OUTPUT = 3u;
+BOUNCE_CONST uint HYBRID_BLEND_BINDING_COUNT = 4u;
+
+// hybrid-classify (its constants HybridBlendConstants): each pixel's spatial weight w, and for
+// each 8x8 tile (REBLUR_GROUP_SIZE, the blurs' and the à-trous' workgroup) which filter the
+// blend will read there, over the tile and its band (bandRadius): red 1 where some w > 0
+// (SVGF), green 1 where some w < 1 (ReBLUR).
+BOUNCE_CONST uint HYBRID_CLASSIFY_BINDING_REBLUR = 0u;   // reblur.fixed: a the history length
+BOUNCE_CONST uint HYBRID_CLASSIFY_BINDING_MOMENTS = 1u;  // svgf.moments: x mu1, y mu2
+BOUNCE_CONST uint HYBRID_CLASSIFY_BINDING_MOTION = 2u;
+BOUNCE_CONST uint HYBRID_CLASSIFY_BINDING_WEIGHT = 3u;  // hybrid.weight (RGBA16F, r w)
+BOUNCE_CONST uint HYBRID_CLASSIFY_BINDING_TILES = 4u;   // hybrid.tiles (RGBA16F, 1/8 size)
+BOUNCE_CONST uint HYBRID_CLASSIFY_BINDING_COUNT = 5u;
+BOUNCE_CONST uint HYBRID_TILE_SIZE = 8u;
 
 BOUNCE_END_SHARED
 

@@ -49,6 +49,9 @@ BOUNCE_CHECK_SIZE(SvgfConstants, 64);
 BOUNCE_CONST uint SVGF_GROUP_SIZE = 8u;
 BOUNCE_CONST uint SVGF_FLAG_OCTAHEDRAL_NORMALS = 1u;
 BOUNCE_CONST uint SVGF_FLAG_ALBEDO = 2u;
+// svgf-atrous-*: the hybrid's tile classes are bound (SVGF_ATROUS_BINDING_TILES); a workgroup
+// whose tile does not need SVGF (red 0) copies its input.
+BOUNCE_CONST uint SVGF_FLAG_TILES = 4u;
 
 // svgf-temporal
 BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_NOISY = 0u;
@@ -76,7 +79,8 @@ BOUNCE_CONST uint SVGF_ATROUS_BINDING_INPUT = 0u;    // rgb colour, a variance
 BOUNCE_CONST uint SVGF_ATROUS_BINDING_SURFACE = 1u;  // svgf.surface (current)
 BOUNCE_CONST uint SVGF_ATROUS_BINDING_ALBEDO = 2u;   // read on the last iteration with the flag
 BOUNCE_CONST uint SVGF_ATROUS_BINDING_OUTPUT = 3u;
-BOUNCE_CONST uint SVGF_ATROUS_BINDING_COUNT = 4u;
+BOUNCE_CONST uint SVGF_ATROUS_BINDING_TILES = 4u;  // hybrid.tiles with SVGF_FLAG_TILES
+BOUNCE_CONST uint SVGF_ATROUS_BINDING_COUNT = 5u;
 
 // Rec. 709 luminance, the moments' and the edge stop's measure.
 BOUNCE_CONST float SVGF_LUMINANCE_R = 0.2126f;

@@ -6,9 +6,8 @@
 #include <optional>
 #include <span>
 
-#include <glm/gtc/packing.hpp>
-
 #include "core/error.h"
+#include "denoise/denoise_upload.h"
 #include "denoise/library_denoiser.h"
 #include "graph/debug_view_image.h"
 #include "graph/frame_graph.h"
@@ -22,25 +21,6 @@ namespace {
 
 constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr const char* kOutput = "denoiser.output";
-
-// The frame graph reads imported inputs as sampled images (shader-read-only layout), so they need
-// the sampled usage as well as the storage one.
-vk::Image storageImage(vk::Context& context, VkFormat format, uint32_t w, uint32_t h,
-                       const char* name) {
-  return vk::Image(context, format, w, h, 1, 1,
-                   VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                       VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                   name, VK_IMAGE_VIEW_TYPE_2D);
-}
-
-std::vector<uint8_t> halfBytes(std::span<const float> values) {
-  std::vector<uint8_t> bytes(values.size() * 2);
-  for (size_t i = 0; i < values.size(); ++i) {
-    uint16_t h = glm::packHalf1x16(values[i]);
-    std::memcpy(&bytes[2 * i], &h, 2);
-  }
-  return bytes;
-}
 
 bounce::DenoiserKind internalKind(DenoiserKind kind) {
   switch (kind) {
@@ -83,11 +63,11 @@ struct Denoiser::Impl {
         scene(loadScene("cornell")),  // the denoisers read no scene; ComputePass binds one
         gpuScene(context, scene),
         denoiser(context, gpuScene, internalKind(k)),
-        noisy(storageImage(context, kRgba16f, w, h, "denoiser.noisy")),
-        depth(storageImage(context, VK_FORMAT_R32_SFLOAT, w, h, "denoiser.depth")),
-        normals(storageImage(context, kRgba16f, w, h, "denoiser.normals")),
-        motion(storageImage(context, VK_FORMAT_R16G16_SFLOAT, w, h, "denoiser.motion")),
-        albedo(storageImage(context, kRgba16f, w, h, "denoiser.albedo")) {}
+        noisy(denoiseInputImage(context, kRgba16f, w, h, "denoiser.noisy")),
+        depth(denoiseInputImage(context, VK_FORMAT_R32_SFLOAT, w, h, "denoiser.depth")),
+        normals(denoiseInputImage(context, kRgba16f, w, h, "denoiser.normals")),
+        motion(denoiseInputImage(context, VK_FORMAT_R16G16_SFLOAT, w, h, "denoiser.motion")),
+        albedo(denoiseInputImage(context, kRgba16f, w, h, "denoiser.albedo")) {}
 
   graph::ImageHandle import(const std::string& name, vk::Image& image) {
     graph::ImportedImage imported =

@@ -2,13 +2,16 @@
 // history length, the motion and the signal's relative variance (research/gi10_lux_denoisers.md
 // §2.3 (f); docs/denoise.md has the rule's thresholds and how they were measured):
 //
-//   svgf-*        denoise/svgf.h
-//   reblur-*      denoise/reblur.h
-//   hybrid-blend  per pixel, mix(reblur, svgf, w), w the spatial weight (shaders/denoise/
-//                 hybrid_blend.comp), averaged over a band of pixels so no seam shows
+//   svgf-temporal, -variance              denoise/svgf.h, everywhere (they keep the histories)
+//   reblur-pre-blur, -temporal, -history-fix  denoise/reblur.h, everywhere
+//   hybrid-classify  each pixel's spatial weight w (the rule), and each 8x8 tile's class: SVGF,
+//                    ReBLUR or both, from the weights over the tile and its band (hybrid.tiles)
+//   svgf-atrous-*    only on the tiles that need SVGF (the others copy their input)
+//   reblur-blur, -post-blur  only on the tiles that need ReBLUR; reblur-stabilize everywhere
+//   hybrid-blend     per pixel, mix(reblur, svgf, w), w averaged over a band of pixels so no
+//                    seam shows (shaders/denoise/hybrid_blend.comp)
 //
-// Nine compute pipelines: SVGF's 3, ReBLUR's 5, hybrid-blend's 1. Both denoisers always run (a
-// per-pixel choice needs both results); the hybrid costs their sum.
+// Ten compute pipelines: SVGF's 3, ReBLUR's 5, hybrid-classify's and hybrid-blend's.
 #pragma once
 #include <cstdint>
 
@@ -36,18 +39,23 @@ struct HybridDenoiseSettings {
   // w is averaged over (2 bandRadius + 1)^2 pixels: the band over which one filter hands over
   // to the other. 0: per pixel (seams where the inputs jump, e.g. at a disocclusion's border).
   uint32_t bandRadius = 2;
+  // SVGF's à-trous iterations and ReBLUR's blurs filter only the 8x8 tiles whose output the
+  // blend reads (hybrid-classify's classes) and copy elsewhere. false: both filter every tile
+  // (the output is the same where both are read; for measuring what the tiles save).
+  bool skipTiles = true;
 };
 
 void validate(const HybridDenoiseSettings& settings);
 
 class HybridDenoiser {
  public:
-  static constexpr uint32_t kPipelineCount = Svgf::kPipelineCount + Reblur::kPipelineCount + 1;
+  static constexpr uint32_t kPipelineCount = Svgf::kPipelineCount + Reblur::kPipelineCount + 2;
 
   HybridDenoiser(vk::Context& context, const GpuScene& scene,
                  const HybridDenoiseSettings& settings = {});
-  // Declares SVGF, ReBLUR and hybrid-blend, ending in `output` (RGBA16F: rgb the denoised
-  // signal, a the spatial weight w). debugWeight: write w as grey instead (a debug picture).
+  // Declares SVGF, ReBLUR, hybrid-classify and hybrid-blend, ending in `output` (RGBA16F: rgb the
+  // denoised signal, a the spatial weight w). debugWeight: write w as grey instead (a debug
+  // picture).
   void declare(graph::FrameGraph& graph, VkExtent2D resolution, const DenoiseInputs& inputs,
                graph::ImageHandle output, bool debugWeight = false);
 
@@ -57,6 +65,7 @@ class HybridDenoiser {
   HybridDenoiseSettings settings_;
   Svgf svgf_;
   Reblur reblur_;
+  ComputePass classify_;
   ComputePass blend_;
 };
 

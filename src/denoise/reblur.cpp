@@ -1,5 +1,7 @@
 #include "denoise/reblur.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 
 namespace bounce {
@@ -23,6 +25,8 @@ bool finiteAtLeast(float v, float lo) {
 }  // namespace
 
 void validate(const ReblurSettings& s) {
+  if (!finiteAtLeast(s.radiusReferenceHeight, 0.0f) || s.radiusReferenceHeight > 16384.0f)
+    fail("ReBLUR: radius reference height {} must be 0 to 16384 pixels", s.radiusReferenceHeight);
   if (!finiteAtLeast(s.preBlurRadius, 0.0f) || s.preBlurRadius > 256.0f)
     fail("ReBLUR: pre-blur radius {} must be 0 to 256 pixels", s.preBlurRadius);
   if (!finiteAtLeast(s.maxBlurRadius, 0.0f) || s.maxBlurRadius > 256.0f ||
@@ -67,13 +71,19 @@ Reblur::Reblur(vk::Context& context, const GpuScene& scene, const ReblurSettings
   validate(settings_);
 }
 
+float Reblur::scaled(float pixels, VkExtent2D resolution, float floor) const {
+  const float reference = settings_.radiusReferenceHeight;
+  if (!(reference > 0.0f)) return pixels;
+  return std::max(pixels * float(resolution.height) / reference, floor);
+}
+
 gpu::ReblurConstants Reblur::constants(VkExtent2D resolution, const DenoiseInputs& in) const {
   const ReblurSettings& s = settings_;
   gpu::ReblurConstants c{};
   c.resolution = {resolution.width, resolution.height};
   c.flags = (in.octahedralNormals ? gpu::REBLUR_FLAG_OCTAHEDRAL_NORMALS : 0u) |
             (in.albedo ? gpu::REBLUR_FLAG_ALBEDO : 0u);
-  c.blurRadius = s.maxBlurRadius;
+  c.blurRadius = scaled(s.maxBlurRadius, resolution, s.minBlurRadius);
   c.minBlurRadius = s.minBlurRadius;
   c.depthTolerance = s.depthTolerance;
   c.normalTolerance = s.normalTolerance;
@@ -81,7 +91,8 @@ gpu::ReblurConstants Reblur::constants(VkExtent2D resolution, const DenoiseInput
   c.maxAccumulatedFrames = s.maxAccumulatedFrames;
   c.maxFastAccumulatedFrames = s.maxFastAccumulatedFrames;
   c.historyFixFrames = s.historyFixFrames;
-  c.historyFixStride = s.historyFixStride;
+  c.historyFixStride =
+      s.historyFixStride > 0.0f ? scaled(s.historyFixStride, resolution, 1.0f) : 0.0f;
   c.sigmaScale = s.sigmaScale;
   c.antilagSensitivity = s.antilagSensitivity;
   c.maxStabilizedFrames = s.maxStabilizedFrames;
@@ -90,15 +101,17 @@ gpu::ReblurConstants Reblur::constants(VkExtent2D resolution, const DenoiseInput
 
 void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const DenoiseInputs& in,
                      graph::ImageHandle output) {
+  declareSpatial(graph, resolution, in, declareTemporal(graph, resolution, in), output);
+}
+
+Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
+                                         const DenoiseInputs& in) {
   graph::HistoryImage surface = graph.createHistoryImage("reblur.surface", {kRgba32f});
   graph::HistoryImage fast = graph.createHistoryImage("reblur.fast", {kRgba16f});
   graph::HistoryImage history = graph.createHistoryImage("reblur.accumulated", {kRgba16f});
   const graph::ImageHandle accumulated = history.current;
-  graph::HistoryImage stable = graph.createHistoryImage("reblur.stable", {kRgba16f});
   graph::ImageHandle preBlurred = graph.createImage("reblur.pre-blurred", {kRgba16f});
-  graph::ImageHandle postBlurred = graph.createImage("reblur.post-blurred", {kRgba16f});
   graph::ImageHandle fixed = graph.createImage("reblur.fixed", {kRgba16f});
-  graph::ImageHandle blurred = graph.createImage("reblur.blurred", {kRgba16f});
   const gpu::ReblurConstants c = constants(resolution, in);
   const bool valid = !in.dropHistory;
 
@@ -112,9 +125,13 @@ void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const Deno
     pre.read(*in.albedo, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO);
   else
     pre.readPlaceholder(in.noisy, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO);
-  pre.record([this, c](VkCommandBuffer cmd, const graph::PassResources& r) {
+  const float preBlurRadius =
+      settings_.preBlurRadius > 0.0f
+          ? scaled(settings_.preBlurRadius, resolution, settings_.minBlurRadius)
+          : 0.0f;
+  pre.record([this, c, preBlurRadius](VkCommandBuffer cmd, const graph::PassResources& r) {
     gpu::ReblurConstants k = c;
-    k.blurRadius = settings_.preBlurRadius;
+    k.blurRadius = preBlurRadius;
     k.frame = frame_;
     preBlur_.bind(cmd, k, r);
     dispatch(cmd, k);
@@ -149,25 +166,46 @@ void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const Deno
         dispatch(cmd, c);
       });
 
+  return {fixed, fast.current, surface};
+}
+
+void Reblur::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution,
+                            const DenoiseInputs& in, const Temporal& temporal,
+                            graph::ImageHandle output, std::optional<graph::ImageHandle> tiles) {
+  graph::HistoryImage stable = graph.createHistoryImage("reblur.stable", {kRgba16f});
+  graph::ImageHandle postBlurred = graph.createImage("reblur.post-blurred", {kRgba16f});
+  graph::ImageHandle blurred = graph.createImage("reblur.blurred", {kRgba16f});
+  const graph::ImageHandle fixed = temporal.fixed;
+  const graph::HistoryImage surface = temporal.surface;
+  gpu::ReblurConstants c = constants(resolution, in);
+  if (tiles) c.flags |= gpu::REBLUR_FLAG_TILES;
+  const bool valid = !in.dropHistory;
+
   // reblur-blur (set 0) and reblur-post-blur (set 1), one pipeline.
   const graph::ImageHandle blurIn[2] = {fixed, blurred};
   const graph::ImageHandle blurOut[2] = {blurred, postBlurred};
-  for (uint32_t i = 0; i < 2; ++i)
-    graph.addPass(i == 0 ? "reblur-blur" : "reblur-post-blur", graph::QueueKind::Compute)
-        .read(blurIn[i], Access::StorageRead, gpu::REBLUR_BLUR_BINDING_INPUT)
+  for (uint32_t i = 0; i < 2; ++i) {
+    graph::PassBuilder blur =
+        graph.addPass(i == 0 ? "reblur-blur" : "reblur-post-blur", graph::QueueKind::Compute);
+    blur.read(blurIn[i], Access::StorageRead, gpu::REBLUR_BLUR_BINDING_INPUT)
         .read(surface.current, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_SURFACE)
-        .write(blurOut[i], Access::StorageWrite, gpu::REBLUR_BLUR_BINDING_OUTPUT)
-        .record([this, c, i](VkCommandBuffer cmd, const graph::PassResources& r) {
-          gpu::ReblurConstants k = c;
-          k.flags |= i == 1 ? gpu::REBLUR_FLAG_POST_BLUR : 0u;
-          k.frame = frame_;
-          blur_.bind(cmd, k, r, i);
-          dispatch(cmd, k);
-        });
+        .write(blurOut[i], Access::StorageWrite, gpu::REBLUR_BLUR_BINDING_OUTPUT);
+    if (tiles)
+      blur.read(*tiles, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_TILES);
+    else
+      blur.readPlaceholder(blurIn[i], gpu::REBLUR_BLUR_BINDING_TILES);
+    blur.record([this, c, i](VkCommandBuffer cmd, const graph::PassResources& r) {
+      gpu::ReblurConstants k = c;
+      k.flags |= i == 1 ? gpu::REBLUR_FLAG_POST_BLUR : 0u;
+      k.frame = frame_;
+      blur_.bind(cmd, k, r, i);
+      dispatch(cmd, k);
+    });
+  }
 
   graph::PassBuilder st = graph.addPass("reblur-stabilize", graph::QueueKind::Compute);
   st.read(postBlurred, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_INPUT)
-      .read(fast.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FAST)
+      .read(temporal.fast, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FAST)
       .read(surface.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_SURFACE)
       .read(in.motion, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_MOTION)
       .read(surface.previous, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_PREVIOUS_SURFACE)

@@ -2,8 +2,8 @@
 // research/gi10_lux_denoisers.md §2.3 (e), §3.2; docs/denoise.md) of any noisy signal with a
 // G-buffer, as a library unit that knows nothing of the GI technique that made the signal:
 //
-//   reblur-pre-blur     8 Poisson taps in a 30-pixel disk on the noisy signal (plane and normal
-//                       weights), writes reblur.surface
+//   reblur-pre-blur     8 Poisson taps in a 30-pixel disk (at 1440p, scaled with the height)
+//                       on the noisy signal (plane and normal weights), writes reblur.surface
 //   reblur-temporal     reprojected slow (30 frames) and fast (6 frames) running means, the
 //                       next frame's histories
 //   reblur-history-fix  rebuilds histories shorter than 3 frames from a sparse 5x5 kernel
@@ -19,6 +19,7 @@
 // image is at the frame graph's render resolution (formats: shared/reblur_io.h).
 #pragma once
 #include <cstdint>
+#include <optional>
 
 #include "denoise/denoise_inputs.h"
 #include "graph/frame_graph.h"
@@ -29,12 +30,20 @@ namespace bounce {
 
 // The defaults are NRD's REBLUR_DIFFUSE (research/gi10_lux_denoisers.md §3.2) except where noted.
 struct ReblurSettings {
-  // reblur-pre-blur's disk radius in pixels (NRD diffusePrepassBlurRadius 30). 0: no pre-blur
-  // (the pass still runs, as a copy). Larger: less noise enters the history, more detail lost
-  // (NRD shrinks it near contacts with the hit distance, which Bounce's signal does not carry).
+  // The image height at which the radii and the history fix's stride below are given in
+  // pixels: at another height they scale with it (height / radiusReferenceHeight), so that a
+  // blur covers the same part of the view at every resolution. NRD gives its radii for 1440p
+  // ("30 is a baseline for 1440p", its ReblurSettings). 0: the radii are pixels at every size.
+  // At 64x48 NRD's 30 px would span half the view (docs/denoise.md, the sunroom ablation).
+  float radiusReferenceHeight = 1440.0f;
+  // reblur-pre-blur's disk radius in pixels at the reference height (NRD
+  // diffusePrepassBlurRadius 30), never below minBlurRadius once scaled. 0: no pre-blur (the pass
+  // still runs, as a copy). Larger: less noise enters the history, more detail lost (NRD shrinks
+  // it near contacts with the hit distance, which Bounce's signal does not carry).
   float preBlurRadius = 30.0f;
-  // reblur-blur's radius for a history of 0 frames (NRD maxBlurRadius 30), divided by
-  // 1 + history length, never below minBlurRadius (NRD 1); reblur-post-blur's is twice that.
+  // reblur-blur's radius at the reference height for a history of 0 frames (NRD maxBlurRadius
+  // 30), divided by 1 + history length, never below minBlurRadius (NRD 1, in pixels at every
+  // size); reblur-post-blur's is twice that.
   float maxBlurRadius = 30.0f;
   float minBlurRadius = 1.0f;
   // Slow and fast history lengths in frames (NRD maxAccumulatedFrameNum 30, at most 63;
@@ -43,7 +52,8 @@ struct ReblurSettings {
   float maxAccumulatedFrames = 30.0f;
   float maxFastAccumulatedFrames = 6.0f;
   // Histories shorter than this many frames are rebuilt spatially (NRD historyFixFrameNum 3),
-  // from taps this many pixels apart at a history of 1 frame (NRD 14). 0 frames: off.
+  // from taps this many pixels apart at a history of 1 frame (NRD 14; at the reference height,
+  // scaled as the radii, at least 1 pixel). 0 frames: off.
   float historyFixFrames = 3.0f;
   float historyFixStride = 14.0f;
   // The clamps of the slow and stabilised histories: the fast history's 3x3 mean +- this many
@@ -78,10 +88,29 @@ class Reblur {
   void declare(graph::FrameGraph& graph, VkExtent2D resolution, const DenoiseInputs& inputs,
                graph::ImageHandle output);
 
+  // declare() in two halves, for the hybrid denoiser, which classifies tiles between them: the
+  // first declares reblur-pre-blur, -temporal and -history-fix; the second the blurs and
+  // reblur-stabilize.
+  struct Temporal {
+    graph::ImageHandle fixed;  // reblur.fixed: rgb, a the history length after anti-lag
+    graph::ImageHandle fast;   // reblur.fast (current)
+    graph::HistoryImage surface;
+  };
+  Temporal declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
+                           const DenoiseInputs& inputs);
+  // `tiles` (RGBA16F, one texel per 8x8 tile, REBLUR_GROUP_SIZE): where its green is 0 the
+  // blurs copy their input instead of filtering (the hybrid uses SVGF alone there);
+  // reblur-stabilize runs everywhere (it keeps reblur.stable).
+  void declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution, const DenoiseInputs& inputs,
+                      const Temporal& temporal, graph::ImageHandle output,
+                      std::optional<graph::ImageHandle> tiles = std::nullopt);
+
   const ReblurSettings& settings() const { return settings_; }
 
  private:
   gpu::ReblurConstants constants(VkExtent2D resolution, const DenoiseInputs& inputs) const;
+  // A length in pixels at radiusReferenceHeight, at this resolution, at least `floor`.
+  float scaled(float pixels, VkExtent2D resolution, float floor) const;
 
   ReblurSettings settings_;
   ComputePass preBlur_;

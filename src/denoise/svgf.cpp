@@ -70,6 +70,13 @@ gpu::SvgfConstants Svgf::constants(VkExtent2D resolution, const SvgfInputs& in) 
 
 graph::ImageHandle Svgf::declare(graph::FrameGraph& graph, VkExtent2D resolution,
                                  const SvgfInputs& in, graph::ImageHandle output) {
+  const Temporal temporal = declareTemporal(graph, resolution, in);
+  declareSpatial(graph, resolution, in, temporal, output);
+  return temporal.moments;
+}
+
+Svgf::Temporal Svgf::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
+                                     const SvgfInputs& in) {
   graph::HistoryImage surface = graph.createHistoryImage("svgf.surface", {kRgba32f});
   graph::HistoryImage moments = graph.createHistoryImage("svgf.moments", {kRgba32f});
   graph::HistoryImage illumination = graph.createHistoryImage("svgf.illumination", {kRgba16f});
@@ -113,25 +120,33 @@ graph::ImageHandle Svgf::declare(graph::FrameGraph& graph, VkExtent2D resolution
         dispatch(cmd, c);
       });
 
+  return {filtered, surface.current, moments.current, illumination.current};
+}
+
+void Svgf::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution, const SvgfInputs& in,
+                          const Temporal& temporal, graph::ImageHandle output,
+                          std::optional<graph::ImageHandle> tiles) {
+  const gpu::SvgfConstants c = constants(resolution, in);
   // Iteration 0 writes the colour history; the last writes `output`.
-  graph::ImageHandle input = filtered;
+  graph::ImageHandle input = temporal.filtered;
   const graph::ImageHandle albedo = in.albedo ? *in.albedo : in.noisy;
   for (uint32_t i = 0; i < settings_.iterations; ++i) {
     graph::ImageHandle target =
         i + 1 == settings_.iterations
             ? output
-            : (i == 0 ? illumination.current
+            : (i == 0 ? temporal.illumination
                       : graph.createImage("svgf.atrous-" + std::to_string(i), {kRgba16f}));
-    declareAtrous(graph, c, input, surface.current, albedo, i, target);
+    declareAtrous(graph, c, input, temporal.surface, albedo, i, target, tiles);
     input = target;
   }
-  return moments.current;
 }
 
 void Svgf::declareAtrous(graph::FrameGraph& graph, const gpu::SvgfConstants& constants,
                          graph::ImageHandle input, graph::ImageHandle surface,
-                         graph::ImageHandle albedo, uint32_t iteration, graph::ImageHandle output) {
+                         graph::ImageHandle albedo, uint32_t iteration, graph::ImageHandle output,
+                         std::optional<graph::ImageHandle> tiles) {
   gpu::SvgfConstants c = constants;
+  if (tiles) c.flags |= gpu::SVGF_FLAG_TILES;
   c.step = 1u << iteration;
   c.iteration = iteration;
   c.lastIteration = iteration + 1 == settings_.iterations ? 1u : 0u;
@@ -144,6 +159,10 @@ void Svgf::declareAtrous(graph::FrameGraph& graph, const gpu::SvgfConstants& con
     pass.read(albedo, Access::StorageRead, gpu::SVGF_ATROUS_BINDING_ALBEDO);
   else
     pass.readPlaceholder(input, gpu::SVGF_ATROUS_BINDING_ALBEDO);
+  if (tiles)
+    pass.read(*tiles, Access::StorageRead, gpu::SVGF_ATROUS_BINDING_TILES);
+  else
+    pass.readPlaceholder(input, gpu::SVGF_ATROUS_BINDING_TILES);
   pass.record([this, c](VkCommandBuffer cmd, const graph::PassResources& r) {
     atrous_.bind(cmd, c, r, c.iteration);
     dispatch(cmd, c);

@@ -82,6 +82,22 @@ class Svgf {
   // denoiser reads.
   graph::ImageHandle declare(graph::FrameGraph& graph, VkExtent2D resolution,
                              const SvgfInputs& inputs, graph::ImageHandle output);
+
+  // declare() in two halves, for the hybrid denoiser, which classifies tiles between them.
+  // The first declares svgf-temporal and svgf-variance, the second the à-trous iterations.
+  struct Temporal {
+    graph::ImageHandle filtered;      // svgf.filtered-moments: colour, variance
+    graph::ImageHandle surface;       // svgf.surface (current)
+    graph::ImageHandle moments;       // svgf.moments (current)
+    graph::ImageHandle illumination;  // svgf.illumination (current): iteration 0 writes it
+  };
+  Temporal declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
+                           const SvgfInputs& inputs);
+  // `tiles` (RGBA16F, one texel per 8x8 tile, SVGF_GROUP_SIZE): where its red is 0 the
+  // iterations copy their input instead of filtering (the hybrid uses ReBLUR alone there).
+  void declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution, const SvgfInputs& inputs,
+                      const Temporal& temporal, graph::ImageHandle output,
+                      std::optional<graph::ImageHandle> tiles = std::nullopt);
   // One à-trous iteration alone (pass svgf-atrous-<iteration>), for tests against the CPU
   // reference (denoise/svgf_reference.h): `input` RGBA16F colour + variance, `surface` RGBA32F
   // normal + depth (svgf.surface's format); no albedo.
@@ -94,7 +110,8 @@ class Svgf {
   gpu::SvgfConstants constants(VkExtent2D resolution, const SvgfInputs& inputs) const;
   void declareAtrous(graph::FrameGraph& graph, const gpu::SvgfConstants& constants,
                      graph::ImageHandle input, graph::ImageHandle surface,
-                     graph::ImageHandle albedo, uint32_t iteration, graph::ImageHandle output);
+                     graph::ImageHandle albedo, uint32_t iteration, graph::ImageHandle output,
+                     std::optional<graph::ImageHandle> tiles = std::nullopt);
 
   SvgfSettings settings_;
   ComputePass temporal_;
