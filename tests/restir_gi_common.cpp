@@ -11,6 +11,8 @@
 #include "frame/hybrid_frame.h"
 #include "harness.h"
 #include "reference/path_tracer.h"
+#include "scene/load.h"
+#include "scene/scene_options.h"
 #include "tools/metrics.h"
 
 namespace bounce::test {
@@ -255,6 +257,41 @@ void printSunJump(const SunJumpRun& run, bool everyFrame) {
               run.converged(), run.recovered() / run.converged());
   std::printf("camera cut: mean luminance of the first frame %.4g, after 16 frames %.4g\n",
               run.firstCutLuminance, run.settledCutLuminance);
+}
+
+FurnaceRun runFurnace(vk::Context& context, const HybridSettings& settings,
+                      const std::vector<std::string>& stages, int frames) {
+  const int averaged = frames - 32;
+  Scene scene = loadScene("furnace");
+  Camera camera = effectiveCamera(scene);
+  GpuScene gpuScene(context, scene);
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("composite");
+  for (const std::string& stage : stages) frame.requestDebugView(stage);
+  FurnaceRun run;
+  run.stageMeans.assign(stages.size(), 0.0);
+  run.lowest = 1e9f;
+  for (int i = 0; i < frames; ++i) {
+    frame.render(camera);
+    if (i < frames - averaged) continue;
+    ImageRGBA32F image = frame.debugViewImage("composite");
+    run.mean += meanLuminance(image) / averaged;
+    for (size_t k = 0; k < image.pixelCount(); ++k) {
+      run.lowest = std::min(run.lowest, float(luminance(image, k)));
+      run.highest = std::max(run.highest, float(luminance(image, k)));
+    }
+    for (size_t s = 0; s < stages.size(); ++s)
+      run.stageMeans[s] += meanLuminance(frame.debugViewImage(stages[s])) / averaged;
+  }
+  return run;
+}
+
+void printFurnace(const char* label, const HybridSettings& settings, const FurnaceRun& run,
+                  const std::vector<std::string>& stages) {
+  std::printf("%s furnace %ux%u, frames 33-48: composite %.4f (analytic 2), pixels %.3f..%.3f\n",
+              label, settings.width, settings.height, run.mean, run.lowest, run.highest);
+  for (size_t s = 0; s < stages.size() && s < run.stageMeans.size(); ++s)
+    std::printf("  %s %.4f\n", stages[s].c_str(), run.stageMeans[s]);
 }
 
 }  // namespace bounce::test

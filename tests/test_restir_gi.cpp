@@ -169,6 +169,18 @@ TEST(RestirGi, FullChainConvergesOnCornell) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
+// White furnace (issue 23: "each mode within 3 % of the analytic value"): the default chain
+// (desktop preset) at 24x16, the mean composite of frames 33-48 within 3 % of 2
+// (test::runFurnace). Lux's reuse is this chain's (test_lux_gi.cpp has the same test).
+TEST(RestirGi, WhiteFurnace) {
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  HybridSettings settings = giSettings(24, 16, presetSettings(Preset::Desktop).restirGi);
+  test::FurnaceRun run = test::runFurnace(context, settings, test::kFurnaceStages);
+  test::printFurnace("evolve", settings, run, test::kFurnaceStages);
+  EXPECT_NEAR(run.mean, 2.0, 0.06);
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+}
+
 // Seed 000's coarse mip (RestirGiSettings::materialTextureSide): GI rays read x2's textures at
 // the mip at most 16 texels wide. The mips are box filters (each texel block's mean is kept), so
 // over many hit points the material the GI sees must hardly change. Compared on exactly the

@@ -5,7 +5,11 @@
 // History M is capped at temporalMaxM (the cap bounds how long stale samples persist). The
 // history sample is shifted to this frame's primary vertex by reconnection, so its weight
 // carries the Jacobian (restir_gi_common.glsl); shifts with a Jacobian above maxJacobian are
-// rejected (they come from grazing or near-contact geometry and would be fireflies).
+// rejected (they come from grazing or near-contact geometry and would be fireflies). The merged
+// reservoir is normalised by the confidence of the reservoirs that could have produced its
+// sample (1/Z, Bitterli et al. 2020, Alg. 6), not by all of theirs (ReSTIR GI's 1/M): a
+// refused shift contributes nothing, so counting its M darkened wherever shifts are refused
+// (docs/gi/restir-gi.md, "Energy").
 // The merged reservoir is this frame's history (the only reservoir fed back). Where the
 // candidate is a validated history reservoir (gi-resolve-diffuse-rays), it replaces history
 // without a merge (merging would count that history twice).
@@ -206,6 +210,8 @@ void main() {
     // Candidate first (canonical), then the canonical history, then permuted ones until the
     // confidence threshold (temporalMaxM) is reached or temporalHistorySamples were tried.
     ReservoirStream s = beginStream(x1, candidate);
+    Producers producers;
+    producers.count = 0u;
     Reservoir history;
     ivec2 q = canonicalHistoryPixel(f, gi, pixel, g, x1, history);
     if (q.x >= 0) {
@@ -216,6 +222,7 @@ void main() {
       Reservoir h = capped(gi, history, candidate.M);
       float confidence = candidate.M + h.M;
       h.M *= scale;
+      addProducer(producers, h);
       streamReservoir(s, x1, h, reconnectionJacobian(h.origin, x1.position, h), gi.maxJacobian, u);
       for (uint k = 1u; k < gi.temporalHistorySamples && confidence < gi.temporalMaxM; ++k) {
         Reservoir r = permutedHistory(f, gi, q, k, x1);
@@ -224,11 +231,14 @@ void main() {
         r.M = min(r.M, gi.temporalMaxM - confidence);
         confidence += r.M;
         r.M *= scale;
+        addProducer(producers, r);
         float uk = random2(uvec2(g), f.frameIndex * 8u + k, RANDOM_GI_TEMPORAL + 2u).x;
         streamReservoir(s, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, uk);
       }
     }
-    result = endStream(s, x1);
+    bool normalise = (gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) != 0u;
+    result = normalise ? endStreamNormalised(s, x1, producerConfidence(producers, candidate.M, x1, s.chosen, gi.maxJacobian))
+                       : endStream(s, x1);
   }
   if (validated) {
     // Where the neighbourhood's light changed (a real change, not noise): less confidence, so

@@ -244,6 +244,38 @@ bool couldProduce(vec3 origin, vec3 originNormal, PrimaryVertex x1, Reservoir ch
   return jacobian > 0.0 && jacobian <= maxJacobian;
 }
 
+// The reservoirs a stream merged besides its canonical one, kept for the 1/Z normalisation
+// when they cannot be read again cheaply (gi-restir-temporal): their primary vertices and the
+// confidence they entered the stream with.
+const uint RESTIR_GI_MAX_PRODUCERS = 5u;
+struct Producers {
+  vec3 origin[RESTIR_GI_MAX_PRODUCERS];
+  vec3 normal[RESTIR_GI_MAX_PRODUCERS];
+  float M[RESTIR_GI_MAX_PRODUCERS];
+  uint count;
+};
+
+void addProducer(inout Producers p, Reservoir r) {
+  if (p.count >= RESTIR_GI_MAX_PRODUCERS) return;
+  p.origin[p.count] = r.origin;
+  p.normal[p.count] = r.originNormal;
+  p.M[p.count] = r.M;
+  ++p.count;
+}
+
+// Z of the 1/Z normalisation: the canonical reservoir's confidence (its domain is x1's
+// hemisphere, which holds every sample with a positive target at x1) plus that of every merged
+// reservoir that could have produced `chosen` (couldProduce). A reservoir whose shift of the
+// chosen sample would have been refused adds nothing to the weights' sum for it, so counting
+// its confidence would darken by the share of refused shifts.
+float producerConfidence(Producers p, float canonicalM, PrimaryVertex x1, Reservoir chosen,
+                         float maxJacobian) {
+  float z = canonicalM;
+  for (uint i = 0u; i < p.count; ++i)
+    if (couldProduce(p.origin[i], p.normal[i], x1, chosen, maxJacobian)) z += p.M[i];
+  return z;
+}
+
 // Validation (seed 000, "resolve-diffuse-rays": radiance changed -> lower M): how much of the
 // history still holds where the validation rays of a neighbourhood found their radiance
 // changed, from the sums of the stored and the re-traced luminances over the validated pixels
