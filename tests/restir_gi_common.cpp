@@ -269,6 +269,7 @@ FurnaceRun runFurnace(vk::Context& context, const HybridSettings& settings,
   frame.requestDebugView("composite");
   for (const std::string& stage : stages) frame.requestDebugView(stage);
   FurnaceRun run;
+  run.frames = frames;
   run.stageMeans.assign(stages.size(), 0.0);
   run.lowest = 1e9f;
   for (int i = 0; i < frames; ++i) {
@@ -288,8 +289,8 @@ FurnaceRun runFurnace(vk::Context& context, const HybridSettings& settings,
 
 void printFurnace(const char* label, const HybridSettings& settings, const FurnaceRun& run,
                   const std::vector<std::string>& stages) {
-  std::printf("%s furnace %ux%u, frames 33-48: composite %.4f (analytic 2), pixels %.3f..%.3f\n",
-              label, settings.width, settings.height, run.mean, run.lowest, run.highest);
+  std::printf("%s furnace %ux%u, frames 33-%d: composite %.4f (analytic 2), pixels %.3f..%.3f\n",
+              label, settings.width, settings.height, run.frames, run.mean, run.lowest, run.highest);
   for (size_t s = 0; s < stages.size() && s < run.stageMeans.size(); ++s)
     std::printf("  %s %.4f\n", stages[s].c_str(), run.stageMeans[s]);
 }

@@ -89,6 +89,7 @@ SunJumpRun runSunJump(vk::Context& context, GpuScene& gpuScene, const Scene& sce
 // the mean of each of `stages` (debug views: "gi.reservoir-estimate", "gi.resolved", ...), so
 // that a loss of energy can be traced to its stage.
 struct FurnaceRun {
+  int frames = 0;  // rendered; frames 33 .. frames averaged
   double mean = 0.0;
   float lowest = 0.0f, highest = 0.0f;
   std::vector<double> stageMeans;  // one per stage

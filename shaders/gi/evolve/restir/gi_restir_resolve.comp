@@ -92,21 +92,24 @@ float jacobianCap(RestirGiConstants gi, uint k, bool homeOnSurface) {
   return k == 0u && homeOnSurface ? UNCAPPED : gi.maxJacobian;
 }
 
-// The MIS weight of a sample in the resolve's combination: 1 over the number of the pixel's
-// same-surface reservoirs whose shift of it to x would be accepted (the generalized balance
-// heuristic with equal confidences, restricted to the domains that can produce the sample;
-// Wyman et al. 2023, §5.3 and Bitterli et al. 2020, Alg. 6). Each reservoir is an estimator
+// The MIS weight of a sample in the resolve's combination: the generalized balance heuristic
+// (restir_gi_common.glsl, balanceWeight) over the pixel's same-surface reservoirs with equal
+// confidences, each one's target taken through its shift to x. Each reservoir is an estimator
 // of x's integral over the samples its shift reaches; where some of them refuse a sample
-// (Jacobian cap, the sample below their surface), dividing by all of them would count the
-// refused ones as zero and darken (measured: a 24x16 furnace 15 % dark with Lux's cap of 2).
+// (Jacobian cap, the sample below their surface), a plain mean counted the refused ones as
+// zero and darkened (a 24x16 furnace 15 % dark with Lux's cap of 2); and a sample that only a
+// distant reservoir reaches with a large Jacobian weighs by how likely the nearer ones were to
+// produce it.
 float resolveMisWeight(RestirGiConstants gi, PrimaryVertex x, Reservoir shifted, uint own,
                        vec3 origins[4], vec3 originNormals[4], uint count, bool homeOnSurface) {
   if ((gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) == 0u) return 1.0 / float(count);
-  float producers = 1.0;  // its own reservoir
-  for (uint j = 0u; j < count; ++j)
-    if (j != own && couldProduce(origins[j], originNormals[j], x, shifted, jacobianCap(gi, j, homeOnSurface)))
-      producers += 1.0;
-  return 1.0 / producers;
+  float mine = 0.0, sum = 0.0;
+  for (uint j = 0u; j < count; ++j) {
+    float t = targetThroughShift(origins[j], originNormals[j], x, shifted, jacobianCap(gi, j, homeOnSurface));
+    sum += t;
+    if (j == own) mine = t;
+  }
+  return sum > 0.0 ? mine / sum : 0.0;
 }
 
 void main() {
