@@ -290,7 +290,8 @@ FurnaceRun runFurnace(vk::Context& context, const HybridSettings& settings,
 void printFurnace(const char* label, const HybridSettings& settings, const FurnaceRun& run,
                   const std::vector<std::string>& stages) {
   std::printf("%s furnace %ux%u, frames 33-%d: composite %.4f (analytic 2), pixels %.3f..%.3f\n",
-              label, settings.width, settings.height, run.frames, run.mean, run.lowest, run.highest);
+              label, settings.width, settings.height, run.frames, run.mean, run.lowest,
+              run.highest);
   for (size_t s = 0; s < stages.size() && s < run.stageMeans.size(); ++s)
     std::printf("  %s %.4f\n", stages[s].c_str(), run.stageMeans[s]);
 }

@@ -96,9 +96,10 @@ struct FurnaceRun {
 };
 // The chain's stages in order, for runFurnace.
 inline const std::vector<std::string> kFurnaceStages = {
-    "gi.candidate-estimate", "gi.reservoir-estimate", "gi.spatial-0-estimate",
-    "gi.spatial-1-estimate", "gi.validated-estimate", "gi.patched-estimate", "gi.resolved",
-    "gi.diffuse"};
+    "gi.candidate-estimate", "gi.reservoir-estimate",
+    "gi.spatial-0-estimate", "gi.spatial-1-estimate",
+    "gi.validated-estimate", "gi.patched-estimate",
+    "gi.resolved",           "gi.diffuse"};
 FurnaceRun runFurnace(vk::Context& context, const HybridSettings& settings,
                       const std::vector<std::string>& stages = {}, int frames = 48);
 // The run on one line, with the stages' means.

@@ -172,7 +172,7 @@ TEST(RestirGi, FullChainConvergesOnCornell) {
 // White furnace (issue 23: "each mode within 3 % of the analytic value"): the default chain
 // (desktop preset) at 24x16, the mean composite of frames 33-48 within 3 % of 2
 // (test::runFurnace; LuxGi.WhiteFurnace runs Lux, whose reuse is this chain's, the same way).
-// Disabled: measured 1.931-1.943 over five runs (1.950 over frames 33-144); 1.899 before the
+// Disabled: measured 1.931-1.939 over three runs (1.950 over frames 33-144); 1.899 before the
 // reuse stages combined their reservoirs with the generalized balance heuristic. The reuse
 // stages are now within 1 % of the candidates at full-resolution GI (divisor 1: composite
 // 1.985-1.987); what is left at the preset's half resolution is gi-restir-resolve's shift from

@@ -235,7 +235,9 @@ void main() {
       }
     }
     if ((gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) != 0u) {
-      // The generalized balance heuristic over the candidate and the history reservoirs.
+      // The generalized balance heuristic over the candidate and the history reservoirs (1/Z
+      // here measured 6.8x less variance than uniform sampling on Lux's gate, this 7.9x;
+      // docs/gi/restir-gi.md, "Energy").
       Producers producers;
       producers.count = 0u;
       addProducer(producers, x1.position, x1.shadingNormal, candidate.M);
