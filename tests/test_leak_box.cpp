@@ -5,7 +5,7 @@
 // of the lit box from outside, for evolve, gi10, lux and cache. Every GI mode gathers light
 // through world-space structures (the clipmap cache's cells, GI-1.0's probes) or reuses
 // samples across surfaces, and a wall thinner than a cell is where those leak.
-// Measured (lavapipe, 2026-11-26, 32 frames): inside 0 for all four (outside 9.12-9.19). The
+// Measured (lavapipe, 2026-11-26): inside 0 for all four (outside 9.12-9.20). The
 // test can fail: with the roof removed the inside measured 38 % (evolve) and 37 % (gi10).
 #include <cstdio>
 #include <string>
