@@ -294,4 +294,41 @@ AnimatedRun runAnimated(const std::string& sceneName, HybridSettings settings, i
   return run;
 }
 
+FurnaceRun runFurnace(vk::Context& context, const HybridSettings& settings,
+                      const std::vector<std::string>& stages, int frames) {
+  const int averaged = frames - 32;
+  Scene scene = loadScene("furnace");
+  Camera camera = effectiveCamera(scene);
+  GpuScene gpuScene(context, scene);
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("composite");
+  for (const std::string& stage : stages) frame.requestDebugView(stage);
+  FurnaceRun run;
+  run.frames = frames;
+  run.stageMeans.assign(stages.size(), 0.0);
+  run.lowest = 1e9f;
+  for (int i = 0; i < frames; ++i) {
+    frame.render(camera);
+    if (i < frames - averaged) continue;
+    ImageRGBA32F image = frame.debugViewImage("composite");
+    run.mean += meanLuminance(image) / averaged;
+    for (size_t k = 0; k < image.pixelCount(); ++k) {
+      run.lowest = std::min(run.lowest, float(luminance(image, k)));
+      run.highest = std::max(run.highest, float(luminance(image, k)));
+    }
+    for (size_t s = 0; s < stages.size(); ++s)
+      run.stageMeans[s] += meanLuminance(frame.debugViewImage(stages[s])) / averaged;
+  }
+  return run;
+}
+
+void printFurnace(const char* label, const HybridSettings& settings, const FurnaceRun& run,
+                  const std::vector<std::string>& stages) {
+  std::printf("%s furnace %ux%u, frames 33-%d: composite %.4f (analytic 2), pixels %.3f..%.3f\n",
+              label, settings.width, settings.height, run.frames, run.mean, run.lowest,
+              run.highest);
+  for (size_t s = 0; s < stages.size() && s < run.stageMeans.size(); ++s)
+    std::printf("  %s %.4f\n", stages[s].c_str(), run.stageMeans[s]);
+}
+
 }  // namespace bounce::test

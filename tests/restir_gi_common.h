@@ -82,6 +82,30 @@ struct SunJumpRun {
 SunJumpRun runSunJump(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
                       const Camera& camera, const HybridSettings& settings,
                       const ImageRGBA32F& reference, const std::vector<std::string>& stages = {});
+// The white furnace (the built-in `furnace`: albedo 0.5, emission 1 on every surface): radiance
+// 2 everywhere, so the composite is 2 at every pixel and each GI estimate (irradiance / pi per
+// unit albedo) is 2 too. Renders frames 1-48 of a static view with `settings` and averages
+// frames 33-48: the composite's mean, its darkest and brightest pixel over those frames, and
+// the mean of each of `stages` (debug views: "gi.reservoir-estimate", "gi.resolved", ...), so
+// that a loss of energy can be traced to its stage.
+struct FurnaceRun {
+  int frames = 0;  // rendered; frames 33 .. frames averaged
+  double mean = 0.0;
+  float lowest = 0.0f, highest = 0.0f;
+  std::vector<double> stageMeans;  // one per stage
+};
+// The chain's stages in order, for runFurnace.
+inline const std::vector<std::string> kFurnaceStages = {
+    "gi.candidate-estimate", "gi.reservoir-estimate",
+    "gi.spatial-0-estimate", "gi.spatial-1-estimate",
+    "gi.validated-estimate", "gi.patched-estimate",
+    "gi.resolved",           "gi.diffuse"};
+FurnaceRun runFurnace(vk::Context& context, const HybridSettings& settings,
+                      const std::vector<std::string>& stages = {}, int frames = 48);
+// The run on one line, with the stages' means.
+void printFurnace(const char* label, const HybridSettings& settings, const FurnaceRun& run,
+                  const std::vector<std::string>& stages = {});
+
 // The run's errors on two lines: frames 1-12 and every 8th after the jump (every frame with
 // `everyFrame`), each stage's mean where recorded, and the recovered and converged errors; then
 // the camera cut's luminances.

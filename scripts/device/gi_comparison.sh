@@ -41,7 +41,7 @@ for s in ["cornell", "sunroom", "foliage", "city", "chair"]:
         print(f"{s:8s} {gi:7s} " + "  ".join(row))
 PY
 for s in sunroom city; do
-  $B bench --scene $s --res 1920x1080 --gi evolve,gi10,lux,cache --frames 240 \
+  $B bench --scene $s --res 1920x1080 --gi none,evolve,gi10,lux,cache --frames 240 \
     --out /tmp/cmp/bench-$s 2>&1 | tr '\r' '\n' | grep -E "frame \(GPU\)|error|^sunroom|^city"
 done
 tar czf $OUT/cmp.tgz --exclude='*.exr' --exclude='*-contact.png' -C /tmp cmp

@@ -244,6 +244,89 @@ bool couldProduce(vec3 origin, vec3 originNormal, PrimaryVertex x1, Reservoir ch
   return jacobian > 0.0 && jacobian <= maxJacobian;
 }
 
+// The generalized balance heuristic (Lin et al. 2022, Eq. 12; Wyman et al. 2023, "A Gentle
+// Introduction to ReSTIR", §5.3): reservoir i of those a pass combines at x1 enters with the
+// MIS weight m_i(y) = M_i t_i(y) / sum_j M_j t_j(y), where t_j(y) is reservoir j's target
+// for sample y expressed in x1's measure: p_hat at its own vertex divided by the Jacobian of
+// its shift to x1 (the density its samples would have at x1 if they followed p_hat there),
+// and 0 where its shift of y would be refused (below its surface, Jacobian above the cap).
+// The weights sum to one over the reservoirs that can produce y, so a refused shift costs no
+// energy (ReSTIR GI's 1/M counted it as zero), and a sample that reaches x1 only through a
+// large Jacobian weighs by how likely the other reservoirs, x1's own first, were to produce
+// it, instead of by the Jacobian alone (the cap's fireflies).
+float targetThroughShift(vec3 origin, vec3 originNormal, PrimaryVertex x1, Reservoir y,
+                         float maxJacobian) {
+  if (y.kind == RESTIR_GI_KIND_NONE) return 0.0;
+  vec3 toSample = y.samplePosition - origin;
+  float above = dot(toSample, originNormal);
+  if (!(above > 0.0)) return 0.0;
+  float jacobian = reconnectionJacobian(origin, x1.position, y);
+  if (!(jacobian > 0.0 && jacobian <= maxJacobian)) return 0.0;
+  return max(brdfLuminance(y.radiance), 0.0) * above * inversesqrt(dot(toSample, toSample)) / jacobian;
+}
+
+// The primary vertices and confidences of the reservoirs a pass combines; entry 0 is the
+// canonical one, x1's own (its target is p_hat at x1, its shift the identity).
+const uint RESTIR_GI_MAX_PRODUCERS = 9u;
+struct Producers {
+  vec3 origin[RESTIR_GI_MAX_PRODUCERS];
+  vec3 normal[RESTIR_GI_MAX_PRODUCERS];
+  float M[RESTIR_GI_MAX_PRODUCERS];
+  uint count;
+};
+
+void addProducer(inout Producers p, vec3 origin, vec3 normal, float M) {
+  if (p.count >= RESTIR_GI_MAX_PRODUCERS) return;
+  p.origin[p.count] = origin;
+  p.normal[p.count] = normal;
+  p.M[p.count] = M;
+  ++p.count;
+}
+
+// m_i(y) of the generalized balance heuristic for producer i's sample y (above).
+float balanceWeight(Producers p, uint i, PrimaryVertex x1, Reservoir y, float maxJacobian) {
+  float own = 0.0, sum = 0.0;
+  for (uint j = 0u; j < p.count; ++j) {
+    float t = j == 0u ? targetFunction(x1, y) : targetThroughShift(p.origin[j], p.normal[j], x1, y, maxJacobian);
+    t *= p.M[j];
+    sum += t;
+    if (j == i) own = t;
+  }
+  return sum > 0.0 ? own / sum : 0.0;
+}
+
+// Streams reservoir r, whose sample's p_hat at x1 is `target`, with resampling weight w
+// (m_i p_hat W J); the stream's W is then weightSum / p_hat (endStreamNormalised with z = 1).
+ReservoirStream emptyStream(Reservoir canonical) {
+  ReservoirStream s;
+  s.chosen = canonical;
+  s.chosenTarget = 0.0;
+  s.weightSum = 0.0;
+  s.M = 0.0;
+  return s;
+}
+
+void streamWeighted(inout ReservoirStream s, Reservoir r, float target, float w, float u) {
+  s.M += r.M;
+  if (!(w > 0.0)) return;
+  s.weightSum += w;
+  if (u * s.weightSum < w) {
+    s.chosen = r;
+    s.chosenTarget = target;
+  }
+}
+
+// Streams producer i's reservoir r with its balance-heuristic weight; `jacobian`: its shift to
+// x1 (1 for the canonical one).
+void streamBalanced(inout ReservoirStream s, Producers p, uint i, PrimaryVertex x1, Reservoir r,
+                    float jacobian, float maxJacobian, float u) {
+  float target = targetFunction(x1, r);
+  float w = 0.0;
+  if (target > 0.0 && r.W > 0.0 && (i == 0u || jacobian <= maxJacobian))
+    w = balanceWeight(p, i, x1, r, maxJacobian) * target * r.W * jacobian;
+  streamWeighted(s, r, target, w, u);
+}
+
 // Validation (seed 000, "resolve-diffuse-rays": radiance changed -> lower M): how much of the
 // history still holds where the validation rays of a neighbourhood found their radiance
 // changed, from the sums of the stored and the re-traced luminances over the validated pixels
