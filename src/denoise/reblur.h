@@ -19,6 +19,7 @@
 // image is at the frame graph's render resolution (formats: shared/reblur_io.h).
 #pragma once
 #include <cstdint>
+#include <string>
 
 #include "denoise/denoise_inputs.h"
 #include "graph/frame_graph.h"
@@ -71,7 +72,10 @@ class Reblur {
   // The distinct compute pipelines ReBLUR compiles (issue 21's permutation budget).
   static constexpr uint32_t kPipelineCount = 5;
 
-  Reblur(vk::Context& context, const GpuScene& scene, const ReblurSettings& settings = {});
+  // `name` prefixes every pass (`<name>-temporal`, ...) and resource (`<name>.stable`, ...), so
+  // that two instances can run in one frame (the GI's and ReSTIR DI's, di/di_denoise.h).
+  Reblur(vk::Context& context, const GpuScene& scene, const ReblurSettings& settings = {},
+         std::string name = "reblur");
   // Declares ReBLUR's passes on `graph`, ending in `output` (RGBA16F: rgb the denoised signal,
   // a the slow history's length in frames after anti-lag). `resolution`: the graph's render
   // resolution.
@@ -84,6 +88,7 @@ class Reblur {
   gpu::ReblurConstants constants(VkExtent2D resolution, const DenoiseInputs& inputs) const;
 
   ReblurSettings settings_;
+  std::string name_;
   ComputePass preBlur_;
   ComputePass temporal_;
   ComputePass historyFix_;

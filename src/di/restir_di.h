@@ -7,6 +7,8 @@
 //   di-temporal             + last frame's reservoir at the reprojected pixel (M <= 20)
 //   di-spatial              + 1-3 neighbours within 32 px, bias correction
 //   di-shade                the final sample with the full BRDF and a shadow ray: di.radiance
+//   di-denoise-*            (DiSettings::denoiser) SVGF or ReBLUR on the demodulated
+//                           di.radiance: di.denoised (di_denoise.h)
 //
 // DiMode::Uniform declares only the candidates and the shade (no reuse). The sun is not among
 // the lights: its dedicated soft-shadow pass (shadows-trace, shadows-denoise) shades it with one
@@ -33,6 +35,7 @@
 #include <span>
 #include <vector>
 
+#include "di/di_denoise.h"
 #include "di/di_generate_candidates.h"
 #include "di/di_light_grid.h"
 #include "di/di_settings.h"
@@ -55,6 +58,8 @@ class RestirDi {
   // Whether di-light-grid runs (at least DiSettings::lightGridThreshold local lights).
   bool usesLightGrid() const { return grid_.has_value(); }
 
+  // The chain; the returned radiance is di.denoised when a denoiser is on (di.radiance, the
+  // raw estimate, stays di-shade's image).
   DirectLight declare(graph::FrameGraph& graph, const FrameContext& frame, const GBuffer& gbuffer);
 
   // The scene's punctual lights from the next frame on: Scene::lights with positions,
@@ -65,13 +70,25 @@ class RestirDi {
 
   // A light whose power rises by more than this factor in one frame drops the DI history.
   static constexpr double kHistoryDropRise = 2.0;
+  // The DI denoiser's history (not the reservoirs') is dropped when a light's power changes by
+  // more than kHistoryDropRise either way (switched, dimmed, brightened), or a punctual light or
+  // an emissive triangle moves by more than this fraction of the scene bounds' largest extent
+  // in one frame. The denoiser averages some 20-40 frames and has no per-pixel anti-lag: the
+  // old light would otherwise fade out over that many frames. Small steps (manylights' lights
+  // bob by at most 2 cm a frame in a 10-m room at 30 fps) keep it.
+  static constexpr double kDenoiseDropMove = 0.01;
 
   // Compute pipelines the chain compiles (one per pass; di-lights-update is a copy).
   uint32_t pipelineCount() const;
 
  private:
+  bool lightsChangedForDenoiser(std::span<const PunctualLight> lights) const;
+  bool emittersMovedForDenoiser(const std::vector<gpu::GpuEmissiveTriangle>& before) const;
+
   DiSettings settings_;
   GpuLightTables lights_;
+  double denoiseDropDistance_ = 0.0;  // kDenoiseDropMove x the scene's largest extent
+  bool dropDenoiseHistory_ = false;   // for the next frame that runs
   std::vector<PunctualLight> lightState_;  // the lights as last set
   bool dropHistory_ = false;               // for the next frame that runs
   vk::Buffer constants_;                   // gpu::DiConstants
@@ -80,6 +97,7 @@ class RestirDi {
   std::optional<DiTemporalPass> temporal_;  // DiMode::Restir only
   std::optional<DiSpatialPass> spatial_;    // DiMode::Restir with spatial samples
   std::optional<DiShadePass> shade_;
+  std::optional<DiDenoise> denoise_;  // DiSettings::denoiser != None
 };
 
 }  // namespace bounce
