@@ -48,7 +48,7 @@ struct RenderOptions {
   std::string di = "restir";  // ReSTIR DI (DiSettings)
   bool diUnbiased = false;
   int64_t diBrdfCandidates = 1;
-  std::string diDenoiser;  // svgf|reblur|none; empty: the preset's (desktop svgf, mobile none)
+  std::string diDenoiser;  // svgf|reblur|none; empty: the settings' (none)
   std::string vbuffer = "raster";
   std::optional<int64_t> giDivisor;
   std::string restirSecondVertex;
@@ -292,9 +292,6 @@ HybridSettings settingsFrom(const RenderOptions& o) {
   settings.di.unbiased = o.diUnbiased;
   settings.di.brdfCandidates = uint32_t(o.diBrdfCandidates);
   if (!o.diDenoiser.empty()) settings.di.denoiser = *diDenoiserFromName(o.diDenoiser);
-  // The reference-like uniform and unbiased DI frames stay raw unless asked for.
-  if (o.diDenoiser.empty() && (o.di != "restir" || o.diUnbiased))
-    settings.di.denoiser = DiDenoiser::None;
   validate(settings);  // the preset's values, for the chosen GI
   applyRestirOptions(o, settings);
   if (o.materialTextureSide)
@@ -539,7 +536,7 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
       ->capture_default_str();
   cmd->add_option("--di-denoiser", options->diDenoiser,
                   std::string("Denoiser of ReSTIR DI's signal (di-denoise-*, docs/di.md): ") +
-                      diDenoiserNames() + " (default: the preset's, svgf on desktop, none on mobile)");
+                      diDenoiserNames() + " (default: none)");
   cmd->add_option("--gi-divisor", options->giDivisor,
                   "ReSTIR GI resolution = render resolution / N (1 to 16; default: the "
                   "preset's, 4 mobile, 2 desktop)");

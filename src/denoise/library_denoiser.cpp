@@ -17,8 +17,7 @@ const char* denoiserName(DenoiserKind kind) {
 }
 
 LibraryDenoiser::LibraryDenoiser(vk::Context& context, const GpuScene& scene, DenoiserKind kind,
-                                 const LibraryDenoiserSettings& settings,
-                                 const std::string& name)
+                                 const LibraryDenoiserSettings& settings, const std::string& name)
     : kind_(kind) {
   const std::string prefix = name.empty() ? denoiserName(kind) : name;
   switch (kind) {

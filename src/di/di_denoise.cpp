@@ -1,6 +1,5 @@
 #include "di/di_denoise.h"
 
-#include <cstdlib>
 #include "core/error.h"
 
 namespace bounce {
@@ -23,16 +22,8 @@ DenoiserKind libraryKind(DiDenoiser kind) {
 
 // SVGF with Falcor's settings, as Evolve's GI uses it (docs/denoise.md: they measured better
 // than the paper's on Cornell); ReBLUR with NRD's defaults.
-static LibraryDenoiserSettings tmpSettings() {
-  LibraryDenoiserSettings s;
-  if (const char* e = std::getenv("TMP_PHIL")) s.svgf.phiLuminance = std::atof(e);
-  if (const char* e = std::getenv("TMP_ALPHA")) s.svgf.colorAlpha = s.svgf.momentsAlpha = std::atof(e);
-  if (const char* e = std::getenv("TMP_MALPHA")) s.svgf.momentsAlpha = std::atof(e);
-  if (const char* e = std::getenv("TMP_ITER")) s.svgf.iterations = std::atoi(e);
-  return s;
-}
 DiDenoise::DiDenoise(vk::Context& context, const GpuScene& scene, DiDenoiser kind)
-    : denoiser_(context, scene, libraryKind(kind), tmpSettings(), "di-denoise") {}
+    : denoiser_(context, scene, libraryKind(kind), LibraryDenoiserSettings{}, "di-denoise") {}
 
 graph::ImageHandle DiDenoise::declare(graph::FrameGraph& graph, const DiFrame& f,
                                       const DirectLight& direct, bool dropHistory) {

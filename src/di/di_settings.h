@@ -96,11 +96,12 @@ struct DiSettings {
   // count only the neighbours that could have produced the kept sample (Bitterli et al. 2020,
   // Alg. 6). Off (default, RTXDI's "basic"): no rays; slightly dark near shadow edges.
   bool unbiased = false;
-  // The denoiser of the DI signal (above). None by default, so that DiSettings{} is the raw
-  // chain the DI tests measure; the desktop preset turns SVGF on (frame/presets.cpp). SVGF
-  // (Falcor's settings, SvgfSettings::falcor()) adds 3 pipelines, ReBLUR 5. Its history is
+  // The denoiser of the DI signal (above). None by default and in both presets: SVGF removes the
+  // speckles (per-pixel variance 44x lower on manylights) but darkens the mean by 5-6 % there,
+  // beyond issue 21's 2 %, and does not move Cornell's HDR-FLIP (docs/di.md, "The denoiser").
+  // SVGF (Falcor's settings, SvgfSettings::falcor()) adds 3 pipelines, ReBLUR 5. Its history is
   // dropped on every frame in which a light switched, dimmed or brightened by more than 2x or
-  // moved by more than RestirDi::kDenoiseDropMove of the scene's extent (restir_di.h), so a
+  // moved by more than RestirDi::kDropMove of the scene's extent (restir_di.h), so a
   // changed light does not linger in it.
   DiDenoiser denoiser = DiDenoiser::None;
   // Mixed into every random number of the chain: runs with different seeds are independent

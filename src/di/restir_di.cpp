@@ -49,7 +49,7 @@ RestirDi::RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& 
   validate(settings);
   lightState_ = scene.lights;
   const glm::vec3 extent = gpuScene.bounds().empty() ? glm::vec3(1.0f) : gpuScene.bounds().extent();
-  denoiseDropDistance_ = kDenoiseDropMove * std::max({extent.x, extent.y, extent.z});
+  dropDistance_ = kDropMove * std::max({extent.x, extent.y, extent.z});
   if (lights_.localLightCount() == 0 && lights_.distantLightCount() == 0) return;
   if (lights_.localLightCount() >= settings.lightGridThreshold)
     grid_.emplace(context, gpuScene, settings, gpuScene.bounds());
@@ -65,29 +65,29 @@ RestirDi::RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& 
   if (settings.denoiser != DiDenoiser::None) denoise_.emplace(context, gpuScene, settings.denoiser);
 }
 
-// Whether `lights`, against the state last set, changed enough to drop the denoiser's history
-// (kDenoiseDropMove).
-bool RestirDi::lightsChangedForDenoiser(std::span<const PunctualLight> lights) const {
+// Whether `lights`, against the state last set, changed enough to drop the history
+// (kDropMove): `reservoirs` for di-temporal's (a light moved or brightened), else for
+// the denoiser's (also dimmed, switched off or turned).
+bool RestirDi::lightsChanged(std::span<const PunctualLight> lights, bool reservoirs) const {
   for (size_t i = 0; i < lights.size(); ++i) {
     const double before = punctualLightPower(lightState_[i]);
     const double after = punctualLightPower(lights[i]);
-    if (after > kHistoryDropRise * before || before > kHistoryDropRise * after) return true;
-    if (glm::distance(lights[i].position, lightState_[i].position) > denoiseDropDistance_)
-      return true;
+    if (after > kHistoryDropRise * before) return true;
+    if (glm::distance(lights[i].position, lightState_[i].position) > dropDistance_) return true;
+    if (reservoirs) continue;
+    if (before > kHistoryDropRise * after) return true;
     // A spot turned by more than about 8 degrees.
     if (glm::dot(lights[i].direction, lightState_[i].direction) < 0.99f) return true;
   }
   return false;
 }
 
-bool RestirDi::emittersMovedForDenoiser(
-    const std::vector<gpu::GpuEmissiveTriangle>& before) const {
+bool RestirDi::emittersMoved(const std::vector<gpu::GpuEmissiveTriangle>& before) const {
   const std::vector<gpu::GpuEmissiveTriangle>& after = lights_.table().emissiveTriangles;
   for (size_t i = 0; i < before.size() && i < after.size(); ++i) {
     const glm::vec3 p0 = after[i].p0, q0 = before[i].p0;
     const glm::vec3 p2 = after[i].p0 + after[i].edge2, q2 = before[i].p0 + before[i].edge2;
-    if (glm::distance(p0, q0) > denoiseDropDistance_ || glm::distance(p2, q2) > denoiseDropDistance_)
-      return true;
+    if (glm::distance(p0, q0) > dropDistance_ || glm::distance(p2, q2) > dropDistance_) return true;
   }
   return false;
 }
@@ -95,22 +95,17 @@ bool RestirDi::emittersMovedForDenoiser(
 void RestirDi::setLights(std::span<const PunctualLight> lights) {
   if (lights.size() != lightState_.size())
     fail("RestirDi::setLights: {} lights for a scene of {}", lights.size(), lightState_.size());
-  if (denoise_ && lightsChangedForDenoiser(lights)) dropDenoiseHistory_ = true;
-  for (size_t i = 0; i < lights.size(); ++i) {
-    const double before = punctualLightPower(lightState_[i]);
-    const double after = punctualLightPower(lights[i]);
-    if (after > kHistoryDropRise * before) dropHistory_ = true;
-    lightState_[i] = lights[i];
-  }
+  if (lightsChanged(lights, /*reservoirs=*/true)) dropHistory_ = true;
+  if (denoise_ && lightsChanged(lights, /*reservoirs=*/false)) dropDenoiseHistory_ = true;
+  std::copy(lights.begin(), lights.end(), lightState_.begin());
   lights_.update(lightState_);
 }
 
 void RestirDi::instancesMoved() {
   if (lights_.table().emissiveTriangles.empty()) return;
-  std::vector<gpu::GpuEmissiveTriangle> before;
-  if (denoise_) before = lights_.table().emissiveTriangles;
+  const std::vector<gpu::GpuEmissiveTriangle> before = lights_.table().emissiveTriangles;
   lights_.update(lightState_);
-  if (denoise_ && emittersMovedForDenoiser(before)) dropDenoiseHistory_ = true;
+  if (emittersMoved(before)) dropHistory_ = dropDenoiseHistory_ = true;
 }
 
 uint32_t RestirDi::pipelineCount() const {

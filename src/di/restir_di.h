@@ -27,9 +27,9 @@
 // reservoirs therefore never name another light than the one they sampled; they hold a light's
 // index and its u, and every pass re-evaluates the sample with the light's current state, so a
 // moved, dimmed or switched-off light is accounted for from the next frame on. A light that
-// switches on (or brightens by more than kHistoryDropRise) is missing from every reservoir's
-// history, which would hold it back by up to the M cap (20 frames): that frame drops di-temporal's
-// history (docs/di.md, "Light animation").
+// switches on (or brightens by more than kHistoryDropRise), or moves into view, is missing from
+// every reservoir's history, which would hold it back by up to the M cap (20 frames): that frame
+// drops di-temporal's history (docs/di.md, "Light animation"), and the DI denoiser's.
 #pragma once
 #include <optional>
 #include <span>
@@ -68,27 +68,29 @@ class RestirDi {
   // The GpuScene's instances moved (GpuScene::setInstanceTransforms): emissive triangles follow.
   void instancesMoved();
 
-  // A light whose power rises by more than this factor in one frame drops the DI history.
+  // A light whose power rises by more than this factor in one frame, or a punctual light or
+  // emissive triangle that moves by more than kDropMove of the scene bounds' largest extent,
+  // drops the DI history: di-temporal's reservoirs miss a light that came on or moved into
+  // view, and their confidence (M up to 20) would hold it back for up to 20 frames. Small steps
+  // (manylights' lights bob by at most 2 cm a frame in a 10-m room at 30 fps) keep it.
   static constexpr double kHistoryDropRise = 2.0;
-  // The DI denoiser's history (not the reservoirs') is dropped when a light's power changes by
-  // more than kHistoryDropRise either way (switched, dimmed, brightened), or a punctual light or
-  // an emissive triangle moves by more than this fraction of the scene bounds' largest extent
-  // in one frame. The denoiser averages some 20-40 frames and has no per-pixel anti-lag: the
-  // old light would otherwise fade out over that many frames. Small steps (manylights' lights
-  // bob by at most 2 cm a frame in a 10-m room at 30 fps) keep it.
-  static constexpr double kDenoiseDropMove = 0.01;
+  static constexpr double kDropMove = 0.01;
+  // The DI denoiser's history is dropped on those changes and also when a light dims or
+  // switches off (power falls by more than kHistoryDropRise) or a spot turns by more than about
+  // 8 degrees: the reservoirs re-evaluate their samples, but the denoiser averages some 20-40
+  // frames without a per-pixel anti-lag, and would fade the old light out over as many.
 
   // Compute pipelines the chain compiles (one per pass; di-lights-update is a copy).
   uint32_t pipelineCount() const;
 
  private:
-  bool lightsChangedForDenoiser(std::span<const PunctualLight> lights) const;
-  bool emittersMovedForDenoiser(const std::vector<gpu::GpuEmissiveTriangle>& before) const;
+  bool lightsChanged(std::span<const PunctualLight> lights, bool reservoirs) const;
+  bool emittersMoved(const std::vector<gpu::GpuEmissiveTriangle>& before) const;
 
   DiSettings settings_;
   GpuLightTables lights_;
-  double denoiseDropDistance_ = 0.0;  // kDenoiseDropMove x the scene's largest extent
-  bool dropDenoiseHistory_ = false;   // for the next frame that runs
+  double dropDistance_ = 0.0;              // kDropMove x the scene's largest extent
+  bool dropDenoiseHistory_ = false;        // for the next frame that runs
   std::vector<PunctualLight> lightState_;  // the lights as last set
   bool dropHistory_ = false;               // for the next frame that runs
   vk::Buffer constants_;                   // gpu::DiConstants

@@ -38,7 +38,6 @@ HybridSettings presetSettings(Preset preset) {
       s.reflections.divisor = 2;         // half-resolution reflections
       s.restirGi.divisor = 2;            // half-resolution diffuse GI
       s.restirGi.spatialDenoise = true;  // seed 000's "additional spatial denoising step"
-      s.di.denoiser = DiDenoiser::Svgf;  // DI's denoiser (docs/di.md, "The denoiser")
       s.cache.raysPerCell = 4;
       s.cache.validationRaysPerCell = 4;
       s.cache.alphaTest = true;
