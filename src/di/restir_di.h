@@ -72,7 +72,7 @@ class RestirDi {
   // emissive triangle that moves by more than kDropMove of the scene bounds' largest extent,
   // drops the DI history: di-temporal's reservoirs miss a light that came on or moved into
   // view, and their confidence (M up to 20) would hold it back for up to 20 frames. Small steps
-  // (manylights' lights bob by at most 2 cm a frame in a 10-m room at 30 fps) keep it.
+  // (manylights' lights bob by at most 2 cm a frame in a 12-m room at 30 fps) keep it.
   static constexpr double kHistoryDropRise = 2.0;
   static constexpr double kDropMove = 0.01;
   // The DI denoiser's history is dropped on those changes and also when a light dims or
