@@ -48,6 +48,7 @@ struct RenderOptions {
   std::string di = "restir";  // ReSTIR DI (DiSettings)
   bool diUnbiased = false;
   int64_t diBrdfCandidates = 1;
+  std::string diDenoiser;  // svgf|reblur|none; empty: the settings' (none)
   std::string vbuffer = "raster";
   std::optional<int64_t> giDivisor;
   std::string restirSecondVertex;
@@ -173,6 +174,11 @@ void checkArguments(const RenderOptions& o) {
         "--di {} and --di-unbiased cannot be used together: the bias correction is in spatial "
         "reuse, which only --di restir runs",
         o.di);
+  if (!o.diDenoiser.empty()) {
+    requireOneOf("--di-denoiser", o.diDenoiser, splitNames(diDenoiserNames()));
+    if (o.di != "restir" && o.diDenoiser != "none")
+      fail("--di-denoiser {} needs --di restir (it filters ReSTIR DI's signal)", o.diDenoiser);
+  }
   requireOneOf("--vbuffer", o.vbuffer, {"raster", "trace"});
   if (!o.reflectionReuse.empty())
     requireOneOf("--reflection-reuse", o.reflectionReuse, {"on", "off"});
@@ -285,6 +291,7 @@ HybridSettings settingsFrom(const RenderOptions& o) {
   settings.di.mode = *diModeFromName(o.di);
   settings.di.unbiased = o.diUnbiased;
   settings.di.brdfCandidates = uint32_t(o.diBrdfCandidates);
+  if (!o.diDenoiser.empty()) settings.di.denoiser = *diDenoiserFromName(o.diDenoiser);
   validate(settings);  // the preset's values, for the chosen GI
   applyRestirOptions(o, settings);
   if (o.materialTextureSide)
@@ -527,6 +534,9 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                   "emissive triangles in glossy reflections)")
       ->check(CLI::Range(0, 1))
       ->capture_default_str();
+  cmd->add_option("--di-denoiser", options->diDenoiser,
+                  std::string("Denoiser of ReSTIR DI's signal (di-denoise-*, docs/di.md): ") +
+                      diDenoiserNames() + " (default: none)");
   cmd->add_option("--gi-divisor", options->giDivisor,
                   "ReSTIR GI resolution = render resolution / N (1 to 16; default: the "
                   "preset's, 4 mobile, 2 desktop)");

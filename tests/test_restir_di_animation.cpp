@@ -276,10 +276,12 @@ TEST(RestirDiAnimation, ThousandAnimatedFramesStayFinite) {
 
 // Issue 20: the default (biased: basic spatial correction, 1/M temporal weights) configuration
 // after 64 static frames on manylights, the 64th frame against the direct-light reference
-// (4 x 256 samples; its own noise, from two halves of 8 x 512: relMSE about 0.002). DI has no
-// denoiser, so the frame keeps its single-frame resampling noise.
+// (4 x 256 samples; its own noise, from two halves of 8 x 512: relMSE about 0.002): di-shade's
+// raw single-frame estimate, and the same frames through the DI denoiser (SVGF, di.denoised;
+// di/di_denoise.h).
 struct SixtyFourthFrame {
   double relMse = 0.0, meanRatio = 0.0, meanOfFramesRelMse = 0.0;
+  double denoisedRelMse = 0.0, denoisedMeanRatio = 0.0;
 };
 
 SixtyFourthFrame defaultConfigurationAfter64Frames() {
@@ -288,23 +290,30 @@ SixtyFourthFrame defaultConfigurationAfter64Frames() {
   const Camera camera = effectiveCamera(scene);
   vk::Context context(vk::contextOptionsFromEnvironment());
   GpuScene gpuScene(context, scene);
-  HybridFrame frame(context, gpuScene, scene, diSettings(width, height, DiSettings{}));
+  DiSettings di;
+  di.denoiser = DiDenoiser::Svgf;  // di-shade is the same with or without it
+  HybridFrame frame(context, gpuScene, scene, diSettings(width, height, di));
   frame.requestDebugView("di-shade");
+  frame.requestDebugView("di.denoised");
   std::vector<ImageRGBA32F> frames;
   for (int i = 0; i < 64; ++i) {
     frame.render(camera);
     frames.push_back(frame.debugViewImage("di-shade"));
   }
+  const ImageRGBA32F denoised = frame.debugViewImage("di.denoised");
   const ImageRGBA32F reference =
       meanImage(directReference(context, gpuScene, scene, camera, width, height, 4, 256));
   SixtyFourthFrame r;
   r.relMse = relativeMeanSquaredError(frames.back(), reference);
   r.meanRatio = test::meanLuminance(frames.back()) / test::meanLuminance(reference);
   r.meanOfFramesRelMse = relativeMeanSquaredError(meanImage(frames), reference);
+  r.denoisedRelMse = relativeMeanSquaredError(denoised, reference);
+  r.denoisedMeanRatio = test::meanLuminance(denoised) / test::meanLuminance(reference);
   std::printf(
       "manylights %ux%u, default DI, frame 64: relMSE %.4f, mean ratio %.4f (the mean of the 64 "
-      "frames: relMSE %.4f)\n",
-      width, height, r.relMse, r.meanRatio, r.meanOfFramesRelMse);
+      "frames: relMSE %.4f); denoised (%s): relMSE %.4f, mean ratio %.4f\n",
+      width, height, r.relMse, r.meanRatio, r.meanOfFramesRelMse, diDenoiserName(di.denoiser),
+      r.denoisedRelMse, r.denoisedMeanRatio);
   EXPECT_EQ(context.validationErrorCount(), 0u);
   return r;
 }
@@ -314,13 +323,16 @@ TEST(RestirDi, DefaultConfigurationAfter64StaticFramesMeanWithin3Percent) {
   EXPECT_NEAR(defaultConfigurationAfter64Frames().meanRatio, 1.0, 0.03);
 }
 
-// relMSE at most 0.05: DISABLED, fails without a DI denoiser. Measured: relMSE 0.213 (0.200
-// against 8 x 512 reference samples, whose own noise is about 0.002). Even the mean of all 64
-// frames, the best a static-view temporal accumulator could do in 64 frames, has relMSE 0.10-0.11:
-// reuse correlates the frames (M up to 20), so the gate needs a spatial denoiser too (issue 21's
-// library; docs/di.md).
+// relMSE at most 0.05 (issue 20), raw or denoised: DISABLED, not met. Raw: 0.213-0.223 (0.200
+// against 8 x 512 reference samples, whose own noise is about 0.002); even the mean of all 64
+// raw frames has 0.10-0.12, as reuse correlates the frames (M up to 20). Through SVGF: 0.313,
+// mean ratio 0.950: at 32x24 the à-trous (62 px) spreads the lights' pools into the shadows
+// under the furniture, where the relative error is largest, and the luminance stop's bias
+// darkens the mean (docs/di.md, "The denoiser"; at 160x120 SVGF measures 0.100 against raw
+// 0.363, against a 256-spp reference).
 TEST(RestirDi, DISABLED_DefaultConfigurationAfter64StaticFramesRelMseAtMost005) {
-  EXPECT_LE(defaultConfigurationAfter64Frames().relMse, 0.05);
+  const SixtyFourthFrame r = defaultConfigurationAfter64Frames();
+  EXPECT_LE(std::min(r.relMse, r.denoisedRelMse), 0.05);
 }
 
 // Seed 002's permutation budget: ReSTIR (and its denoise) at most 15 compute pipelines. DI

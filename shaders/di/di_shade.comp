@@ -2,10 +2,12 @@
 // chain's last reservoir's sample y, its unshadowed integrand with the full glTF BRDF (diffuse
 // and specular lobes, common/brdf.glsl) and the emitter's exact (textured, alpha-tested)
 // emission, where the targets took its mean (di_common.glsl), times its contribution weight W, times one final shadow
-// ray (RTXDI's final visibility). Writes di.radiance, which composite adds, and
-// di.reservoir-info for the debug views.
+// ray (RTXDI's final visibility). Writes di.radiance, which composite adds (or the DI
+// denoiser's output, di/di_denoise.h), di.reservoir-info for the debug views, and
+// di.reflectance, what the denoiser divides the radiance by.
 #version 460
 #include "di/di_common.glsl"
+#include "lighting/specular_albedo.glsl"
 
 layout(local_size_x = DI_GROUP_SIZE, local_size_y = DI_GROUP_SIZE) in;
 
@@ -13,6 +15,17 @@ layout(set = 1, binding = DI_SHADE_BINDING_RESERVOIR, rgba32ui) uniform readonly
 layout(set = 1, binding = DI_SHADE_BINDING_RADIANCE, rgba16f) uniform writeonly image2D radianceOut;
 // (chosen light index, or -1; M; W; visibility 0/1, or -1 where nothing was traced)
 layout(set = 1, binding = DI_SHADE_BINDING_INFO, rgba32f) uniform writeonly image2D infoOut;
+layout(set = 1, binding = DI_SHADE_BINDING_REFLECTANCE, rgba16f) uniform writeonly image2D reflectanceOut;
+
+// What the surface reflects of uniform light, both lobes (the split-sum directional albedo,
+// lighting/specular_albedo.glsl, as composite weighs indirect light): the DI denoiser filters
+// di.radiance / this, so that it blurs light and not texture (RTXDI and NRD demodulate the same
+// way; one signal for both lobes, docs/di.md "The denoiser"). 1 where there is no surface.
+vec3 reflectance(FrameConstants f, DiSurface s) {
+  if (!s.valid) return vec3(1.0);
+  SpecularAlbedo a = specularAlbedo(f.specularAlbedo, max(dot(s.normal, s.wo), 0.0), s.brdf.alpha);
+  return diffuseReflectance(a, s.brdf) + specularReflectance(a, s.brdf);
+}
 
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
@@ -37,4 +50,5 @@ void main() {
   imageStore(radianceOut, pixel, vec4(min(radiance, vec3(65000.0)), 1.0));
   float light = r.light == DI_NO_LIGHT ? -1.0 : float(r.light & ~DI_LIGHT_DISTANT);
   imageStore(infoOut, pixel, vec4(light, r.M, r.W, visibility));
+  imageStore(reflectanceOut, pixel, vec4(reflectance(f, s), 1.0));
 }

@@ -96,7 +96,10 @@ BOUNCE_CONST uint DI_SPATIAL_BINDING_COUNT = 7u;
 BOUNCE_CONST uint DI_SHADE_BINDING_RESERVOIR = 5u;  // the chain's last reservoir
 BOUNCE_CONST uint DI_SHADE_BINDING_RADIANCE = 6u;   // out: di.radiance
 BOUNCE_CONST uint DI_SHADE_BINDING_INFO = 7u;       // out: di.reservoir-info
-BOUNCE_CONST uint DI_SHADE_BINDING_COUNT = 8u;
+// out: di.reflectance, the split-sum directional albedo (diffuse + specular lobes) that the DI
+// denoiser demodulates by (di/di_denoise.h)
+BOUNCE_CONST uint DI_SHADE_BINDING_REFLECTANCE = 8u;
+BOUNCE_CONST uint DI_SHADE_BINDING_COUNT = 9u;
 
 BOUNCE_END_SHARED
 #endif

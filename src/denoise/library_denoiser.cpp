@@ -1,5 +1,7 @@
 #include "denoise/library_denoiser.h"
 
+#include "core/error.h"
+
 namespace bounce {
 
 const char* denoiserName(DenoiserKind kind) {
@@ -15,16 +17,18 @@ const char* denoiserName(DenoiserKind kind) {
 }
 
 LibraryDenoiser::LibraryDenoiser(vk::Context& context, const GpuScene& scene, DenoiserKind kind,
-                                 const LibraryDenoiserSettings& settings)
+                                 const LibraryDenoiserSettings& settings, const std::string& name)
     : kind_(kind) {
+  const std::string prefix = name.empty() ? denoiserName(kind) : name;
   switch (kind) {
     case DenoiserKind::Svgf:
-      svgf_ = std::make_unique<Svgf>(context, scene, settings.svgf);
+      svgf_ = std::make_unique<Svgf>(context, scene, settings.svgf, prefix);
       break;
     case DenoiserKind::Reblur:
-      reblur_ = std::make_unique<Reblur>(context, scene, settings.reblur);
+      reblur_ = std::make_unique<Reblur>(context, scene, settings.reblur, prefix);
       break;
     case DenoiserKind::Hybrid:
+      if (!name.empty()) fail("the hybrid denoiser's passes cannot be renamed ({})", name);
       hybrid_ = std::make_unique<HybridDenoiser>(context, scene, settings.hybrid);
       break;
   }

@@ -26,8 +26,10 @@ struct LibraryDenoiserSettings {
 
 class LibraryDenoiser {
  public:
+  // `name`: the prefix of the chosen denoiser's passes and resources (Svgf's and Reblur's
+  // `name`); empty: the kind's own ("svgf", "reblur"). The hybrid has no other names.
   LibraryDenoiser(vk::Context& context, const GpuScene& scene, DenoiserKind kind,
-                  const LibraryDenoiserSettings& settings = {});
+                  const LibraryDenoiserSettings& settings = {}, const std::string& name = {});
   ~LibraryDenoiser();
 
   // Declares the denoiser's passes, ending in `output` (RGBA16F, rgb the denoised signal).

@@ -1,6 +1,7 @@
 #include "denoise/reblur.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "core/error.h"
 
@@ -56,8 +57,10 @@ void validate(const ReblurSettings& s) {
         s.depthTolerance, s.normalTolerance, s.normalPower);
 }
 
-Reblur::Reblur(vk::Context& context, const GpuScene& scene, const ReblurSettings& settings)
+Reblur::Reblur(vk::Context& context, const GpuScene& scene, const ReblurSettings& settings,
+               std::string name)
     : settings_(settings),
+      name_(std::move(name)),
       preBlur_(context, scene, "denoise/reblur_pre_blur", gpu::REBLUR_PRE_BLUR_BINDING_COUNT,
                sizeof(gpu::ReblurConstants)),
       temporal_(context, scene, "denoise/reblur_temporal", gpu::REBLUR_TEMPORAL_BINDING_COUNT,
@@ -106,16 +109,16 @@ void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const Deno
 
 Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
                                          const DenoiseInputs& in) {
-  graph::HistoryImage surface = graph.createHistoryImage("reblur.surface", {kRgba32f});
-  graph::HistoryImage fast = graph.createHistoryImage("reblur.fast", {kRgba16f});
-  graph::HistoryImage history = graph.createHistoryImage("reblur.accumulated", {kRgba16f});
+  graph::HistoryImage surface = graph.createHistoryImage(name_ + ".surface", {kRgba32f});
+  graph::HistoryImage fast = graph.createHistoryImage(name_ + ".fast", {kRgba16f});
+  graph::HistoryImage history = graph.createHistoryImage(name_ + ".accumulated", {kRgba16f});
   const graph::ImageHandle accumulated = history.current;
-  graph::ImageHandle preBlurred = graph.createImage("reblur.pre-blurred", {kRgba16f});
-  graph::ImageHandle fixed = graph.createImage("reblur.fixed", {kRgba16f});
+  graph::ImageHandle preBlurred = graph.createImage(name_ + ".pre-blurred", {kRgba16f});
+  graph::ImageHandle fixed = graph.createImage(name_ + ".fixed", {kRgba16f});
   const gpu::ReblurConstants c = constants(resolution, in);
   const bool valid = !in.dropHistory;
 
-  graph::PassBuilder pre = graph.addPass("reblur-pre-blur", graph::QueueKind::Compute);
+  graph::PassBuilder pre = graph.addPass(name_ + "-pre-blur", graph::QueueKind::Compute);
   pre.read(in.noisy, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_NOISY)
       .read(in.depth, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_DEPTH)
       .read(in.normals, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_NORMALS)
@@ -137,7 +140,7 @@ Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D re
     dispatch(cmd, k);
   });
 
-  graph.addPass("reblur-temporal", graph::QueueKind::Compute)
+  graph.addPass(name_ + "-temporal", graph::QueueKind::Compute)
       .read(preBlurred, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_INPUT)
       .read(surface.current, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_SURFACE)
       .read(in.motion, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_MOTION)
@@ -156,7 +159,7 @@ Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D re
         dispatch(cmd, k);
       });
 
-  graph.addPass("reblur-history-fix", graph::QueueKind::Compute)
+  graph.addPass(name_ + "-history-fix", graph::QueueKind::Compute)
       .read(accumulated, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_INPUT)
       .read(fast.current, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_FAST)
       .read(surface.current, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_SURFACE)
@@ -172,9 +175,9 @@ Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D re
 void Reblur::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution,
                             const DenoiseInputs& in, const Temporal& temporal,
                             graph::ImageHandle output, std::optional<graph::ImageHandle> tiles) {
-  graph::HistoryImage stable = graph.createHistoryImage("reblur.stable", {kRgba16f});
-  graph::ImageHandle postBlurred = graph.createImage("reblur.post-blurred", {kRgba16f});
-  graph::ImageHandle blurred = graph.createImage("reblur.blurred", {kRgba16f});
+  graph::HistoryImage stable = graph.createHistoryImage(name_ + ".stable", {kRgba16f});
+  graph::ImageHandle postBlurred = graph.createImage(name_ + ".post-blurred", {kRgba16f});
+  graph::ImageHandle blurred = graph.createImage(name_ + ".blurred", {kRgba16f});
   const graph::ImageHandle fixed = temporal.fixed;
   const graph::HistoryImage surface = temporal.surface;
   gpu::ReblurConstants c = constants(resolution, in);
@@ -186,7 +189,7 @@ void Reblur::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution,
   const graph::ImageHandle blurOut[2] = {blurred, postBlurred};
   for (uint32_t i = 0; i < 2; ++i) {
     graph::PassBuilder blur =
-        graph.addPass(i == 0 ? "reblur-blur" : "reblur-post-blur", graph::QueueKind::Compute);
+        graph.addPass(i == 0 ? name_ + "-blur" : name_ + "-post-blur", graph::QueueKind::Compute);
     blur.read(blurIn[i], Access::StorageRead, gpu::REBLUR_BLUR_BINDING_INPUT)
         .read(surface.current, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_SURFACE)
         .write(blurOut[i], Access::StorageWrite, gpu::REBLUR_BLUR_BINDING_OUTPUT);
@@ -203,7 +206,7 @@ void Reblur::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution,
     });
   }
 
-  graph::PassBuilder st = graph.addPass("reblur-stabilize", graph::QueueKind::Compute);
+  graph::PassBuilder st = graph.addPass(name_ + "-stabilize", graph::QueueKind::Compute);
   st.read(postBlurred, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_INPUT)
       .read(temporal.fast, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FAST)
       .read(surface.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_SURFACE)

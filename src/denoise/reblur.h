@@ -20,6 +20,7 @@
 #pragma once
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "denoise/denoise_inputs.h"
 #include "graph/frame_graph.h"
@@ -81,7 +82,10 @@ class Reblur {
   // The distinct compute pipelines ReBLUR compiles (issue 21's permutation budget).
   static constexpr uint32_t kPipelineCount = 5;
 
-  Reblur(vk::Context& context, const GpuScene& scene, const ReblurSettings& settings = {});
+  // `name` prefixes every pass (`<name>-temporal`, ...) and resource (`<name>.stable`, ...), so
+  // that two instances can run in one frame (the GI's and ReSTIR DI's, di/di_denoise.h).
+  Reblur(vk::Context& context, const GpuScene& scene, const ReblurSettings& settings = {},
+         std::string name = "reblur");
   // Declares ReBLUR's passes on `graph`, ending in `output` (RGBA16F: rgb the denoised signal,
   // a the slow history's length in frames after anti-lag). `resolution`: the graph's render
   // resolution.
@@ -113,6 +117,7 @@ class Reblur {
   float scaled(float pixels, VkExtent2D resolution, float floor) const;
 
   ReblurSettings settings_;
+  std::string name_;
   ComputePass preBlur_;
   ComputePass temporal_;
   ComputePass historyFix_;

@@ -1,6 +1,7 @@
 #include "denoise/svgf.h"
 
 #include <string>
+#include <utility>
 
 #include "core/error.h"
 
@@ -39,8 +40,10 @@ void validate(const SvgfSettings& s) {
          s.phiNormal, s.phiLuminance);
 }
 
-Svgf::Svgf(vk::Context& context, const GpuScene& scene, const SvgfSettings& settings)
+Svgf::Svgf(vk::Context& context, const GpuScene& scene, const SvgfSettings& settings,
+           std::string name)
     : settings_(settings),
+      name_(std::move(name)),
       temporal_(context, scene, "denoise/svgf_temporal", gpu::SVGF_TEMPORAL_BINDING_COUNT,
                 sizeof(gpu::SvgfConstants)),
       variance_(context, scene, "denoise/svgf_variance", gpu::SVGF_VARIANCE_BINDING_COUNT,
@@ -77,14 +80,14 @@ graph::ImageHandle Svgf::declare(graph::FrameGraph& graph, VkExtent2D resolution
 
 Svgf::Temporal Svgf::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
                                      const SvgfInputs& in) {
-  graph::HistoryImage surface = graph.createHistoryImage("svgf.surface", {kRgba32f});
-  graph::HistoryImage moments = graph.createHistoryImage("svgf.moments", {kRgba32f});
-  graph::HistoryImage illumination = graph.createHistoryImage("svgf.illumination", {kRgba16f});
-  graph::ImageHandle accumulated = graph.createImage("svgf.accumulated", {kRgba16f});
-  graph::ImageHandle filtered = graph.createImage("svgf.filtered-moments", {kRgba16f});
+  graph::HistoryImage surface = graph.createHistoryImage(name_ + ".surface", {kRgba32f});
+  graph::HistoryImage moments = graph.createHistoryImage(name_ + ".moments", {kRgba32f});
+  graph::HistoryImage illumination = graph.createHistoryImage(name_ + ".illumination", {kRgba16f});
+  graph::ImageHandle accumulated = graph.createImage(name_ + ".accumulated", {kRgba16f});
+  graph::ImageHandle filtered = graph.createImage(name_ + ".filtered-moments", {kRgba16f});
   const gpu::SvgfConstants c = constants(resolution, in);
 
-  graph::PassBuilder t = graph.addPass("svgf-temporal", graph::QueueKind::Compute);
+  graph::PassBuilder t = graph.addPass(name_ + "-temporal", graph::QueueKind::Compute);
   t.read(in.noisy, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_NOISY)
       .read(in.depth, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_DEPTH)
       .read(in.normals, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_NORMALS)
@@ -110,7 +113,7 @@ Svgf::Temporal Svgf::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolu
     dispatch(cmd, k);
   });
 
-  graph.addPass("svgf-variance", graph::QueueKind::Compute)
+  graph.addPass(name_ + "-variance", graph::QueueKind::Compute)
       .read(accumulated, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_ACCUMULATED)
       .read(moments.current, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_MOMENTS)
       .read(surface.current, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_SURFACE)
@@ -135,7 +138,7 @@ void Svgf::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution, const
         i + 1 == settings_.iterations
             ? output
             : (i == 0 ? temporal.illumination
-                      : graph.createImage("svgf.atrous-" + std::to_string(i), {kRgba16f}));
+                      : graph.createImage(name_ + ".atrous-" + std::to_string(i), {kRgba16f}));
     declareAtrous(graph, c, input, temporal.surface, albedo, i, target, tiles);
     input = target;
   }
@@ -151,7 +154,7 @@ void Svgf::declareAtrous(graph::FrameGraph& graph, const gpu::SvgfConstants& con
   c.iteration = iteration;
   c.lastIteration = iteration + 1 == settings_.iterations ? 1u : 0u;
   graph::PassBuilder pass =
-      graph.addPass("svgf-atrous-" + std::to_string(iteration), graph::QueueKind::Compute);
+      graph.addPass(name_ + "-atrous-" + std::to_string(iteration), graph::QueueKind::Compute);
   pass.read(input, Access::StorageRead, gpu::SVGF_ATROUS_BINDING_INPUT)
       .read(surface, Access::StorageRead, gpu::SVGF_ATROUS_BINDING_SURFACE)
       .write(output, Access::StorageWrite, gpu::SVGF_ATROUS_BINDING_OUTPUT);

@@ -17,6 +17,7 @@
 #pragma once
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include "denoise/denoise_inputs.h"
 #include "graph/frame_graph.h"
@@ -75,7 +76,10 @@ class Svgf {
   // The distinct compute pipelines SVGF compiles (issue 21's permutation budget).
   static constexpr uint32_t kPipelineCount = 3;
 
-  Svgf(vk::Context& context, const GpuScene& scene, const SvgfSettings& settings = {});
+  // `name` prefixes every pass (`<name>-temporal`, ...) and resource (`<name>.moments`, ...), so
+  // that two instances can run in one frame (the GI's and ReSTIR DI's, di/di_denoise.h).
+  Svgf(vk::Context& context, const GpuScene& scene, const SvgfSettings& settings = {},
+       std::string name = "svgf");
   // Declares SVGF's passes on `graph`, ending in `output` (RGBA16F: rgb the denoised signal,
   // a its remaining luminance variance). `resolution`: the graph's render resolution.
   // Returns svgf.moments (current; RGBA32F: mu1, mu2, history length), which the hybrid
@@ -114,6 +118,7 @@ class Svgf {
                      std::optional<graph::ImageHandle> tiles = std::nullopt);
 
   SvgfSettings settings_;
+  std::string name_;
   ComputePass temporal_;
   ComputePass variance_;
   ComputePass atrous_;  // one descriptor set per iteration

@@ -17,6 +17,29 @@ const char* diModeNames() {
   return "restir, uniform, off";
 }
 
+std::optional<DiDenoiser> diDenoiserFromName(const std::string& name) {
+  if (name == "none") return DiDenoiser::None;
+  if (name == "svgf") return DiDenoiser::Svgf;
+  if (name == "reblur") return DiDenoiser::Reblur;
+  return std::nullopt;
+}
+
+const char* diDenoiserName(DiDenoiser denoiser) {
+  switch (denoiser) {
+    case DiDenoiser::None:
+      return "none";
+    case DiDenoiser::Svgf:
+      return "svgf";
+    case DiDenoiser::Reblur:
+      return "reblur";
+  }
+  return "?";
+}
+
+const char* diDenoiserNames() {
+  return "svgf, reblur, none";
+}
+
 void validate(const DiSettings& s) {
   if (s.lightCandidates < 1 || s.lightCandidates > 64)
     fail("DI light candidates {}: expected 1 to 64", s.lightCandidates);

@@ -18,6 +18,14 @@ enum class DiMode { Off, Uniform, Restir };
 std::optional<DiMode> diModeFromName(const std::string& name);  // "off", "uniform", "restir"
 const char* diModeNames();
 
+// The denoiser of the DI signal (di-denoise-*, di/di_denoise.h; docs/di.md "The denoiser"): one
+// of the library denoisers (docs/denoise.md) on di.radiance demodulated by the surface's
+// directional albedo. None: composite adds di-shade's single-frame estimate as it is.
+enum class DiDenoiser { None, Svgf, Reblur };
+std::optional<DiDenoiser> diDenoiserFromName(const std::string& name);  // "none", "svgf", "reblur"
+const char* diDenoiserName(DiDenoiser denoiser);
+const char* diDenoiserNames();
+
 struct DiSettings {
   DiMode mode = DiMode::Restir;
   // Light candidates per pixel per frame, drawn by power from the alias table (RTXDI: 8 local
@@ -88,6 +96,14 @@ struct DiSettings {
   // count only the neighbours that could have produced the kept sample (Bitterli et al. 2020,
   // Alg. 6). Off (default, RTXDI's "basic"): no rays; slightly dark near shadow edges.
   bool unbiased = false;
+  // The denoiser of the DI signal (above). None by default and in both presets: SVGF removes the
+  // speckles (per-pixel variance 44x lower on manylights) but darkens the mean by 5-6 % there,
+  // beyond issue 21's 2 %, and does not move Cornell's HDR-FLIP (docs/di.md, "The denoiser").
+  // SVGF (Falcor's settings, SvgfSettings::falcor()) adds 3 pipelines, ReBLUR 5. Its history is
+  // dropped on every frame in which a light switched, dimmed or brightened by more than 2x or
+  // moved by more than RestirDi::kDropMove of the scene's extent (restir_di.h), so a
+  // changed light does not linger in it.
+  DiDenoiser denoiser = DiDenoiser::None;
   // Mixed into every random number of the chain: runs with different seeds are independent
   // (the variance test). 0 by default.
   uint32_t seed = 0;

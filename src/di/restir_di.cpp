@@ -1,5 +1,9 @@
 #include "di/restir_di.h"
 
+#include <algorithm>
+
+#include <glm/glm.hpp>
+
 #include "core/error.h"
 
 namespace bounce {
@@ -44,6 +48,8 @@ RestirDi::RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& 
   if (!settings.enabled()) fail("ReSTIR DI: built with --di off");
   validate(settings);
   lightState_ = scene.lights;
+  const glm::vec3 extent = gpuScene.bounds().empty() ? glm::vec3(1.0f) : gpuScene.bounds().extent();
+  dropDistance_ = kDropMove * std::max({extent.x, extent.y, extent.z});
   if (lights_.localLightCount() == 0 && lights_.distantLightCount() == 0) return;
   if (lights_.localLightCount() >= settings.lightGridThreshold)
     grid_.emplace(context, gpuScene, settings, gpuScene.bounds());
@@ -56,27 +62,56 @@ RestirDi::RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& 
     temporal_.emplace(context, gpuScene);
     if (c.flags & gpu::DI_FLAG_SPATIAL) spatial_.emplace(context, gpuScene);
   }
+  if (settings.denoiser != DiDenoiser::None) denoise_.emplace(context, gpuScene, settings.denoiser);
+}
+
+// Whether `lights`, against the state last set, changed enough to drop the history
+// (kDropMove): `reservoirs` for di-temporal's (a light moved or brightened), else for
+// the denoiser's (also dimmed, switched off or turned).
+bool RestirDi::lightsChanged(std::span<const PunctualLight> lights, bool reservoirs) const {
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const double before = punctualLightPower(lightState_[i]);
+    const double after = punctualLightPower(lights[i]);
+    if (after > kHistoryDropRise * before) return true;
+    if (glm::distance(lights[i].position, lightState_[i].position) > dropDistance_) return true;
+    if (reservoirs) continue;
+    if (before > kHistoryDropRise * after) return true;
+    // A spot turned by more than about 8 degrees.
+    if (glm::dot(lights[i].direction, lightState_[i].direction) < 0.99f) return true;
+  }
+  return false;
+}
+
+bool RestirDi::emittersMoved(const std::vector<gpu::GpuEmissiveTriangle>& before) const {
+  const std::vector<gpu::GpuEmissiveTriangle>& after = lights_.table().emissiveTriangles;
+  for (size_t i = 0; i < before.size() && i < after.size(); ++i) {
+    const glm::vec3 p0 = after[i].p0, q0 = before[i].p0;
+    const glm::vec3 p2 = after[i].p0 + after[i].edge2, q2 = before[i].p0 + before[i].edge2;
+    if (glm::distance(p0, q0) > dropDistance_ || glm::distance(p2, q2) > dropDistance_) return true;
+  }
+  return false;
 }
 
 void RestirDi::setLights(std::span<const PunctualLight> lights) {
   if (lights.size() != lightState_.size())
     fail("RestirDi::setLights: {} lights for a scene of {}", lights.size(), lightState_.size());
-  for (size_t i = 0; i < lights.size(); ++i) {
-    const double before = punctualLightPower(lightState_[i]);
-    const double after = punctualLightPower(lights[i]);
-    if (after > kHistoryDropRise * before) dropHistory_ = true;
-    lightState_[i] = lights[i];
-  }
+  if (lightsChanged(lights, /*reservoirs=*/true)) dropHistory_ = true;
+  if (denoise_ && lightsChanged(lights, /*reservoirs=*/false)) dropDenoiseHistory_ = true;
+  std::copy(lights.begin(), lights.end(), lightState_.begin());
   lights_.update(lightState_);
 }
 
 void RestirDi::instancesMoved() {
-  if (!lights_.table().emissiveTriangles.empty()) lights_.update(lightState_);
+  if (lights_.table().emissiveTriangles.empty()) return;
+  const std::vector<gpu::GpuEmissiveTriangle> before = lights_.table().emissiveTriangles;
+  lights_.update(lightState_);
+  if (emittersMoved(before)) dropHistory_ = dropDenoiseHistory_ = true;
 }
 
 uint32_t RestirDi::pipelineCount() const {
   if (!hasLights()) return 0;
-  return 2 + (grid_ ? 1 : 0) + (temporal_ ? 1 : 0) + (spatial_ ? 1 : 0);
+  return 2 + (grid_ ? 1 : 0) + (temporal_ ? 1 : 0) + (spatial_ ? 1 : 0) +
+         (denoise_ ? denoise_->pipelineCount() : 0);
 }
 
 // The chain, top to bottom (see the header).
@@ -93,12 +128,15 @@ DirectLight RestirDi::declare(graph::FrameGraph& graph, const FrameContext& fram
       .record([this](VkCommandBuffer cmd, const graph::PassResources&) {
         lights_.recordUpload(cmd);  // nothing when no light changed
         dropHistory_ = false;
+        dropDenoiseHistory_ = false;
       });
   if (grid_) f.lightGrid = grid_->declare(graph, f);
   graph::ImageHandle reservoirs = candidates_->declare(graph, f);
   if (temporal_) reservoirs = temporal_->declare(graph, f, reservoirs);
   if (spatial_) reservoirs = spatial_->declare(graph, f, reservoirs);
-  return shade_->declare(graph, f, reservoirs);
+  DirectLight direct = shade_->declare(graph, f, reservoirs);
+  if (denoise_) direct.radiance = denoise_->declare(graph, f, direct, dropDenoiseHistory_);
+  return direct;
 }
 
 }  // namespace bounce

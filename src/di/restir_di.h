@@ -7,6 +7,8 @@
 //   di-temporal             + last frame's reservoir at the reprojected pixel (M <= 20)
 //   di-spatial              + 1-3 neighbours within 32 px, bias correction
 //   di-shade                the final sample with the full BRDF and a shadow ray: di.radiance
+//   di-denoise-*            (DiSettings::denoiser) SVGF or ReBLUR on the demodulated
+//                           di.radiance: di.denoised (di_denoise.h)
 //
 // DiMode::Uniform declares only the candidates and the shade (no reuse). The sun is not among
 // the lights: its dedicated soft-shadow pass (shadows-trace, shadows-denoise) shades it with one
@@ -25,14 +27,15 @@
 // reservoirs therefore never name another light than the one they sampled; they hold a light's
 // index and its u, and every pass re-evaluates the sample with the light's current state, so a
 // moved, dimmed or switched-off light is accounted for from the next frame on. A light that
-// switches on (or brightens by more than kHistoryDropRise) is missing from every reservoir's
-// history, which would hold it back by up to the M cap (20 frames): that frame drops di-temporal's
-// history (docs/di.md, "Light animation").
+// switches on (or brightens by more than kHistoryDropRise), or moves into view, is missing from
+// every reservoir's history, which would hold it back by up to the M cap (20 frames): that frame
+// drops di-temporal's history (docs/di.md, "Light animation"), and the DI denoiser's.
 #pragma once
 #include <optional>
 #include <span>
 #include <vector>
 
+#include "di/di_denoise.h"
 #include "di/di_generate_candidates.h"
 #include "di/di_light_grid.h"
 #include "di/di_settings.h"
@@ -55,6 +58,8 @@ class RestirDi {
   // Whether di-light-grid runs (at least DiSettings::lightGridThreshold local lights).
   bool usesLightGrid() const { return grid_.has_value(); }
 
+  // The chain; the returned radiance is di.denoised when a denoiser is on (di.radiance, the
+  // raw estimate, stays di-shade's image).
   DirectLight declare(graph::FrameGraph& graph, const FrameContext& frame, const GBuffer& gbuffer);
 
   // The scene's punctual lights from the next frame on: Scene::lights with positions,
@@ -63,15 +68,29 @@ class RestirDi {
   // The GpuScene's instances moved (GpuScene::setInstanceTransforms): emissive triangles follow.
   void instancesMoved();
 
-  // A light whose power rises by more than this factor in one frame drops the DI history.
+  // A light whose power rises by more than this factor in one frame, or a punctual light or
+  // emissive triangle that moves by more than kDropMove of the scene bounds' largest extent,
+  // drops the DI history: di-temporal's reservoirs miss a light that came on or moved into
+  // view, and their confidence (M up to 20) would hold it back for up to 20 frames. Small steps
+  // (manylights' lights bob by at most 2 cm a frame in a 12-m room at 30 fps) keep it.
   static constexpr double kHistoryDropRise = 2.0;
+  static constexpr double kDropMove = 0.01;
+  // The DI denoiser's history is dropped on those changes and also when a light dims or
+  // switches off (power falls by more than kHistoryDropRise) or a spot turns by more than about
+  // 8 degrees: the reservoirs re-evaluate their samples, but the denoiser averages some 20-40
+  // frames without a per-pixel anti-lag, and would fade the old light out over as many.
 
   // Compute pipelines the chain compiles (one per pass; di-lights-update is a copy).
   uint32_t pipelineCount() const;
 
  private:
+  bool lightsChanged(std::span<const PunctualLight> lights, bool reservoirs) const;
+  bool emittersMoved(const std::vector<gpu::GpuEmissiveTriangle>& before) const;
+
   DiSettings settings_;
   GpuLightTables lights_;
+  double dropDistance_ = 0.0;              // kDropMove x the scene's largest extent
+  bool dropDenoiseHistory_ = false;        // for the next frame that runs
   std::vector<PunctualLight> lightState_;  // the lights as last set
   bool dropHistory_ = false;               // for the next frame that runs
   vk::Buffer constants_;                   // gpu::DiConstants
@@ -80,6 +99,7 @@ class RestirDi {
   std::optional<DiTemporalPass> temporal_;  // DiMode::Restir only
   std::optional<DiSpatialPass> spatial_;    // DiMode::Restir with spatial samples
   std::optional<DiShadePass> shade_;
+  std::optional<DiDenoise> denoise_;  // DiSettings::denoiser != None
 };
 
 }  // namespace bounce
