@@ -58,7 +58,6 @@ struct RenderOptions {
   std::optional<float> restirHistoryBrightening;
   bool noGiDenoise = false;
   std::string denoiser;  // evolve|svgf|reblur|hybrid|none; empty: the settings' (evolve)
-  std::string restirMis;  // balance|mean; empty: the settings' (balance)
   std::optional<int64_t> materialTextureSide;
   bool noOccluderVisibility = false;
   std::string preset;
@@ -89,7 +88,6 @@ const std::vector<std::string>& restirOptions() {
                                                  "--restir-max-sample-age",
                                                  "--restir-validation-period",
                                                  "--restir-history-brightening",
-                                                 "--restir-mis",
                                                  "--no-gi-denoise",
                                                  "--denoiser",
                                                  "--no-occluder-visibility"};
@@ -263,7 +261,6 @@ void applyRestirOptions(const RenderOptions& o, HybridSettings& settings) {
     applyOption(
         settings, "--restir-history-brightening", *o.restirHistoryBrightening,
         [&](HybridSettings& s) { s.restirGi.historyBrightening = *o.restirHistoryBrightening; });
-  if (!o.restirMis.empty()) gi.producerNormalisation = o.restirMis == "balance";
   if (o.noGiDenoise) gi.temporalDenoise = gi.spatialDenoise = false;
   if (o.denoiser == "svgf") gi.denoiser = GiDenoiser::Svgf;
   if (o.denoiser == "none") gi.denoiser = GiDenoiser::None;
@@ -559,11 +556,6 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                   "Cut ReSTIR GI history where a neighbourhood's fresh candidates stay brighter "
                   "than their running mean by this ratio (0: off, the default; 1.3 with "
                   "--restir-validation-period 3 for jumping light: see docs/gi/restir-gi.md)");
-  cmd->add_option("--restir-mis", options->restirMis,
-                  "How ReSTIR GI's reuse passes weigh the reservoirs they combine: balance (the "
-                  "generalized balance heuristic, the default) or mean (ReSTIR GI's 1/M: cheaper, "
-                  "darkens where shifts are refused; docs/gi/restir-gi.md)")
-      ->check(CLI::IsMember({"balance", "mean"}));
   cmd->add_flag("--no-gi-denoise", options->noGiDenoise, "Turn the GI denoisers off");
   cmd->add_option("--denoiser", options->denoiser,
                   "Denoiser of the diffuse GI: evolve (gi-temporal/spatial-denoise, the "

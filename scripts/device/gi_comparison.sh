@@ -44,22 +44,4 @@ for s in sunroom city; do
   $B bench --scene $s --res 1920x1080 --gi none,evolve,gi10,lux,cache --frames 240 \
     --out /tmp/cmp/bench-$s 2>&1 | tr '\r' '\n' | grep -E "frame \(GPU\)|error|^sunroom|^city"
 done
-# What the generalized balance heuristic costs against ReSTIR GI's 1/M (--restir-mis), Evolve.
-for s in sunroom city; do
-  for mis in balance mean; do
-    $B render --scene $s --res 1920x1080 --frames 240 --animate --restir-mis $mis \
-      --timings /tmp/cmp/mis-$s-$mis.json --out /tmp/cmp/mis-$s-$mis.png > /dev/null 2>&1
-  done
-done
-python3 - <<'PY'
-import json, statistics
-for s in ["sunroom", "city"]:
-    for mis in ["balance", "mean"]:
-        t = json.load(open(f"/tmp/cmp/mis-{s}-{mis}.json"))["timings"]
-        passes = {}
-        for e in t:
-            passes.setdefault(e["pass"], []).append(e["ms"])
-        restir = {p: statistics.median(v) for p, v in passes.items() if p.startswith("gi-restir")}
-        print(s, mis, " ".join(f"{p} {m:.3f}" for p, m in restir.items()), "sum %.3f" % sum(restir.values()))
-PY
 tar czf $OUT/cmp.tgz --exclude='*.exr' --exclude='*-contact.png' -C /tmp cmp

@@ -2,18 +2,16 @@
 // (irradiance / pi per unit albedo), seed 000 "diffuse-restir-resolve". Each pixel takes its
 // own GI pixel's reservoir and up to 3 neighbours on a golden-angle spiral within resolveRadius
 // GI pixels (4 samples in all), each shifted to this pixel's primary vertex by reconnection
-// (W x Jacobian), keeps those whose primary vertex lies on this pixel's surface, combines them
-// with MIS weights that sum to one over the reservoirs that can produce each sample
-// (resolveMisWeight), projects their radiance into L1 spherical harmonics and evaluates the SH
-// irradiance with this pixel's shading normal: normal-map detail at full resolution from
-// GI-resolution samples.
+// (W x Jacobian), keeps those whose primary vertex lies on this pixel's surface, projects their
+// radiance into L1 spherical harmonics (their average) and evaluates the SH irradiance with this
+// pixel's shading normal: normal-map detail at full resolution from GI-resolution samples.
 // L1 SH irradiance drops the clamped cosine's higher orders (Ramamoorthi & Hanrahan 2001): for
 // light from a small solid angle it gives 1/4 + cos/2 instead of cos, up to 25 % dark where a
 // bright patch faces the surface (sunroom's ceiling above the sunlit floor), and ReSTIR's
 // samples concentrate exactly there. So the SH only supplies the variation with the normal:
-// the result is the exact estimate at the geometric normal (the MIS-weighted sum of
-// L cos / pi W) times SH(shading normal) / SH(geometric normal), which is the exact estimate on
-// surfaces without a normal map. With one sample (no reuse; the unbiased configuration) the exact estimate at the
+// the result is the exact estimate at the geometric normal (the mean of L cos / pi W) times
+// SH(shading normal) / SH(geometric normal), which is the exact estimate on surfaces without a
+// normal map. With one sample (no reuse; the unbiased configuration) the exact estimate at the
 // shading normal is used.
 // The own reservoir is the one of the GI pixel under this pixel or, when that one lies on
 // another surface (an edge at reduced GI resolution), of the nearest GI pixel towards this pixel
@@ -70,46 +68,13 @@ float normalVariation(ShL1 sh, PrimaryVertex x) {
 }
 
 // The reservoir r shifted to x (reconnection; its W carries the Jacobian), as radiance x W and
-// its direction; false when it does not reach x's hemisphere or the Jacobian exceeds
-// maxJacobian.
-bool shiftedSample(PrimaryVertex x, Reservoir r, float maxJacobian, out vec3 direction,
+// its direction; false when it does not reach x's hemisphere or the Jacobian is rejected.
+bool shiftedSample(RestirGiConstants gi, PrimaryVertex x, Reservoir r, out vec3 direction,
                    out vec3 radianceTimesW) {
   float jacobian = reconnectionJacobian(r.origin, x.position, r);
   float c = sampleCosine(x, r.samplePosition, direction);
   radianceTimesW = r.radiance * (r.W * jacobian);
-  return c > 0.0 && jacobian > 0.0 && jacobian <= maxJacobian && r.W > 0.0;
-}
-
-// The home reservoir is the resolve's canonical one: its shift is accepted whatever its
-// Jacobian, so that every sample x can see lies in some reservoir's domain. With the cap on
-// every reservoir, samples near x (the other wall of a corner) that every shift refuses were
-// lost: a 24x16 furnace 5.6 % dark in the resolve with Lux's cap of 2, even without temporal
-// reuse. The home vertex lies within a GI pixel of x, so its Jacobians stay near 1 but where a
-// sample is that close.
-const float UNCAPPED = 3.0e38;
-
-float jacobianCap(RestirGiConstants gi, uint k, bool homeOnSurface) {
-  return k == 0u && homeOnSurface ? UNCAPPED : gi.maxJacobian;
-}
-
-// The MIS weight of a sample in the resolve's combination: the generalized balance heuristic
-// (restir_gi_common.glsl, balanceWeight) over the pixel's same-surface reservoirs with equal
-// confidences, each one's target taken through its shift to x. Each reservoir is an estimator
-// of x's integral over the samples its shift reaches; where some of them refuse a sample
-// (Jacobian cap, the sample below their surface), a plain mean counted the refused ones as
-// zero and darkened (a 24x16 furnace 15 % dark with Lux's cap of 2); and a sample that only a
-// distant reservoir reaches with a large Jacobian weighs by how likely the nearer ones were to
-// produce it.
-float resolveMisWeight(RestirGiConstants gi, PrimaryVertex x, Reservoir shifted, uint own,
-                       vec3 origins[4], vec3 originNormals[4], uint count, bool homeOnSurface) {
-  if ((gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) == 0u) return 1.0 / float(count);
-  float mine = 0.0, sum = 0.0;
-  for (uint j = 0u; j < count; ++j) {
-    float t = targetThroughShift(origins[j], originNormals[j], x, shifted, jacobianCap(gi, j, homeOnSurface));
-    sum += t;
-    if (j == own) mine = t;
-  }
-  return sum > 0.0 ? mine / sum : 0.0;
+  return c > 0.0 && jacobian > 0.0 && jacobian <= gi.maxJacobian && r.W > 0.0;
 }
 
 void main() {
@@ -128,14 +93,11 @@ void main() {
   float rotation = resolveRotation(f, pixel);
   bool occlusionKnown = (gi.flags & RESTIR_GI_FLAG_OCCLUDER_VISIBILITY) != 0u;
   uint hidden = occlusionKnown ? imageLoad(resolveOcclusion, pixel).x : 0u;
-  // First the reservoirs on this surface (their primary vertices decide every sample's MIS
-  // weight) and the fallback; then the weighted sum.
-  Reservoir onSurface[4];
-  vec3 origins[4], originNormals[4];
-  bool contributes[4];
-  uint count = 0u;
-  bool homeOnSurface = false;  // onSurface[0] is the home reservoir
-  ShL1 fallback = ShL1(vec4(0.0), vec4(0.0), vec4(0.0));
+  ShL1 sh = ShL1(vec4(0.0), vec4(0.0), vec4(0.0));
+  vec3 exact = vec3(0.0);           // the direct estimate L cos / pi W at the shading normal
+  vec3 exactGeometric = vec3(0.0);  // ... and at the geometric normal
+  float count = 0.0;
+  ShL1 fallback = sh;
   float fallbackDistance = 3.0e38;
   for (uint i = 0u; i < samples; ++i) {
     ivec2 q = resolveSampleGiPixel(gi, home, i, samples, rotation);
@@ -143,16 +105,14 @@ void main() {
                                   imageLoad(reservoirOrigin, q), imageLoad(reservoirNormals, q));
     if (r.M <= 0.0) continue;
     vec3 direction, lw;
-    bool home = i == 0u && sameSurface(gi, x, r.origin, r.originNormal);
-    bool valid = shiftedSample(x, r, home ? UNCAPPED : gi.maxJacobian, direction, lw);
+    bool valid = shiftedSample(gi, x, r, direction, lw);
     float planeDistance = abs(dot(x.geometricNormal, r.origin - x.position)) / max(x.depth, 1e-6);
     if (sameSurface(gi, x, r.origin, r.originNormal)) {
-      onSurface[count] = r;
-      origins[count] = r.origin;
-      originNormals[count] = r.originNormal;
-      contributes[count] = valid && (hidden & (1u << i)) == 0u;
-      homeOnSurface = homeOnSurface || home;
-      ++count;
+      count += 1.0;
+      if (!valid || (hidden & (1u << i)) != 0u) continue;
+      shAdd(sh, direction, lw);
+      exact += lw * (max(dot(direction, x.shadingNormal), 0.0) / PI);
+      exactGeometric += lw * (max(dot(direction, x.geometricNormal), 0.0) / PI);
     } else if (planeDistance < fallbackDistance) {
       // No reservoir on this surface (a thin feature at reduced GI resolution): the nearest one.
       fallbackDistance = planeDistance;
@@ -160,21 +120,12 @@ void main() {
       if (valid) shAdd(fallback, direction, lw);
     }
   }
-  ShL1 sh = ShL1(vec4(0.0), vec4(0.0), vec4(0.0));
-  vec3 exact = vec3(0.0);           // the direct estimate L cos / pi W at the shading normal
-  vec3 exactGeometric = vec3(0.0);  // ... and at the geometric normal
-  for (uint k = 0u; k < count; ++k) {
-    if (!contributes[k]) continue;
-    vec3 direction, lw;
-    shiftedSample(x, onSurface[k], jacobianCap(gi, k, homeOnSurface), direction, lw);
-    lw *= resolveMisWeight(gi, x, onSurface[k], k, origins, originNormals, count, homeOnSurface);
-    shAdd(sh, direction, lw);
-    exact += lw * (max(dot(direction, x.shadingNormal), 0.0) / PI);
-    exactGeometric += lw * (max(dot(direction, x.geometricNormal), 0.0) / PI);
-  }
   vec3 result;
-  if (count == 0u) result = shIrradianceOverPiAt(fallback, x.shadingNormal);
-  else if (!reuse) result = exact;
-  else result = exactGeometric * normalVariation(sh, x);
+  if (!reuse) result = count > 0.0 ? exact / count : shIrradianceOverPiAt(fallback, x.shadingNormal);
+  else if (count > 0.0) {
+    result = (exactGeometric / count) * normalVariation(sh, x);
+  } else {
+    result = shIrradianceOverPiAt(fallback, x.shadingNormal);
+  }
   imageStore(outputImage, pixel, finiteOrZero(vec4(result, 1.0)));
 }

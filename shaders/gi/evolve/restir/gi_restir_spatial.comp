@@ -5,8 +5,7 @@
 // 8 samples over a large radius, pass 1 5 samples over a small one, for a large data window.
 // Neighbours count when their primary vertex lies on this pixel's surface (sameSurface); their
 // sample is shifted to this pixel's x1 by reconnection, its weight carrying the Jacobian (Eq. 11,
-// reconnectionJacobian), combined with the generalized balance heuristic (balanceWeight in
-// restir_gi_common.glsl). No visibility is tested here (gi-trace-spatial-validation-rays tests the
+// reconnectionJacobian). No visibility is tested here (gi-trace-spatial-validation-rays tests the
 // final sample), so the result is biased and NOT fed back into next frame's temporal reuse.
 #version 460
 #include "gi/evolve/restir/restir_gi_common.glsl"
@@ -34,6 +33,19 @@ Reservoir loadReservoir(ivec2 q) {
                          imageLoad(inNormals, q));
 }
 
+// 1/Z normalisation: the confidence (M) of the reservoirs that could have produced the chosen
+// sample, the own one (the chosen sample has a positive target at x1) and those of the merged
+// neighbours whose surface and shift reach it (couldProduce).
+float confidenceOfProducers(RestirGiConstants gi, PrimaryVertex x1, float ownM, Reservoir chosen,
+                            ivec2 merged[RESTIR_GI_MAX_SPATIAL_SAMPLES], uint mergedCount) {
+  float z = ownM;
+  for (uint i = 0u; i < mergedCount; ++i) {
+    Reservoir r = loadReservoir(merged[i]);
+    if (couldProduce(r.origin, r.originNormal, x1, chosen, gi.maxJacobian)) z += r.M;
+  }
+  return z;
+}
+
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
@@ -44,16 +56,13 @@ void main() {
   Reservoir own = loadReservoir(g);
   Reservoir result = own;
   if (own.M > 0.0) {
+    ReservoirStream s = beginStream(x1, own);
     uint variant = min(pc.variant, 1u);
     uint n = min(gi.spatialSamples[variant], RESTIR_GI_MAX_SPATIAL_SAMPLES);
     vec2 u0 = random2(uvec2(g), f.frameIndex, RANDOM_GI_SPATIAL + variant);
     float rotation = 2.0 * PI * u0.x;
-    ivec2 merged[RESTIR_GI_MAX_SPATIAL_SAMPLES];  // the neighbours on x1's surface
-    float us[RESTIR_GI_MAX_SPATIAL_SAMPLES];
+    ivec2 merged[RESTIR_GI_MAX_SPATIAL_SAMPLES];  // the neighbours that entered the stream
     uint mergedCount = 0u;
-    Producers producers;  // x1's own reservoir first, then the merged neighbours
-    producers.count = 0u;
-    addProducer(producers, x1.position, x1.shadingNormal, own.M);
     for (uint i = 0u; i < n; ++i) {
       vec2 offset = goldenSpiralOffset(i, n, rotation, gi.spatialMinRadius, gi.spatialRadius[variant]);
       ivec2 q = g + ivec2(round(offset));
@@ -61,28 +70,13 @@ void main() {
         continue;
       Reservoir r = loadReservoir(q);
       if (r.M <= 0.0 || !sameSurface(gi, x1, r.origin, r.originNormal)) continue;
-      addProducer(producers, r.origin, r.originNormal, r.M);
-      us[mergedCount] = random2(uvec2(g), f.frameIndex * 16u + i, RANDOM_GI_SPATIAL + 2u).x;
+      float u = random2(uvec2(g), f.frameIndex * 16u + i, RANDOM_GI_SPATIAL + 2u).x;
+      streamReservoir(s, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, u);
       merged[mergedCount++] = q;
     }
-    if ((gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) != 0u) {
-      // The generalized balance heuristic over the own reservoir and the merged neighbours.
-      ReservoirStream s = emptyStream(own);
-      streamBalanced(s, producers, 0u, x1, own, 1.0, gi.maxJacobian, 0.0);
-      for (uint i = 0u; i < mergedCount; ++i) {
-        Reservoir r = loadReservoir(merged[i]);
-        streamBalanced(s, producers, i + 1u, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, us[i]);
-      }
-      result = endStreamNormalised(s, x1, 1.0);
-    } else {
-      // ReSTIR GI's 1/M (biased: refused shifts count as zero).
-      ReservoirStream s = beginStream(x1, own);
-      for (uint i = 0u; i < mergedCount; ++i) {
-        Reservoir r = loadReservoir(merged[i]);
-        streamReservoir(s, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, us[i]);
-      }
-      result = endStream(s, x1);
-    }
+    bool normalise = (gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) != 0u;
+    result = normalise ? endStreamNormalised(s, x1, confidenceOfProducers(gi, x1, own.M, s.chosen, merged, mergedCount))
+                       : endStream(s, x1);
   }
   vec4 a, b, c, d;
   packReservoir(result, a, b, c, d);

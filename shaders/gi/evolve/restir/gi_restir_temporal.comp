@@ -5,11 +5,7 @@
 // History M is capped at temporalMaxM (the cap bounds how long stale samples persist). The
 // history sample is shifted to this frame's primary vertex by reconnection, so its weight
 // carries the Jacobian (restir_gi_common.glsl); shifts with a Jacobian above maxJacobian are
-// rejected (they come from grazing or near-contact geometry and would be fireflies). The
-// reservoirs are combined with the generalized balance heuristic (restir_gi_common.glsl,
-// balanceWeight), not normalised by all of their M (ReSTIR GI's 1/M): a refused shift
-// contributes nothing, so counting its M darkened wherever shifts are refused
-// (docs/gi/restir-gi.md, "Energy").
+// rejected (they come from grazing or near-contact geometry and would be fireflies).
 // The merged reservoir is this frame's history (the only reservoir fed back). Where the
 // candidate is a validated history reservoir (gi-resolve-diffuse-rays), it replaces history
 // without a merge (merging would count that history twice).
@@ -209,20 +205,18 @@ void main() {
   if (candidate.M > 0.0 && reuse && !validated) {
     // Candidate first (canonical), then the canonical history, then permuted ones until the
     // confidence threshold (temporalMaxM) is reached or temporalHistorySamples were tried.
-    Reservoir inputs[RESTIR_GI_MAX_PRODUCERS - 1u];
-    float us[RESTIR_GI_MAX_PRODUCERS - 1u];
-    uint n = 0u;
+    ReservoirStream s = beginStream(x1, candidate);
     Reservoir history;
     ivec2 q = canonicalHistoryPixel(f, gi, pixel, g, x1, history);
     if (q.x >= 0) {
+      float u = random2(uvec2(g), f.frameIndex, RANDOM_GI_TEMPORAL).x;
       // The cut scales every history reservoir's weight; how many are merged still follows
       // their unscaled confidence (else a cut would pull in more permuted neighbours, whose
       // reuse is biased and brightens).
       Reservoir h = capped(gi, history, candidate.M);
       float confidence = candidate.M + h.M;
       h.M *= scale;
-      inputs[n] = h;
-      us[n++] = random2(uvec2(g), f.frameIndex, RANDOM_GI_TEMPORAL).x;
+      streamReservoir(s, x1, h, reconnectionJacobian(h.origin, x1.position, h), gi.maxJacobian, u);
       for (uint k = 1u; k < gi.temporalHistorySamples && confidence < gi.temporalMaxM; ++k) {
         Reservoir r = permutedHistory(f, gi, q, k, x1);
         if (r.M <= 0.0) continue;
@@ -230,31 +224,11 @@ void main() {
         r.M = min(r.M, gi.temporalMaxM - confidence);
         confidence += r.M;
         r.M *= scale;
-        inputs[n] = r;
-        us[n++] = random2(uvec2(g), f.frameIndex * 8u + k, RANDOM_GI_TEMPORAL + 2u).x;
+        float uk = random2(uvec2(g), f.frameIndex * 8u + k, RANDOM_GI_TEMPORAL + 2u).x;
+        streamReservoir(s, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, uk);
       }
     }
-    if ((gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) != 0u) {
-      // The generalized balance heuristic over the candidate and the history reservoirs (1/Z
-      // here measured 6.8x less variance than uniform sampling on Lux's gate, this 7.9x;
-      // docs/gi/restir-gi.md, "Energy").
-      Producers producers;
-      producers.count = 0u;
-      addProducer(producers, x1.position, x1.shadingNormal, candidate.M);
-      for (uint i = 0u; i < n; ++i) addProducer(producers, inputs[i].origin, inputs[i].originNormal, inputs[i].M);
-      ReservoirStream s = emptyStream(candidate);
-      streamBalanced(s, producers, 0u, x1, candidate, 1.0, gi.maxJacobian, 0.0);
-      for (uint i = 0u; i < n; ++i)
-        streamBalanced(s, producers, i + 1u, x1, inputs[i], reconnectionJacobian(inputs[i].origin, x1.position, inputs[i]),
-                       gi.maxJacobian, us[i]);
-      result = endStreamNormalised(s, x1, 1.0);
-    } else {
-      // ReSTIR GI's 1/M (biased: refused shifts count as zero).
-      ReservoirStream s = beginStream(x1, candidate);
-      for (uint i = 0u; i < n; ++i)
-        streamReservoir(s, x1, inputs[i], reconnectionJacobian(inputs[i].origin, x1.position, inputs[i]), gi.maxJacobian, us[i]);
-      result = endStream(s, x1);
-    }
+    result = endStream(s, x1);
   }
   if (validated) {
     // Where the neighbourhood's light changed (a real change, not noise): less confidence, so

@@ -110,11 +110,8 @@ struct RestirGiSettings {
   float planeTolerance = 0.02f;
   float normalTolerance = 0.9f;
   // Reconnection shifts with a Jacobian above this are rejected: they come from grazing or
-  // close-contact geometry and make fireflies. With producerNormalisation a rejected shift
-  // costs no energy (another reservoir, x1's own first, produces the sample); without it,
-  // rejecting darkens. gi-restir-resolve never rejects the shift of a pixel's home reservoir
-  // (its canonical one). Only reuse between different vertices reaches it (the canonical
-  // history of a static view has J = 1; permuted history and spatial neighbours do not).
+  // close-contact geometry and make fireflies; rejecting them darkens such corners slightly
+  // (bias). Static views never reach it (J = 1).
   float maxJacobian = 10.0f;
   // gi-restir-spatial-0 / -1 (seed 000: 8 samples over a large radius, then 5 over a small
   // one). Each neighbour is shifted by reconnection without a visibility test, so this reuse is
@@ -124,16 +121,14 @@ struct RestirGiSettings {
   // across nearby surfaces. Radii in GI pixels, spiral radii growing exponentially from
   // spatialMinRadius. At most 8 samples per pass (RESTIR_GI_MAX_SPATIAL_SAMPLES).
   bool spatialReuse = true;
-  // How gi-restir-temporal, the spatial passes and gi-restir-resolve weigh the reservoirs they
-  // combine: with the generalized balance heuristic (restir_gi_common.glsl, balanceWeight;
-  // Lin et al. 2022, Wyman et al. 2023 §5.3): each reservoir's weight for a sample is its
-  // confidence times its target for the sample taken through its shift, over the sum of those of
-  // the reservoirs that can produce it (0 where the shift would be refused: maxJacobian, the
-  // sample below its surface, no visibility test). The weights sum to one, so refused shifts
-  // cost no energy, and samples that reach x1 only through a large Jacobian weigh less. When
-  // false, ReSTIR GI's 1/M (and a plain mean in the resolve), which counts every refused shift
-  // as zero: the white furnace 5-8 % dark (docs/gi/restir-gi.md, "Energy"). The cost: the
-  // target of every sample at every combined reservoir (n^2 Jacobians, n up to 9).
+  // How the spatial passes normalise what they combine: by the confidence of
+  // the reservoirs that could have produced each sample (1/Z; Bitterli et al. 2020, Alg. 6,
+  // without visibility), or, when false, by every reservoir's (ReSTIR's biased 1/M), which
+  // darkens wherever some neighbours' shifts are rejected (maxJacobian, surfaces at grazing
+  // angles). The cost: extra reads of the neighbours' primary vertices, and rare samples that
+  // only a few neighbours could produce weigh more. Not in gi-restir-resolve: there it cost
+  // much time (the neighbours' vertices read twice and held in registers) and did not help
+  // (docs/decisions.md).
   bool producerNormalisation = true;
   uint32_t spatialSamples[2] = {8, 5};
   float spatialRadius[2] = {24.0f, 6.0f};
