@@ -166,7 +166,7 @@ TEST(Gi10, FurnaceMatchesAnalyticIrradiance) {
 // overflow; 55-155 s on lavapipe here (before the probe hysteresis went off and the cache's mean
 // weighed samples by count: 0.297 and 0.938). The same view with --gi evolve gives HDR-FLIP
 // 0.161: most of the error is the frame's (ReSTIR DI's grainy penumbrae, edges without
-// anti-aliasing); gi10's own is the short box's front face, 10-35 % too bright
+// anti-aliasing) and the short box's front face, 10-35 % too bright, as bright with --gi evolve
 // (docs/gi/gi10.md).
 TEST(Gi10, DISABLED_CornellBoxAgainstCycles) {
   const std::string dir = test::sharedDir();
