@@ -45,6 +45,7 @@ BOUNCE_CONST uint GI10_PROBE_SPAWNED = 4u;  // traced this frame
 BOUNCE_CONST uint GI10_FLAG_ALPHA_TEST = 1u;  // probe and shadow rays run the alpha test
 BOUNCE_CONST uint GI10_FLAG_FEEDBACK = 2u;    // temporal radiance feedback (§1.6)
 BOUNCE_CONST uint GI10_FLAG_FILTER = 4u;      // gi10-filter-gi blurs short-history pixels (§1.7)
+BOUNCE_CONST uint GI10_FLAG_HYSTERESIS = 8u;  // gi10-blend-screen-probes damps brightening (§1.3)
 
 struct Gi10Probe {
   vec3 position;  // world position of the probe's seed pixel

@@ -1,8 +1,10 @@
 // gi10-blend-screen-probes (§1.2 #16, §1.3 "blend"): each new probe's cells take their ray's
-// radiance, held back against the reprojected radiance only where it brightens by more than 2x:
+// radiance. With GI10_FLAG_HYSTERESIS (Gi10Settings::probeHysteresis, off by default) a cell is
+// held back against the reprojected radiance where it brightens by more than 2x:
 // blend = clamp(max(lA - lB - min(lA, lB), 0) / max(lA, lB), 0, 0.95)^2 (lA new luma, lB old),
 // Capsaicin's "shadow-preserving biased hysteresis", which damps fireflies and takes darkening
-// at once. One group per spawn tile, one thread per cell.
+// at once; on one noisy ray per cell that tends to the darker samples (docs/gi/gi10.md).
+// One group per spawn tile, one thread per cell.
 #version 460
 #include "gi/gi10/gi10_common.glsl"
 
@@ -21,7 +23,7 @@ void main() {
   vec3 radiance = ray.radiance;
   Gi10RadianceRef probeRadiance = Gi10RadianceRef(k.radiance);
   uint flags = Gi10ProbesRef(k.probes).v[tileIndex].flags;
-  if ((flags & GI10_PROBE_HISTORY) != 0u) {
+  if ((k.flags & GI10_FLAG_HYSTERESIS) != 0u && (flags & GI10_PROBE_HISTORY) != 0u) {
     vec3 old = gi10UnpackCell(probeRadiance.v[tileIndex * GI10_PROBE_CELLS + cell]).rgb;
     float lA = gi10Luma(radiance), lB = gi10Luma(old);
     float m = max(lA, lB);

@@ -130,7 +130,8 @@ gpu::Gi10Constants Gi10Gi::makeConstants(const GiInputs& inputs) const {
   k.historyValid = resetPending_ || lightingCutPending_ || frame_ == 0 ? 0u : 1u;
   k.flags = (settings_.alphaTest ? gpu::GI10_FLAG_ALPHA_TEST : 0u) |
             (settings_.feedback ? gpu::GI10_FLAG_FEEDBACK : 0u) |
-            (settings_.filter ? gpu::GI10_FLAG_FILTER : 0u);
+            (settings_.filter ? gpu::GI10_FLAG_FILTER : 0u) |
+            (settings_.probeHysteresis ? gpu::GI10_FLAG_HYSTERESIS : 0u);
   // |up| is tan(fovY / 2) (the image plane's half-height at distance 1).
   const float tanHalfFov = glm::length(inputs.frame.hostConstants->camera.up);
   k.pixelFootprint = 2.0f * tanHalfFov / float(resolution_.height);

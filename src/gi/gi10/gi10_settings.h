@@ -29,6 +29,11 @@ struct Gi10Settings {
   float historyCap = 16.0f;
   // Temporal radiance feedback (§1.6): probe hits on screen take last frame's GI there.
   bool feedback = true;
+  // gi10-blend-screen-probes holds a probe cell back where its new radiance is more than twice
+  // the reprojected one (Capsaicin's brightening-only hysteresis, §1.3). Off: each cell holds one
+  // ray per trace here, so keeping the darker of old and new biases the probes dark (Cornell box
+  // 128x128, 64 frames: mean 0.93 of the path tracer's with it, 0.96 without; docs/gi/gi10.md).
+  bool probeHysteresis = false;
   // gi10-filter-gi blurs pixels with fewer than 8 frames of history (§1.7).
   bool filter = true;
   // Probe and shadow rays run the alpha test (desktop); mobile skips it.
