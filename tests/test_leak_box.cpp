@@ -8,6 +8,7 @@
 // Measured (lavapipe, 2026-11-26): inside 0 for all four (outside 9.12-9.20). The
 // test can fail: with the roof removed the inside measured 38 % (evolve) and 37 % (gi10).
 #include <cstdio>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -99,6 +100,11 @@ struct LeakCase {
   const char* name;
   GiMode mode;
 };
+
+// gtest prints a parameter with this (otherwise as its bytes).
+void PrintTo(const LeakCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class LeakBox : public ::testing::TestWithParam<LeakCase> {};
 

@@ -25,7 +25,9 @@ for s in cornell sunroom foliage city chair; do
         > /dev/null 2>&1 || echo "compare $s $gi $n failed"
     done
   done
-  $B compare /tmp/cmp/$s-evolve-64.exr /tmp/cmp/$s-ref.exr --side-by-side /tmp/cmp/$s-evolve-sbs.png > /dev/null 2>&1
+  for gi in evolve gi10 lux; do
+    $B compare /tmp/cmp/$s-$gi-64.exr /tmp/cmp/$s-ref.exr --side-by-side /tmp/cmp/$s-$gi-sbs.png > /dev/null 2>&1
+  done
 done
 python3 - <<'PY'
 import json
@@ -44,4 +46,5 @@ for s in sunroom city; do
   $B bench --scene $s --res 1920x1080 --gi none,evolve,gi10,lux,cache --frames 240 \
     --out /tmp/cmp/bench-$s 2>&1 | tr '\r' '\n' | grep -E "frame \(GPU\)|error|^sunroom|^city"
 done
-tar czf $OUT/cmp.tgz --exclude='*.exr' --exclude='*-contact.png' -C /tmp cmp
+(cd /tmp && tar czf $OUT/cmp.tgz $(find cmp -name '*.json'))
+for s in cornell sunroom; do for gi in evolve gi10 lux; do cp /tmp/cmp/$s-$gi-sbs.png $OUT/; done; done
