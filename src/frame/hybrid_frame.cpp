@@ -15,6 +15,7 @@
 #include "lighting/light_table.h"
 #include "passes/primary_view.h"
 #include "rt/scene_bvh.h"
+#include "vk/memory_barrier.h"
 #include "vk/pipeline_log.h"
 
 namespace bounce {
@@ -221,15 +222,9 @@ std::vector<vk::PassTiming> HybridFrame::submitFrame(bool afterHostWork) {
   const bool firstFramePassByPass = !hasPreviousFrame_ && vk::pipelineTimesRequested();
   context_.submitAndWait([&](VkCommandBuffer cmd) {
     if (afterHostWork) {
-      VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-      barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-      barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-      barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-      barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-      VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-      dependency.memoryBarrierCount = 1;
-      dependency.pMemoryBarriers = &barrier;
-      vkCmdPipelineBarrier2(cmd, &dependency);
+      vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                        VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                        VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
     }
     timer_.reset(cmd);
     if (!firstFramePassByPass) graph_.execute(cmd, &timer_);

@@ -10,6 +10,7 @@
 #include "core/error.h"
 
 #include "vk/check.h"
+#include "vk/memory_barrier.h"
 
 namespace bounce {
 
@@ -121,15 +122,8 @@ void GpuScene::setRayCounting(bool on) {
   context_.submitAndWait([&](VkCommandBuffer cmd) {
     vkCmdUpdateBuffer(cmd, refs_.handle(), 0, sizeof(refsHost_), &refsHost_);
     // Later submissions' shaders read the new refs.
-    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT;
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.memoryBarrierCount = 1;
-    dependency.pMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dependency);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT);
   });
 }
 

@@ -1,6 +1,7 @@
 #include "vk/gpu_timer.h"
 
 #include "vk/check.h"
+#include "vk/memory_barrier.h"
 
 namespace bounce::vk {
 
@@ -19,23 +20,6 @@ GpuTimer::GpuTimer(Context& context, uint32_t maxScopes)
 GpuTimer::~GpuTimer() {
   if (pool_) vkDestroyQueryPool(context_.device(), pool_, nullptr);
 }
-
-namespace {
-
-void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
-                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
-  VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-  barrier.srcStageMask = srcStage;
-  barrier.srcAccessMask = srcAccess;
-  barrier.dstStageMask = dstStage;
-  barrier.dstAccessMask = dstAccess;
-  VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-  dependency.memoryBarrierCount = 1;
-  dependency.pMemoryBarriers = &barrier;
-  vkCmdPipelineBarrier2(cmd, &dependency);
-}
-
-}  // namespace
 
 void GpuTimer::countRays(VkBuffer counter) {
   rayCounter_ = counter;
