@@ -19,7 +19,7 @@ for s in cornell sunroom foliage city chair; do
   $B reference ${SCENE[$s]} --res $R --spp 2048 --out /tmp/cmp/$s-ref.exr 2>&1 | grep -iE "error|spp" | tail -1
   for gi in evolve gi10 lux cache; do
     for n in 1 16 64; do
-      $B render ${SCENE[$s]} --res $R --gi $gi --frames $n --view taa \
+      $B render ${SCENE[$s]} --preset desktop --res $R --gi $gi --frames $n --view taa \
         --out /tmp/cmp/$s-$gi-$n.exr > /dev/null 2>&1 || echo "render $s $gi $n failed"
       $B compare /tmp/cmp/$s-$gi-$n.exr /tmp/cmp/$s-ref.exr --json /tmp/cmp/$s-$gi-$n.json \
         > /dev/null 2>&1 || echo "compare $s $gi $n failed"
@@ -42,7 +42,7 @@ for s in ["cornell", "sunroom", "foliage", "city", "chair"]:
                 row.append("n/a")
         print(f"{s:8s} {gi:7s} " + "  ".join(row))
 PY
-for s in sunroom city; do
+for s in ${BENCH_SCENES-sunroom city}; do
   $B bench --scene $s --res 1920x1080 --gi none,evolve,gi10,lux,cache --frames 240 \
     --out /tmp/cmp/bench-$s 2>&1 | tr '\r' '\n' | grep -E "frame \(GPU\)|error|^sunroom|^city"
 done
