@@ -9,6 +9,7 @@
 #include "reference/path_tracer.h"
 #include "scene/load.h"
 #include "scene/procedural/mesh_builder.h"
+#include "scene/scene_options.h"
 #include "scene/time_of_day.h"
 #include "tools/metrics.h"
 
@@ -78,6 +79,39 @@ Scene wallScene() {
   camera.verticalFovDegrees = 60.0f;
   scene.camera = camera;
   return scene;
+}
+
+WallSequence runWallSequence(const DiSettings& di, const std::string& view) {
+  Scene scene = wallScene();
+  const Camera camera = effectiveCamera(scene);
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  HybridFrame frame(context, gpuScene, scene,
+                    diSettings(WallSequence::kWidth, WallSequence::kHeight, di));
+  frame.requestDebugView(view);
+  WallSequence run;
+  for (int i = 0; i < 8; ++i) frame.render(camera);
+  run.before = frame.debugViewImage(view);
+
+  std::vector<PunctualLight> lights = scene.lights;
+  lights[0].position.x = 1.0f;
+  frame.setLights(lights);
+  frame.render(camera);
+  run.moved = frame.debugViewImage(view);
+  for (int i = 0; i < 23; ++i) frame.render(camera);
+  run.settled = frame.debugViewImage(view);
+
+  lights[0].intensity = 0.0f;
+  frame.setLights(lights);
+  frame.render(camera);
+  run.off = frame.debugViewImage(view);
+
+  lights[0] = scene.lights[0];
+  frame.setLights(lights);
+  frame.render(camera);
+  run.back = frame.debugViewImage(view);
+  run.validationErrors = uint32_t(context.validationErrorCount());
+  return run;
 }
 
 Scene cityAtNight(bool lamps) {

@@ -6,6 +6,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "frame/hybrid_frame.h"
@@ -34,6 +35,18 @@ double maxOfColumns(const ImageRGBA32F& image, uint32_t from, uint32_t to);
 // from above in the wall's plane: the image's left part sees what the light reaches, its right
 // part (x > 0) only surfaces the light cannot reach. The scene is symmetric about the wall.
 Scene wallScene();
+
+// The light-animation sequence on wallScene() (48x32, `view` captured after each step):
+// 8 frames as built (`before`), the light moved to x = +1 behind the wall for one frame
+// (`moved`) and 23 more (`settled`), switched off for one frame (`off`), then back as built
+// for one frame (`back`).
+struct WallSequence {
+  static constexpr uint32_t kWidth = 48, kHeight = 32;
+  static constexpr uint32_t kLeftEnd = kWidth / 2 - 4, kRightStart = kWidth / 2 + 4;
+  ImageRGBA32F before, moved, settled, off, back;
+  uint32_t validationErrors = 0;
+};
+WallSequence runWallSequence(const DiSettings& di, const std::string& view);
 
 // `city` at 22 h (no sun, the dim night sky); without its lamps when `lamps` is false (no spot
 // lights, lamp covers that do not emit: the city before issue 20).

@@ -121,35 +121,13 @@ TEST(DiDenoise, DISABLED_ReblurKeepsTheMeanAndLowersVariance) {
 // pixels across the wall (docs/di.md). Switched off: nothing anywhere; switched back on: the left
 // within 25 % of before at once, the right at most a quarter of its light.
 TEST(DiDenoise, MovedAndSwitchedLightsLeaveNoStaleLight) {
-  const uint32_t width = 48, height = 32;
-  Scene scene = wallScene();
-  const Camera camera = effectiveCamera(scene);
-  vk::Context context(vk::contextOptionsFromEnvironment());
-  GpuScene gpuScene(context, scene);
-  HybridFrame frame(context, gpuScene, scene,
-                    diSettings(width, height, withDenoiser(DiDenoiser::Svgf)));
-  frame.requestDebugView("di.denoised");
-  const uint32_t leftEnd = width / 2 - 4, rightStart = width / 2 + 4;
-  for (int i = 0; i < 8; ++i) frame.render(camera);
-  const ImageRGBA32F before = frame.debugViewImage("di.denoised");
-
-  std::vector<PunctualLight> lights = scene.lights;
-  lights[0].position.x = 1.0f;
-  frame.setLights(lights);
-  frame.render(camera);
-  const ImageRGBA32F moved = frame.debugViewImage("di.denoised");
-  for (int i = 0; i < 23; ++i) frame.render(camera);
-  const ImageRGBA32F settled = frame.debugViewImage("di.denoised");
-
-  lights[0].intensity = 0.0f;
-  frame.setLights(lights);
-  frame.render(camera);
-  const ImageRGBA32F off = frame.debugViewImage("di.denoised");
-
-  lights[0] = scene.lights[0];
-  frame.setLights(lights);
-  frame.render(camera);
-  const ImageRGBA32F back = frame.debugViewImage("di.denoised");
+  const test::WallSequence run =
+      test::runWallSequence(withDenoiser(DiDenoiser::Svgf), "di.denoised");
+  const uint32_t width = test::WallSequence::kWidth;
+  const uint32_t leftEnd = test::WallSequence::kLeftEnd;
+  const uint32_t rightStart = test::WallSequence::kRightStart;
+  const ImageRGBA32F &before = run.before, &moved = run.moved, &settled = run.settled;
+  const ImageRGBA32F &off = run.off, &back = run.back;
 
   const double left = meanOfColumns(before, 0, leftEnd);
   const double right = meanOfColumns(settled, rightStart, width);
@@ -168,7 +146,7 @@ TEST(DiDenoise, MovedAndSwitchedLightsLeaveNoStaleLight) {
   EXPECT_EQ(maxOfColumns(off, 0, width), 0.0);
   EXPECT_LE(meanOfColumns(back, rightStart, width), 0.25 * right);
   EXPECT_NEAR(meanOfColumns(back, 0, leftEnd), left, 0.25 * left);
-  EXPECT_EQ(context.validationErrorCount(), 0u);
+  EXPECT_EQ(run.validationErrors, 0u);
 }
 
 // 300 frames of manylights' light animation (lights blinking, bobbing, pulsing: the denoiser's

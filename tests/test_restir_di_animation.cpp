@@ -150,36 +150,12 @@ TEST(RestirDiBrdfCandidate, LowersTheVarianceOfAGlossyHighlight) {
 // off, it lights no pixel at all; switched back on, the left is lit again at once, within 25 %
 // of before (the switch-on drops the history, RestirDi::kHistoryDropRise).
 TEST(RestirDiAnimation, MovedAndSwitchedLightsShowInTheNextFrame) {
-  const uint32_t width = 48, height = 32;
-  Scene scene = wallScene();
-  const Camera camera = effectiveCamera(scene);
-  vk::Context context(vk::contextOptionsFromEnvironment());
-  GpuScene gpuScene(context, scene);
-  HybridFrame frame(context, gpuScene, scene, diSettings(width, height, DiSettings{}));
-  frame.requestDebugView("di-shade");
-  const uint32_t leftEnd = width / 2 - 4, rightStart = width / 2 + 4;
-  for (int i = 0; i < 8; ++i) frame.render(camera);
-  const ImageRGBA32F before = frame.debugViewImage("di-shade");
-
-  std::vector<PunctualLight> lights = scene.lights;
-  lights[0].position.x = 1.0f;
-  frame.setLights(lights);
-  frame.render(camera);
-  const ImageRGBA32F moved = frame.debugViewImage("di-shade");
-  // The right side's history holds 20 frames of the light occluded (W = 0, M kept): 1/M
-  // weights let the new light in over about that many frames (docs/di.md, "Light animation").
-  for (int i = 0; i < 23; ++i) frame.render(camera);
-  const ImageRGBA32F settled = frame.debugViewImage("di-shade");
-
-  lights[0].intensity = 0.0f;
-  frame.setLights(lights);
-  frame.render(camera);
-  const ImageRGBA32F off = frame.debugViewImage("di-shade");
-
-  lights[0] = scene.lights[0];
-  frame.setLights(lights);
-  frame.render(camera);
-  const ImageRGBA32F back = frame.debugViewImage("di-shade");
+  const test::WallSequence run = test::runWallSequence(DiSettings{}, "di-shade");
+  const uint32_t width = test::WallSequence::kWidth;
+  const uint32_t leftEnd = test::WallSequence::kLeftEnd;
+  const uint32_t rightStart = test::WallSequence::kRightStart;
+  const ImageRGBA32F &before = run.before, &moved = run.moved, &settled = run.settled;
+  const ImageRGBA32F &off = run.off, &back = run.back;
 
   std::printf(
       "wall: left mean %.4g before; moved right: left max %.4g, right mean %.4g (24 frames "
@@ -191,13 +167,15 @@ TEST(RestirDiAnimation, MovedAndSwitchedLightsShowInTheNextFrame) {
   EXPECT_EQ(maxOfColumns(moved, 0, leftEnd), 0.0);
   EXPECT_GT(meanOfColumns(moved, rightStart, width), 0.0);
   // The scene is symmetric about the wall: settled, the right side is as bright as the left was.
+  // (The right side's history held 20 frames of the light occluded, W = 0 with M kept: 1/M
+  // weights let the new light in over about that many frames; docs/di.md, "Light animation".)
   EXPECT_NEAR(meanOfColumns(settled, rightStart, width), meanOfColumns(before, 0, leftEnd),
               0.25 * meanOfColumns(before, 0, leftEnd));
   EXPECT_EQ(maxOfColumns(off, 0, width), 0.0);
   EXPECT_EQ(maxOfColumns(back, rightStart, width), 0.0);
   EXPECT_NEAR(meanOfColumns(back, 0, leftEnd), meanOfColumns(before, 0, leftEnd),
               0.25 * meanOfColumns(before, 0, leftEnd));
-  EXPECT_EQ(context.validationErrorCount(), 0u);
+  EXPECT_EQ(run.validationErrors, 0u);
 }
 
 // Emissive triangles follow their instance: the glossy floor's panel moved 1.5 m sideways by
