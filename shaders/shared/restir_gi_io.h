@@ -102,8 +102,37 @@ struct RestirGiPassConstants {
   // lighting cut (RestirGiSettings::settleFrames), else 1 (gi-temporal-denoise: < 1 = settling).
   float historyScale;
   uint pad0;
+  // gi.ray-lists (GiRayListHeader x 2, then the entries): read by the passes that append to or
+  // walk a ray list (below), 0 for the others.
+  DeviceAddress rayLists;
 };
-BOUNCE_CHECK_SIZE(RestirGiPassConstants, 32);
+BOUNCE_CHECK_SIZE(RestirGiPassConstants, 40);
+
+// ---- Ray lists --------------------------------------------------------------------------------
+// Two passes trace rays at few, scattered pixels: gi-trace-diffuse-nee-rays (the 2nd vertices
+// with a light sample; by night on `city` 1 GI pixel in 20) and gi-trace-resolve-visibility
+// (the pixels beside an occluder, 1 in 70). One thread per pixel left most lanes of a subgroup
+// idle while one traversed (0.16-0.25 Grays/s against 1-4 for the dense ray passes, H100,
+// docs/benchmarks.md), so the pass before each appends its pixels to a list and the tracing
+// pass runs one thread per entry through vkCmdDispatchIndirect. gi.ray-lists holds both lists:
+// two headers, then GI_RAY_LIST_NEE's entries (one per GI pixel at most), then
+// GI_RAY_LIST_RESOLVE's (one per render pixel at most). An entry is a pixel, x | y << 16.
+struct GiRayListHeader {
+  uint count;
+  uint groupsX;  // the tracing pass's vkCmdDispatchIndirect arguments
+  uint groupsY;
+  uint groupsZ;
+};
+BOUNCE_CHECK_SIZE(GiRayListHeader, 16);
+BOUNCE_CONST uint GI_RAY_LIST_NEE = 0u;
+BOUNCE_CONST uint GI_RAY_LIST_RESOLVE = 1u;
+BOUNCE_CONST uint GI_RAY_LISTS_HEADER_BYTES = 32u;
+// Threads per group of the passes that walk a list. With vkCmdDispatchIndirect's x at most
+// GI_RAY_LIST_MAX_GROUPS (the smallest maxComputeWorkGroupCount Vulkan allows), a list of up
+// to 128 x 65,535 = 8.4 M entries (a 3840x2160 frame has 8.3 M pixels) needs one thread each;
+// longer lists are walked with a stride.
+BOUNCE_CONST uint GI_RAY_LIST_GROUP_SIZE = 128u;
+BOUNCE_CONST uint GI_RAY_LIST_MAX_GROUPS = 65535u;
 
 BOUNCE_CONST uint RESTIR_GI_GROUP_SIZE = 8u;
 
@@ -132,9 +161,12 @@ BOUNCE_CONST uint GI_TRACE_BINDING_HIT_NORMAL = 4u;    // RGBA16F oct geometric 
 BOUNCE_CONST uint GI_TRACE_BINDING_HIT_RADIANCE = 5u;  // RGBA32F radiance at x2 without NEE
 BOUNCE_CONST uint GI_TRACE_BINDING_NEE_RAY = 6u;       // RGBA32F direction (unnormalised), tMax
 BOUNCE_CONST uint GI_TRACE_BINDING_NEE_RADIANCE = 7u;  // RGBA32F NEE radiance if unoccluded
-BOUNCE_CONST uint GI_TRACE_BINDING_COUNT = 8u;
+// R16F the NEE visibility, 0 here (a GI pixel without a light sample stays at 0); the GI
+// pixels with a light sample go to GI_RAY_LIST_NEE
+BOUNCE_CONST uint GI_TRACE_BINDING_NEE_VISIBILITY = 8u;
+BOUNCE_CONST uint GI_TRACE_BINDING_COUNT = 9u;
 
-// gi-trace-diffuse-nee-rays
+// gi-trace-diffuse-nee-rays: one thread per entry of GI_RAY_LIST_NEE
 BOUNCE_CONST uint GI_NEE_BINDING_HIT = 0u;
 BOUNCE_CONST uint GI_NEE_BINDING_HIT_NORMAL = 1u;
 BOUNCE_CONST uint GI_NEE_BINDING_NEE_RAY = 2u;
@@ -198,10 +230,13 @@ BOUNCE_CONST uint GI_RESOLVE_BINDING_OUTPUT = 7u;     // RGBA16F irradiance / pi
 BOUNCE_CONST uint GI_RESOLVE_BINDING_OCCLUSION = 8u;  // gi.resolve-occlusion
 BOUNCE_CONST uint GI_RESOLVE_BINDING_COUNT = 9u;
 
-// gi-trace-resolve-visibility (render resolution): which of gi-restir-resolve's samples are
-// hidden from pixels beside an occluder. Same reservoir and GBuffer bindings as the resolve;
-// writes gi.resolve-occlusion, R32UI: bit i (i < 4) = the resolve's i-th sample is hidden,
-// RESOLVE_BESIDE_OCCLUDER = the pixel is beside an occluder (gi-spatial-denoise keeps it as is)
+// gi-resolve-find-occluders (render resolution) and gi-trace-resolve-visibility (one thread
+// per entry of GI_RAY_LIST_RESOLVE): which of gi-restir-resolve's samples are hidden from
+// pixels beside an occluder. Same reservoir and GBuffer bindings as the resolve; they write
+// gi.resolve-occlusion, R32UI: bit i (i < 4) = the resolve's i-th sample is hidden,
+// RESOLVE_BESIDE_OCCLUDER = the pixel is beside an occluder (gi-spatial-denoise keeps it as is).
+// The first writes every pixel (0, or RESOLVE_BESIDE_OCCLUDER and an entry in the list), the
+// second the listed pixels' hidden samples.
 BOUNCE_CONST uint GI_RESOLVE_VISIBILITY_BINDING_OUTPUT = 7u;
 BOUNCE_CONST uint GI_RESOLVE_VISIBILITY_BINDING_COUNT = 8u;
 BOUNCE_CONST uint RESOLVE_BESIDE_OCCLUDER = 16u;

@@ -34,8 +34,8 @@ VkExtent2D ImageSize::resolve(VkExtent2D renderResolution) const {
 
 VkDeviceSize BufferSize::resolve(VkExtent2D renderResolution) const {
   if (!followsResolution()) return bytes;
-  return VkDeviceSize(divideRoundingUp(renderResolution.width, divisor)) *
-         divideRoundingUp(renderResolution.height, divisor) * bytesPerPixel;
+  return bytes + VkDeviceSize(divideRoundingUp(renderResolution.width, divisor)) *
+                     divideRoundingUp(renderResolution.height, divisor) * bytesPerPixel;
 }
 
 void checkImageDesc(const std::string& name, const ImageDesc& desc) {

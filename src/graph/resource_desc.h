@@ -46,7 +46,7 @@ struct ImageDesc {
 };
 
 // A fixed byte count, or bytes per pixel of the render resolution divided by `divisor` (for
-// per-pixel data such as reservoirs, which must follow a resize).
+// per-pixel data such as reservoirs, which must follow a resize), plus `bytes` of header then.
 struct BufferSize {
   VkDeviceSize bytes = 0;
   VkDeviceSize bytesPerPixel = 0;
@@ -55,6 +55,13 @@ struct BufferSize {
   static BufferSize fixed(VkDeviceSize bytes) { return {bytes, 0, 1}; }
   static BufferSize perPixel(VkDeviceSize bytesPerPixel, uint32_t divisor = 1) {
     return {0, bytesPerPixel, divisor};
+  }
+
+  // The same plus `headerBytes` in front (counters before per-pixel entries).
+  BufferSize withHeader(VkDeviceSize headerBytes) const {
+    BufferSize s = *this;
+    s.bytes = headerBytes;
+    return s;
   }
 
   bool followsResolution() const { return bytesPerPixel != 0; }

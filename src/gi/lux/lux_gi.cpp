@@ -119,14 +119,15 @@ RestirFrame LuxGi::beginFrame(const GiInputs& inputs) {
 DiffuseGiOutput LuxGi::declare(graph::FrameGraph& graph, const GiInputs& in) {
   graph::ImageHandle output = createOutput(graph);
   cache_.declareUpdate(graph, in);
-  const RestirFrame f = beginFrame(in);
+  RestirFrame f = beginFrame(in);
+  f.rayLists = declareRayLists(graph);
   const ReservoirHistory history = createReservoirHistory(graph, f.giSize);
   std::optional<graph::HistoryImage> occlusionValidity;
   if (reuse_.spatialReuse && reuse_.spatialValidation)
     occlusionValidity =
         graph.createHistoryImage("gi.spatial-occlusion-validity", {VK_FORMAT_R16_SFLOAT, f.giSize});
   Rays rays = declareCandidates(graph, f);
-  Hits hits = declareTrace(graph, f, rays);
+  GiHits hits = declareGiTrace(graph, f, rays.rays, &cache_, trace_, traceNee_);
   if (settings_.integralSamples > 0) declareProbeIntegral(graph, f);
   cache_.declareStatisticsReadback(graph);  // after the last pass that looks the cache up
   Candidates candidates = declareResolveCandidates(graph, f, rays, hits);
@@ -168,47 +169,9 @@ LuxGi::Rays LuxGi::declareCandidates(graph::FrameGraph& graph, const RestirFrame
   return out;
 }
 
-// ReSTIR GI's trace and NEE passes, unchanged (candidates.cpp declares them the same way).
-LuxGi::Hits LuxGi::declareTrace(graph::FrameGraph& graph, const RestirFrame& f, const Rays& rays) {
-  Hits h;
-  h.hit = graph.createImage("gi.hit", {kRgba32f, f.giSize});
-  h.normal = graph.createImage("gi.hit-normal", {kRgba16f, f.giSize});
-  h.radiance = graph.createImage("gi.hit-radiance", {kRgba32f, f.giSize});
-  h.neeRay = graph.createImage("gi.nee-ray", {kRgba32f, f.giSize});
-  h.neeRadiance = graph.createImage("gi.nee-radiance", {kRgba32f, f.giSize});
-  h.neeVisibility = graph.createImage("gi.nee-visibility", {VK_FORMAT_R16_SFLOAT, f.giSize});
-  cache_.declareLookup(graph.addPass("gi-trace-diffuse-rays", QueueKind::Compute))
-      .read(f.in.frame.constants, Access::StorageRead)
-      .read(f.in.frame.instances, Access::StorageRead)
-      .read(f.in.frame.tlas, Access::StorageRead)
-      .read(f.in.gbuffer.normals, Access::StorageRead, gpu::GI_TRACE_BINDING_NORMALS)
-      .read(f.in.gbuffer.depth.current, Access::StorageRead, gpu::GI_TRACE_BINDING_DEPTH)
-      .read(rays.rays, Access::StorageRead, gpu::GI_TRACE_BINDING_RAYS)
-      .write(h.hit, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT)
-      .write(h.normal, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT_NORMAL)
-      .write(h.radiance, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT_RADIANCE)
-      .write(h.neeRay, Access::StorageWrite, gpu::GI_TRACE_BINDING_NEE_RAY)
-      .write(h.neeRadiance, Access::StorageWrite, gpu::GI_TRACE_BINDING_NEE_RADIANCE)
-      .record([this, f](VkCommandBuffer cmd, const graph::PassResources& r) {
-        trace_.record(cmd, r, f.passConstants(false), f.giResolution);
-      });
-  graph.addPass("gi-trace-diffuse-nee-rays", QueueKind::Compute)
-      .read(f.in.frame.constants, Access::StorageRead)
-      .read(f.in.frame.instances, Access::StorageRead)
-      .read(f.in.frame.tlas, Access::StorageRead)
-      .read(h.hit, Access::StorageRead, gpu::GI_NEE_BINDING_HIT)
-      .read(h.normal, Access::StorageRead, gpu::GI_NEE_BINDING_HIT_NORMAL)
-      .read(h.neeRay, Access::StorageRead, gpu::GI_NEE_BINDING_NEE_RAY)
-      .write(h.neeVisibility, Access::StorageWrite, gpu::GI_NEE_BINDING_VISIBILITY)
-      .record([this, f](VkCommandBuffer cmd, const graph::PassResources& r) {
-        traceNee_.record(cmd, r, f.passConstants(false), f.giResolution);
-      });
-  return h;
-}
-
 // The candidate's estimate is the first image written: the pass's debug view.
 Candidates LuxGi::declareResolveCandidates(graph::FrameGraph& graph, const RestirFrame& f,
-                                           const Rays& rays, const Hits& hits) {
+                                           const Rays& rays, const GiHits& hits) {
   Candidates c;
   c.estimate = graph.createImage("gi.candidate-estimate", {kRgba16f, f.giSize});
   c.reservoir = createReservoirImages(graph, "gi.candidate.", f.giSize);

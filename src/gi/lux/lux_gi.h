@@ -55,15 +55,11 @@ class LuxGi final : public DiffuseGi {
   struct Rays {
     graph::ImageHandle rays, weight;
   };
-  struct Hits {
-    graph::ImageHandle hit, normal, radiance, neeRay, neeRadiance, neeVisibility;
-  };
   gpu::LuxPassConstants passConstants(const RestirFrame& f) const;
   RestirFrame beginFrame(const GiInputs& inputs);
   Rays declareCandidates(graph::FrameGraph& graph, const RestirFrame& f);
-  Hits declareTrace(graph::FrameGraph& graph, const RestirFrame& f, const Rays& rays);
   Candidates declareResolveCandidates(graph::FrameGraph& graph, const RestirFrame& f,
-                                      const Rays& rays, const Hits& hits);
+                                      const Rays& rays, const GiHits& hits);
   void declareProbeIntegral(graph::FrameGraph& graph, const RestirFrame& f);
 
   LuxSettings settings_;

@@ -1,12 +1,13 @@
 // gi-trace-diffuse-rays: traces each GI pixel's ray from x1 (closest hit, alpha test on). A miss
 // sees the sky (x2 is then a direction). A hit x2 gets its emission (none from the emitters
 // ReSTIR DI samples, FRAME_FLAG_DI_LIGHTS), the set-up of one NEE shadow ray (traced by
-// gi-trace-diffuse-nee-rays) and, by RestirGiSettings::secondVertex, a continued path
-// (restir_gi_second_vertex.glsl).
+// gi-trace-diffuse-nee-rays, which walks the list of GI pixels with one: ray_list.glsl) and, by
+// RestirGiSettings::secondVertex, a continued path (restir_gi_second_vertex.glsl).
 #version 460
 #include "gi/evolve/restir/restir_gi_second_vertex.glsl"
 #include "gi/evolve/cache/cache_radiance.glsl"
 #include "lighting/regularize.glsl"
+#include "gi/evolve/restir/ray_list.glsl"
 
 layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
@@ -19,6 +20,7 @@ layout(set = 1, binding = GI_TRACE_BINDING_HIT_NORMAL, rgba16f) uniform writeonl
 layout(set = 1, binding = GI_TRACE_BINDING_HIT_RADIANCE, rgba32f) uniform writeonly image2D hitRadianceOut;
 layout(set = 1, binding = GI_TRACE_BINDING_NEE_RAY, rgba32f) uniform writeonly image2D neeRayOut;
 layout(set = 1, binding = GI_TRACE_BINDING_NEE_RADIANCE, rgba32f) uniform writeonly image2D neeRadianceOut;
+layout(set = 1, binding = GI_TRACE_BINDING_NEE_VISIBILITY, r16f) uniform writeonly image2D neeVisibilityOut;
 
 void writeResult(ivec2 g, vec3 x2, uint kind, vec3 n2, vec3 radiance, vec4 neeRay, vec3 neeRadiance) {
   imageStore(hitOut, g, vec4(x2, float(kind)));
@@ -26,6 +28,7 @@ void writeResult(ivec2 g, vec3 x2, uint kind, vec3 n2, vec3 radiance, vec4 neeRa
   imageStore(hitRadianceOut, g, finiteOrZero(vec4(radiance, 0.0)));
   imageStore(neeRayOut, g, neeRay);
   imageStore(neeRadianceOut, g, finiteOrZero(vec4(neeRadiance, 0.0)));
+  imageStore(neeVisibilityOut, g, vec4(0.0));
 }
 
 const uint RANDOM_GI_CACHE = 0x47490005u;
@@ -98,4 +101,6 @@ void main() {
     if (addsCache) radiance += cacheBounce(f, s, wo, key.x);
   }
   writeResult(g, s.position, RESTIR_GI_KIND_SURFACE, s.geometricNormal, radiance, neeRay, neeRadiance);
+  if (any(notEqual(neeRay.xyz, vec3(0.0))))
+    rayListAppend(pc.rayLists, GI_RAY_LIST_NEE, gi.giResolution, g);
 }

@@ -31,11 +31,10 @@ CandidateStage::CandidateStage(vk::Context& context, const GpuScene& scene)
 Candidates CandidateStage::declare(graph::FrameGraph& graph, const RestirFrame& f,
                                    const ReservoirHistory& history, ClipmapCache* cache) {
   graph::ImageHandle rays = declarePrepare(graph, f, history);
-  Hits hits = declareTrace(graph, f, rays, cache);
+  GiHits hits = declareGiTrace(graph, f, rays, cache, trace_, traceNee_);
   // The trace is the chain's last cache lookup.
   if (cache) cache->declareStatisticsReadback(graph);
-  graph::ImageHandle neeVisibility = declareNee(graph, f, hits);
-  return declareResolve(graph, f, history, rays, hits, neeVisibility);
+  return declareResolve(graph, f, history, rays, hits);
 }
 
 graph::ImageHandle CandidateStage::declarePrepare(graph::FrameGraph& graph, const RestirFrame& f,
@@ -58,15 +57,15 @@ graph::ImageHandle CandidateStage::declarePrepare(graph::FrameGraph& graph, cons
   return rays;
 }
 
-CandidateStage::Hits CandidateStage::declareTrace(graph::FrameGraph& graph, const RestirFrame& f,
-                                                  graph::ImageHandle rays,
-                                                  const ClipmapCache* cache) {
-  Hits h;
+GiHits declareGiTrace(graph::FrameGraph& graph, const RestirFrame& f, graph::ImageHandle rays,
+                      const ClipmapCache* cache, RestirGiPass& trace, RestirGiPass& traceNee) {
+  GiHits h;
   h.hit = graph.createImage("gi.hit", {kRgba32f, f.giSize});
   h.normal = graph.createImage("gi.hit-normal", {kRgba16f, f.giSize});
   h.radiance = graph.createImage("gi.hit-radiance", {kRgba32f, f.giSize});
   h.neeRay = graph.createImage("gi.nee-ray", {kRgba32f, f.giSize});
   h.neeRadiance = graph.createImage("gi.nee-radiance", {kRgba32f, f.giSize});
+  h.neeVisibility = graph.createImage("gi.nee-visibility", {VK_FORMAT_R16_SFLOAT, f.giSize});
   graph::PassBuilder pass = graph.addPass("gi-trace-diffuse-rays", QueueKind::Compute);
   if (cache) cache->declareLookup(pass);
   pass.read(f.in.frame.constants, Access::StorageRead)
@@ -80,39 +79,38 @@ CandidateStage::Hits CandidateStage::declareTrace(graph::FrameGraph& graph, cons
       .write(h.radiance, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT_RADIANCE)
       .write(h.neeRay, Access::StorageWrite, gpu::GI_TRACE_BINDING_NEE_RAY)
       .write(h.neeRadiance, Access::StorageWrite, gpu::GI_TRACE_BINDING_NEE_RADIANCE)
-      .record([this, f](VkCommandBuffer cmd, const graph::PassResources& r) {
-        trace_.record(cmd, r, f.passConstants(false), f.giResolution);
+      .write(h.neeVisibility, Access::StorageWrite, gpu::GI_TRACE_BINDING_NEE_VISIBILITY)
+      .write(f.rayLists, Access::StorageReadWrite)
+      .record([&trace, f](VkCommandBuffer cmd, const graph::PassResources& r) {
+        trace.record(cmd, r, f.rayListConstants(r), f.giResolution);
       });
-  return h;
-}
-
-graph::ImageHandle CandidateStage::declareNee(graph::FrameGraph& graph, const RestirFrame& f,
-                                              const Hits& hits) {
-  graph::ImageHandle visibility =
-      graph.createImage("gi.nee-visibility", {VK_FORMAT_R16_SFLOAT, f.giSize});
+  // StorageReadWrite: the pass writes the listed GI pixels only and keeps the others' 0.
   graph.addPass("gi-trace-diffuse-nee-rays", QueueKind::Compute)
       .read(f.in.frame.constants, Access::StorageRead)
       .read(f.in.frame.instances, Access::StorageRead)
       .read(f.in.frame.tlas, Access::StorageRead)
-      .read(hits.hit, Access::StorageRead, gpu::GI_NEE_BINDING_HIT)
-      .read(hits.normal, Access::StorageRead, gpu::GI_NEE_BINDING_HIT_NORMAL)
-      .read(hits.neeRay, Access::StorageRead, gpu::GI_NEE_BINDING_NEE_RAY)
-      .write(visibility, Access::StorageWrite, gpu::GI_NEE_BINDING_VISIBILITY)
-      .record([this, f](VkCommandBuffer cmd, const graph::PassResources& r) {
-        traceNee_.record(cmd, r, f.passConstants(false), f.giResolution);
+      .read(f.rayLists, Access::IndirectRead)
+      .read(f.rayLists, Access::StorageRead)
+      .read(h.hit, Access::StorageRead, gpu::GI_NEE_BINDING_HIT)
+      .read(h.normal, Access::StorageRead, gpu::GI_NEE_BINDING_HIT_NORMAL)
+      .read(h.neeRay, Access::StorageRead, gpu::GI_NEE_BINDING_NEE_RAY)
+      .write(h.neeVisibility, Access::StorageReadWrite, gpu::GI_NEE_BINDING_VISIBILITY)
+      .record([&traceNee, f](VkCommandBuffer cmd, const graph::PassResources& r) {
+        traceNee.recordOverRayList(cmd, r, f.rayListConstants(r), f.rayLists,
+                                   gpu::GI_RAY_LIST_NEE);
       });
-  return visibility;
+  return h;
 }
 
 // The candidate's estimate is the first image written: the pass's debug view.
 Candidates CandidateStage::declareResolve(graph::FrameGraph& graph, const RestirFrame& f,
                                           const ReservoirHistory& history, graph::ImageHandle rays,
-                                          const Hits& hits, graph::ImageHandle neeVisibility) {
+                                          const GiHits& hits) {
   Candidates c;
   c.reservoir = createReservoirImages(graph, "gi.candidate.", f.giSize);
   c.estimate = graph.createImage("gi.candidate-estimate", {kRgba16f, f.giSize});
   c.validity = graph.createImage("gi.reservoir-validity", {kRgba16f, f.giSize});
-  c.neeVisibility = neeVisibility;
+  c.neeVisibility = hits.neeVisibility;
   graph::PassBuilder pass = graph.addPass("gi-resolve-diffuse-rays", QueueKind::Compute);
   pass.read(f.in.frame.constants, Access::StorageRead)
       .read(f.in.gbuffer.normals, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_NORMALS)
@@ -122,7 +120,7 @@ Candidates CandidateStage::declareResolve(graph::FrameGraph& graph, const Restir
       .read(hits.normal, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_HIT_NORMAL)
       .read(hits.radiance, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_HIT_RADIANCE)
       .read(hits.neeRadiance, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_NEE_RADIANCE)
-      .read(neeVisibility, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_VISIBILITY)
+      .read(hits.neeVisibility, Access::StorageRead, gpu::GI_CANDIDATES_BINDING_VISIBILITY)
       .write(c.estimate, Access::StorageWrite, gpu::GI_CANDIDATES_BINDING_ESTIMATE)
       .write(c.reservoir[0], Access::StorageWrite, gpu::GI_CANDIDATES_BINDING_SAMPLE)
       .write(c.reservoir[1], Access::StorageWrite, gpu::GI_CANDIDATES_BINDING_RADIANCE)

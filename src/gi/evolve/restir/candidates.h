@@ -4,7 +4,7 @@
 //                              3rd frame a validation ray along the history reservoir's sample
 //   gi-trace-diffuse-rays      closest hit; sky on a miss; emission, NEE set-up, the cache lookup
 //                              (Cache) or a continued path (Path) at the 2nd vertex
-//   gi-trace-diffuse-nee-rays  visibility of the NEE rays
+//   gi-trace-diffuse-nee-rays  visibility of the NEE rays, over the list of GI pixels with one
 //   gi-resolve-diffuse-rays    candidate reservoirs (one sample, W = 2 pi, M = 1), or on
 //                              validation rays the checked history reservoir; reservoir validity
 #pragma once
@@ -20,6 +20,19 @@ struct Candidates {
   graph::ImageHandle neeVisibility;  // gi.nee-visibility: r16f, 1 = the NEE ray is unoccluded
 };
 
+// gi-trace-diffuse-rays' outputs (shared/restir_gi_io.h, GI_TRACE_BINDING_*) and
+// gi-trace-diffuse-nee-rays' visibility.
+struct GiHits {
+  graph::ImageHandle hit, normal, radiance, neeRay, neeRadiance;
+  graph::ImageHandle neeVisibility;  // gi.nee-visibility: r16f, 1 = the NEE ray is unoccluded
+};
+
+// gi-trace-diffuse-rays over `rays` (gi.rays) then gi-trace-diffuse-nee-rays over the GI pixels
+// with a light sample; `cache`: the clipmap cache the 2nd vertex looks up, or nullptr. Evolve's
+// candidates and Lux's trace the same way.
+GiHits declareGiTrace(graph::FrameGraph& graph, const RestirFrame& f, graph::ImageHandle rays,
+                      const ClipmapCache* cache, RestirGiPass& trace, RestirGiPass& traceNee);
+
 class CandidateStage {
  public:
   CandidateStage(vk::Context& context, const GpuScene& scene);
@@ -29,18 +42,11 @@ class CandidateStage {
                      const ReservoirHistory& history, ClipmapCache* cache);
 
  private:
-  // gi-trace-diffuse-rays' outputs (shared/restir_gi_io.h, GI_TRACE_BINDING_*).
-  struct Hits {
-    graph::ImageHandle hit, normal, radiance, neeRay, neeRadiance;
-  };
   graph::ImageHandle declarePrepare(graph::FrameGraph& graph, const RestirFrame& f,
                                     const ReservoirHistory& history);
-  Hits declareTrace(graph::FrameGraph& graph, const RestirFrame& f, graph::ImageHandle rays,
-                    const ClipmapCache* cache);
-  graph::ImageHandle declareNee(graph::FrameGraph& graph, const RestirFrame& f, const Hits& hits);
   Candidates declareResolve(graph::FrameGraph& graph, const RestirFrame& f,
                             const ReservoirHistory& history, graph::ImageHandle rays,
-                            const Hits& hits, graph::ImageHandle neeVisibility);
+                            const GiHits& hits);
 
   RestirGiPass prepare_, trace_, traceNee_, resolve_;
 };

@@ -7,6 +7,8 @@ using graph::Access;
 ResolveStage::ResolveStage(vk::Context& context, const GpuScene& scene,
                            const RestirGiSettings& settings)
     : settings_(settings),
+      findOccluders_(context, scene, "gi/evolve/restir/gi_resolve_find_occluders",
+                     gpu::GI_RESOLVE_VISIBILITY_BINDING_COUNT),
       visibility_(context, scene, "gi/evolve/restir/gi_trace_resolve_visibility",
                   gpu::GI_RESOLVE_VISIBILITY_BINDING_COUNT),
       resolve_(context, scene, "gi/evolve/restir/gi_restir_resolve",
@@ -17,11 +19,13 @@ ResolvedGi ResolveStage::declare(graph::FrameGraph& graph, const RestirFrame& f,
   ResolvedGi out{target, std::nullopt};
   if (settings_.occluderVisibility) {
     out.occlusion = graph.createImage("gi.resolve-occlusion", {VK_FORMAT_R32_UINT});
+    declarePass(graph, f, "gi-resolve-find-occluders", findOccluders_, reservoirs,
+                gpu::GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, *out.occlusion, RayListUse::Fills);
     declarePass(graph, f, "gi-trace-resolve-visibility", visibility_, reservoirs,
-                gpu::GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, *out.occlusion);
+                gpu::GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, *out.occlusion, RayListUse::Walks);
   }
   graph::PassBuilder resolve = declarePass(graph, f, "gi-restir-resolve", resolve_, reservoirs,
-                                           gpu::GI_RESOLVE_BINDING_OUTPUT, target);
+                                           gpu::GI_RESOLVE_BINDING_OUTPUT, target, RayListUse::None);
   if (out.occlusion)
     resolve.read(*out.occlusion, Access::StorageRead, gpu::GI_RESOLVE_BINDING_OCCLUSION);
   else  // the shader ignores the binding without gi-trace-resolve-visibility
@@ -29,23 +33,38 @@ ResolvedGi ResolveStage::declare(graph::FrameGraph& graph, const RestirFrame& f,
   return out;
 }
 
-// Both passes read the same reservoir and GBuffer images (the resolve's bindings) and write one
-// image each.
+// The three passes read the same reservoir and GBuffer images (the resolve's bindings) and write
+// one image each. gi-resolve-find-occluders fills GI_RAY_LIST_RESOLVE and writes every pixel;
+// gi-trace-resolve-visibility walks the list, traces, and writes the listed pixels only
+// (StorageReadWrite: the others keep their values).
 graph::PassBuilder ResolveStage::declarePass(graph::FrameGraph& graph, const RestirFrame& f,
                                              const char* name, RestirGiPass& pass,
                                              const Reservoirs& reservoirs, uint32_t outputBinding,
-                                             graph::ImageHandle output) {
+                                             graph::ImageHandle output, RayListUse rayList) {
   const GBuffer& g = f.in.gbuffer;
   graph::PassBuilder b = graph.addPass(name, graph::QueueKind::Compute);
+  const Access outputAccess =
+      rayList == RayListUse::Walks ? Access::StorageReadWrite : Access::StorageWrite;
   b.read(f.in.frame.constants, Access::StorageRead)
-      .write(output, Access::StorageWrite, outputBinding)
+      .write(output, outputAccess, outputBinding)
       .read(g.normals, Access::StorageRead, gpu::GI_RESOLVE_BINDING_NORMALS)
       .read(g.depth.current, Access::StorageRead, gpu::GI_RESOLVE_BINDING_DEPTH)
       .read(g.flags, Access::StorageRead, gpu::GI_RESOLVE_BINDING_FLAGS);
   for (uint32_t i = 0; i < 4; ++i)
     b.read(reservoirs.reservoir[i], Access::StorageRead, gpu::GI_RESOLVE_BINDING_RESERVOIR + i);
-  b.record([f, &pass](VkCommandBuffer cmd, const graph::PassResources& r) {
-    pass.record(cmd, r, f.passConstants(false), f.in.frame.resolution);
+  if (rayList == RayListUse::Fills) b.write(f.rayLists, Access::StorageReadWrite);
+  if (rayList == RayListUse::Walks)
+    b.read(f.in.frame.instances, Access::StorageRead)
+        .read(f.in.frame.tlas, Access::StorageRead)
+        .read(f.rayLists, Access::IndirectRead)
+        .read(f.rayLists, Access::StorageRead);
+  b.record([f, &pass, rayList](VkCommandBuffer cmd, const graph::PassResources& r) {
+    if (rayList == RayListUse::Walks)
+      pass.recordOverRayList(cmd, r, f.rayListConstants(r), f.rayLists, gpu::GI_RAY_LIST_RESOLVE);
+    else if (rayList == RayListUse::Fills)
+      pass.record(cmd, r, f.rayListConstants(r), f.in.frame.resolution);
+    else
+      pass.record(cmd, r, f.passConstants(false), f.in.frame.resolution);
   });
   return b;
 }

@@ -1,9 +1,10 @@
 // The last stage of ReSTIR GI (DESIGN.md §4 step 5): from reservoirs at GI resolution to
 // irradiance at render resolution.
 //
-//   gi-trace-resolve-visibility  pixels beside an occluder: which of the resolve's samples they
-//                                cannot see (shadow rays), and no spatial denoise there (when
-//                                RestirGiSettings::occluderVisibility)
+//   gi-resolve-find-occluders    pixels beside an occluder: no spatial denoise there, and a
+//                                list of them (when RestirGiSettings::occluderVisibility)
+//   gi-trace-resolve-visibility  which of the resolve's samples the listed pixels cannot see
+//                                (shadow rays)
 //   gi-restir-resolve            reservoirs -> L1 SH -> irradiance / pi per unit albedo
 #pragma once
 #include <optional>
@@ -29,12 +30,14 @@ class ResolveStage {
                      graph::ImageHandle target);
 
  private:
+  enum class RayListUse { None, Fills, Walks };
   graph::PassBuilder declarePass(graph::FrameGraph& graph, const RestirFrame& f, const char* name,
                                  RestirGiPass& pass, const Reservoirs& reservoirs,
-                                 uint32_t outputBinding, graph::ImageHandle output);
+                                 uint32_t outputBinding, graph::ImageHandle output,
+                                 RayListUse rayList);
 
   RestirGiSettings settings_;
-  RestirGiPass visibility_, resolve_;
+  RestirGiPass findOccluders_, visibility_, resolve_;
 };
 
 }  // namespace bounce

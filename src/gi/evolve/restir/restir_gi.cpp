@@ -180,7 +180,8 @@ RestirFrame RestirGi::beginFrame(const GiInputs& inputs) {
 DiffuseGiOutput RestirGi::declare(graph::FrameGraph& graph, const GiInputs& in) {
   graph::ImageHandle output = createOutput(graph);
   if (cache_) cache_->declareUpdate(graph, in);
-  const RestirFrame f = beginFrame(in);
+  RestirFrame f = beginFrame(in);
+  f.rayLists = declareRayLists(graph);
   const ReservoirHistory history = createReservoirHistory(graph, f.giSize);
   // Written by gi-trace-spatial-validation-rays, read (previous) by the next frame's
   // gi-restir-temporal.

@@ -27,4 +27,18 @@ ReservoirHistory createReservoirHistory(graph::FrameGraph& graph, graph::ImageSi
   return history;
 }
 
+graph::BufferHandle declareRayLists(graph::FrameGraph& graph) {
+  graph::BufferHandle lists = graph.createBuffer(
+      "gi.ray-lists", {graph::BufferSize::perPixel(8).withHeader(gpu::GI_RAY_LISTS_HEADER_BYTES)});
+  graph.addPass("gi-ray-lists-reset", graph::QueueKind::Compute)
+      .write(lists, graph::Access::TransferDst)
+      .record([lists](VkCommandBuffer cmd, const graph::PassResources& r) {
+        // No entries, and a dispatch of 0 x 1 x 1 groups until the first entry adds one.
+        const gpu::GiRayListHeader empty{0u, 0u, 1u, 1u};
+        const gpu::GiRayListHeader headers[2] = {empty, empty};
+        vkCmdUpdateBuffer(cmd, r.buffer(lists).buffer, 0, sizeof(headers), headers);
+      });
+  return lists;
+}
+
 }  // namespace bounce

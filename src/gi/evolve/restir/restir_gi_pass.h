@@ -26,6 +26,16 @@ class RestirGiPass : public ComputePass {
     vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height,
                                           gpu::RESTIR_GI_GROUP_SIZE, gpu::RESTIR_GI_GROUP_SIZE);
   }
+  // The same for a pass that walks ray list `list` of gi.ray-lists (`rayLists`): as many groups
+  // as the pass that filled the list counted (shared/restir_gi_io.h, "Ray lists").
+  void recordOverRayList(VkCommandBuffer cmd, const graph::PassResources& resources,
+                         const gpu::RestirGiPassConstants& constants, graph::BufferHandle rayLists,
+                         uint32_t list) {
+    bind(cmd, constants, resources);
+    vkCmdDispatchIndirect(cmd, resources.buffer(rayLists).buffer,
+                          list * sizeof(gpu::GiRayListHeader) +
+                              offsetof(gpu::GiRayListHeader, groupsX));
+  }
 };
 
 // This frame's facts every stage's passes read; copied into their record callbacks.
@@ -37,10 +47,18 @@ struct RestirFrame {
   float historyScale = 1.0f;      // RestirGiPassConstants::historyScale
   // A lighting cut: this frame drops the histories that hold light (RestirGi::lightingCut).
   bool lightCutPending = false;
+  // gi.ray-lists, emptied at the top of the chain (declareRayLists).
+  graph::BufferHandle rayLists;
 
   gpu::RestirGiPassConstants passConstants(bool historyValid, uint32_t variant = 0) const {
-    return {
-        in.frame.constantsAddress, constants, historyValid ? 1u : 0u, variant, historyScale, 0u};
+    return {in.frame.constantsAddress, constants, historyValid ? 1u : 0u, variant, historyScale,
+            0u, 0u};
+  }
+  // The same for the passes that fill or walk a ray list: with gi.ray-lists' address.
+  gpu::RestirGiPassConstants rayListConstants(const graph::PassResources& r) const {
+    gpu::RestirGiPassConstants c = passConstants(false);
+    c.rayLists = r.buffer(rayLists).address;
+    return c;
   }
 };
 
@@ -52,5 +70,10 @@ using ReservoirHistory = std::array<graph::HistoryImage, 4>;
 ReservoirImages createReservoirImages(graph::FrameGraph& graph, const std::string& prefix,
                                       graph::ImageSize giSize);
 ReservoirHistory createReservoirHistory(graph::FrameGraph& graph, graph::ImageSize giSize);
+
+// gi.ray-lists (shared/restir_gi_io.h, "Ray lists"), both lists emptied by `gi-ray-lists-reset`
+// before the chain's first pass: two headers, then room for one entry per GI pixel and one per
+// render pixel (8 bytes per render pixel cover both at any divisor).
+graph::BufferHandle declareRayLists(graph::FrameGraph& graph);
 
 }  // namespace bounce
