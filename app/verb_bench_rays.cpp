@@ -36,8 +36,8 @@ nlohmann::json kindsJson(const std::vector<RayKindResult>& kinds) {
   return j;
 }
 
-nlohmann::json reportJson(const Scene& scene, const std::string& source, const vk::Context& context,
-                          const GpuSceneStats& s, const Resolution& res,
+nlohmann::json reportJson(const Scene& scene, const std::string& source, const std::string& tracer,
+                          const vk::Context& context, const GpuSceneStats& s, const Resolution& res,
                           const RayBenchResult& result) {
   nlohmann::json j;
   j["scene"] = scene.name;
@@ -45,6 +45,7 @@ nlohmann::json reportJson(const Scene& scene, const std::string& source, const v
   j["device"] = context.info().name;
   j["driver"] = context.info().driver;
   j["resolution"] = {res.width, res.height};
+  j["tracer"] = tracer;
   j["triangles"] = s.triangles;
   j["unique_triangles"] = s.uniqueTriangles;
   j["bvh_build_seconds"] = s.bvhBuildSeconds;
@@ -73,6 +74,7 @@ nlohmann::json reportJson(const Scene& scene, const std::string& source, const v
     j["agreement"][a.kind] = {{"rays", a.rays},
                               {"hit_miss_agreement", a.hitMissAgreement},
                               {"both_hit", a.bothHit},
+                              {"tied_other_primitive", a.tiedOtherPrimitive},
                               {"relative_t_tolerance", RayAgreement::kRelativeTolerance}};
     if (a.sameHit) j["agreement"][a.kind]["same_hit"] = *a.sameHit;
   }
@@ -132,22 +134,24 @@ int runBenchRays(const BenchRaysOptions& options) {
   printKinds("software", result.software);
   printKinds("hardware", result.hardware);
   if (!result.agreement.empty()) {
-    std::printf("%-8s %12s %12s %12s %14s %10s\n", "agree", "rays", "hit/miss %", "both hit",
-                "same hit %", "sw/hw");
+    std::printf("%-8s %12s %12s %12s %14s %8s %10s\n", "agree", "rays", "hit/miss %", "both hit",
+                "same hit %", "ties", "sw/hw");
     for (size_t k = 0; k < result.agreement.size(); ++k) {
       const RayAgreement& a = result.agreement[k];
       const double ratio =
           result.hardware[k].mraysPerSecond > 0
               ? result.software[k].mraysPerSecond / result.hardware[k].mraysPerSecond
               : 0.0;
-      std::printf("%-8s %12llu %12.4f %12llu %14s %10.3f\n", a.kind.c_str(),
+      std::printf("%-8s %12llu %12.4f %12llu %14s %8llu %10.3f\n", a.kind.c_str(),
                   (unsigned long long)a.rays, 100.0 * a.hitMissAgreement,
                   (unsigned long long)a.bothHit,
-                  a.sameHit ? fmt::format("{:.4f}", 100.0 * *a.sameHit).c_str() : "-", ratio);
+                  a.sameHit ? fmt::format("{:.4f}", 100.0 * *a.sameHit).c_str() : "-",
+                  (unsigned long long)a.tiedOtherPrimitive, ratio);
     }
   }
   if (!options.json.empty()) {
-    const nlohmann::json report = reportJson(scene, options.common.scene, *context, s, res, result);
+    const nlohmann::json report =
+        reportJson(scene, options.common.scene, options.tracer, *context, s, res, result);
     // Paths are bytes, not always UTF-8: replace an invalid sequence rather than throw.
     writeTextFile(options.json,
                   report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");

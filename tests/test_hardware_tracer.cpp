@@ -54,6 +54,7 @@ TEST(HardwareTracerAgreement, CountsHitMissPrimitiveAndDistance) {
   EXPECT_EQ(a.bothHit, 3u);
   ASSERT_TRUE(a.sameHit.has_value());
   EXPECT_DOUBLE_EQ(*a.sameHit, 1.0 / 3.0);
+  EXPECT_EQ(a.tiedOtherPrimitive, 1u);  // primitive 6 at the same distance
   RayAgreement shadow = compareHits("shadow", sw, hw, false);
   EXPECT_DOUBLE_EQ(shadow.hitMissAgreement, 4.0 / 5.0);
   EXPECT_FALSE(shadow.sameHit.has_value());
@@ -133,10 +134,12 @@ TEST_P(HardwareTracerHits, AgreeWithSoftwareOnTheSameRays) {
   for (size_t k = 0; k < 3; ++k) {
     const RayAgreement& a = result.agreement[k];
     std::printf(
-        "%s %s: %llu rays, hit/miss agree %.5f, %llu both hit, same hit %s; %.0f vs %.0f Mrays/s\n",
+        "%s %s: %llu rays, hit/miss agree %.5f, %llu both hit, same hit %s (%llu ties); software "
+        "%.0f, hardware %.0f Mrays/s\n",
         GetParam().c_str(), a.kind.c_str(), (unsigned long long)a.rays, a.hitMissAgreement,
         (unsigned long long)a.bothHit, a.sameHit ? std::to_string(*a.sameHit).c_str() : "-",
-        result.software[k].mraysPerSecond, result.hardware[k].mraysPerSecond);
+        (unsigned long long)a.tiedOtherPrimitive, result.software[k].mraysPerSecond,
+        result.hardware[k].mraysPerSecond);
     EXPECT_GT(a.rays, 0u) << a.kind;
     EXPECT_GE(a.hitMissAgreement, kAgreementBound) << a.kind;
     if (a.sameHit) {

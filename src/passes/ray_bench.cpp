@@ -148,9 +148,12 @@ RayAgreement compareHits(const std::string& kind, std::span<const gpu::BenchHit>
     agree += swHit == hwHit;
     if (!closest || !swHit || !hwHit) continue;
     ++a.bothHit;
-    same += sw.instance == hw.instance && sw.geometry == hw.geometry &&
-            sw.primitive == hw.primitive &&
-            std::abs(double(hw.t) - double(sw.t)) <= RayAgreement::kRelativeTolerance * sw.t;
+    const bool samePrimitive =
+        sw.instance == hw.instance && sw.geometry == hw.geometry && sw.primitive == hw.primitive;
+    const bool sameDistance =
+        std::abs(double(hw.t) - double(sw.t)) <= RayAgreement::kRelativeTolerance * sw.t;
+    same += samePrimitive && sameDistance;
+    a.tiedOtherPrimitive += !samePrimitive && sameDistance;
   }
   a.hitMissAgreement = a.rays ? double(agree) / double(a.rays) : 1.0;
   if (closest) a.sameHit = a.bothHit ? double(same) / double(a.bothHit) : 1.0;

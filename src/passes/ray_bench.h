@@ -39,6 +39,10 @@ struct RayAgreement {
   // Visibility rays stop at any hit, so shadow rays compare hit/miss only (sameHit unset).
   uint64_t bothHit = 0;
   std::optional<double> sameHit;
+  // Of the rays both hit, those with another primitive (or instance, geometry) at a distance
+  // within the tolerance: ties such as shared edges or coplanar overlapping triangles, where
+  // either answer is right.
+  uint64_t tiedOtherPrimitive = 0;
   static constexpr double kRelativeTolerance = 1e-4;
 };
 
