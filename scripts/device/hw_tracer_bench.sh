@@ -7,7 +7,7 @@
 set -u
 B="bash .devicepack/run.sh bounce"
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
-bash .devicepack/run.sh test_hardware_tracer 2>&1 | tail -30
+BOUNCE_VALIDATE=1 bash .devicepack/run.sh test_hardware_tracer 2>&1 | tail -30
 $B bench-rays --scene city --res 320x180 \
   --iterations 1 --tracer both --validate --verbose 2>&1 | tail -25
 for scene in sunroom city; do
