@@ -1,11 +1,13 @@
 // bounce bench-rays: Mrays/s of primary, sun-shadow and diffuse-bounce rays through the
-// software BVH, plus BVH build time, triangles/s and memory.
+// software BVH and/or the hardware tracer (--tracer), plus BVH build time, triangles/s and
+// memory, and with both tracers how far their hits agree.
 #include <cstdio>
 #include <memory>
 
 #include <nlohmann/json.hpp>
 
 #include "common_options.h"
+#include "core/error.h"
 #include "passes/ray_bench.h"
 #include "rt/gpu_scene.h"
 #include "tools/output_file.h"
@@ -19,17 +21,31 @@ struct BenchRaysOptions {
   CommonOptions common;
   uint32_t iterations = 9;
   std::string json;
+  std::string tracer = "software";
+  bool verbose = false;
 };
 
-nlohmann::json reportJson(const Scene& scene, const std::string& source, const vk::Context& context,
-                          const GpuSceneStats& s, const Resolution& res,
-                          const std::vector<RayKindResult>& kinds) {
+nlohmann::json kindsJson(const std::vector<RayKindResult>& kinds) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const RayKindResult& k : kinds)
+    j[k.kind] = {{"rays", k.rays},
+                 {"median_ms", k.medianMilliseconds},
+                 {"min_ms", k.minMilliseconds},
+                 {"mrays_per_second", k.mraysPerSecond},
+                 {"hit_fraction", k.hitFraction}};
+  return j;
+}
+
+nlohmann::json reportJson(const Scene& scene, const std::string& source, const std::string& tracer,
+                          const vk::Context& context, const GpuSceneStats& s, const Resolution& res,
+                          const RayBenchResult& result) {
   nlohmann::json j;
   j["scene"] = scene.name;
   j["scene_source"] = source;
   j["device"] = context.info().name;
   j["driver"] = context.info().driver;
   j["resolution"] = {res.width, res.height};
+  j["tracer"] = tracer;
   j["triangles"] = s.triangles;
   j["unique_triangles"] = s.uniqueTriangles;
   j["bvh_build_seconds"] = s.bvhBuildSeconds;
@@ -38,21 +54,46 @@ nlohmann::json reportJson(const Scene& scene, const std::string& source, const v
   j["bvh_bytes"] = s.bvhBytes;
   j["texture_bytes"] = s.textureBytes;
   j["gpu_bytes"] = s.totalBytes;
-  for (const RayKindResult& k : kinds)
-    j["rays"][k.kind] = {{"rays", k.rays},
-                         {"median_ms", k.medianMilliseconds},
-                         {"min_ms", k.minMilliseconds},
-                         {"mrays_per_second", k.mraysPerSecond},
-                         {"hit_fraction", k.hitFraction}};
+  if (!result.software.empty()) j["rays"] = kindsJson(result.software);
+  if (!result.hardware.empty()) {
+    const HardwareTracerStats& h = *result.hardwareStats;
+    j["hardware"] = {{"rays", kindsJson(result.hardware)},
+                     {"blas_count", h.blasCount},
+                     {"geometries", h.geometryCount},
+                     {"instances", h.instanceCount},
+                     {"triangles", h.triangles},
+                     {"blas_bytes", h.blasBytes},
+                     {"tlas_bytes", h.tlasBytes},
+                     {"scratch_bytes", h.scratchBytes},
+                     {"build_seconds", h.buildSeconds},
+                     {"blas_build_gpu_ms", h.blasGpuMilliseconds},
+                     {"tlas_build_gpu_ms", h.tlasGpuMilliseconds}};
+  }
+  if (!result.hardwareSkipped.empty()) j["hardware_skipped"] = result.hardwareSkipped;
+  for (const RayAgreement& a : result.agreement) {
+    j["agreement"][a.kind] = {{"rays", a.rays},
+                              {"hit_miss_agreement", a.hitMissAgreement},
+                              {"both_hit", a.bothHit},
+                              {"tied_other_primitive", a.tiedOtherPrimitive},
+                              {"relative_t_tolerance", RayAgreement::kRelativeTolerance}};
+    if (a.sameHit) j["agreement"][a.kind]["same_hit"] = *a.sameHit;
+  }
   return j;
 }
 
 int runBenchRays(const BenchRaysOptions& options) {
   options.common.checkArguments();
+  requireOneOf("--tracer", options.tracer, {"software", "hardware", "both"});
+  const RayTracer tracer = options.tracer == "hardware" ? RayTracer::Hardware
+                           : options.tracer == "both"   ? RayTracer::Both
+                                                        : RayTracer::Software;
   if (!options.json.empty()) requireWritableFile("--json", options.json);
   Resolution res = options.common.resolution();
   Scene scene = options.common.loadScene();
   std::unique_ptr<vk::Context> context = options.common.createContext();
+  // Before the BVH build, which takes a while on large scenes.
+  if (tracer == RayTracer::Hardware && !HardwareTracer::supported(*context))
+    fail("{}", HardwareTracer::unsupportedMessage(*context));
   GpuScene gpuScene(*context, scene);
   const GpuSceneStats& s = gpuScene.stats();
   std::printf("scene %s: %llu triangles (%llu unique), device %s\n", scene.name.c_str(),
@@ -68,15 +109,49 @@ int runBenchRays(const BenchRaysOptions& options) {
   RayBenchOptions bench;
   bench.resolution = res;
   bench.iterations = options.iterations;
-  std::vector<RayKindResult> kinds = runRayBench(*context, gpuScene, scene, bench);
-  std::printf("%-8s %12s %10s %10s %12s %8s\n", "rays", "count", "median ms", "min ms", "Mrays/s",
-              "hit %");
-  for (const RayKindResult& k : kinds)
-    std::printf("%-8s %12llu %10.3f %10.3f %12.3f %8.1f\n", k.kind.c_str(),
-                (unsigned long long)k.rays, k.medianMilliseconds, k.minMilliseconds,
-                k.mraysPerSecond, 100.0 * k.hitFraction);
+  bench.tracer = tracer;
+  const RayBenchResult result = runRayBench(*context, gpuScene, scene, bench);
+  if (!result.hardwareSkipped.empty())
+    std::printf("hardware tracer skipped: %s\n", result.hardwareSkipped.c_str());
+  if (result.hardwareStats) {
+    const HardwareTracerStats& h = *result.hardwareStats;
+    std::printf(
+        "hardware acceleration structures: %u BLAS %.1f MiB, TLAS %u instances %.2f MiB, build "
+        "%.3f s (GPU %.3f ms)\n",
+        h.blasCount, double(h.blasBytes) / (1 << 20), h.instanceCount,
+        double(h.tlasBytes) / (1 << 20), h.buildSeconds,
+        h.blasGpuMilliseconds + h.tlasGpuMilliseconds);
+    if (options.verbose) std::printf("%s\n", result.hardwareDescription.c_str());
+  }
+  std::printf("%-9s %-8s %12s %10s %10s %12s %8s\n", "tracer", "rays", "count", "median ms",
+              "min ms", "Mrays/s", "hit %");
+  auto printKinds = [](const char* name, const std::vector<RayKindResult>& kinds) {
+    for (const RayKindResult& k : kinds)
+      std::printf("%-9s %-8s %12llu %10.3f %10.3f %12.3f %8.1f\n", name, k.kind.c_str(),
+                  (unsigned long long)k.rays, k.medianMilliseconds, k.minMilliseconds,
+                  k.mraysPerSecond, 100.0 * k.hitFraction);
+  };
+  printKinds("software", result.software);
+  printKinds("hardware", result.hardware);
+  if (!result.agreement.empty()) {
+    std::printf("%-8s %12s %12s %12s %14s %8s %10s\n", "agree", "rays", "hit/miss %", "both hit",
+                "same hit %", "ties", "sw/hw");
+    for (size_t k = 0; k < result.agreement.size(); ++k) {
+      const RayAgreement& a = result.agreement[k];
+      const double ratio =
+          result.hardware[k].mraysPerSecond > 0
+              ? result.software[k].mraysPerSecond / result.hardware[k].mraysPerSecond
+              : 0.0;
+      std::printf("%-8s %12llu %12.4f %12llu %14s %8llu %10.3f\n", a.kind.c_str(),
+                  (unsigned long long)a.rays, 100.0 * a.hitMissAgreement,
+                  (unsigned long long)a.bothHit,
+                  a.sameHit ? fmt::format("{:.4f}", 100.0 * *a.sameHit).c_str() : "-",
+                  (unsigned long long)a.tiedOtherPrimitive, ratio);
+    }
+  }
   if (!options.json.empty()) {
-    const nlohmann::json report = reportJson(scene, options.common.scene, *context, s, res, kinds);
+    const nlohmann::json report =
+        reportJson(scene, options.common.scene, options.tracer, *context, s, res, result);
     // Paths are bytes, not always UTF-8: replace an invalid sequence rather than throw.
     writeTextFile(options.json,
                   report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
@@ -97,6 +172,12 @@ void addBenchRaysVerb(CLI::App& app, VerbAction& action) {
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--json", options->json, "Write the results as JSON");
+  cmd->add_option("--tracer", options->tracer,
+                  "software (the BVH in shaders/rt/), hardware (VK_KHR_ray_tracing_pipeline) or "
+                  "both (times both, compares their hits on the same rays)")
+      ->capture_default_str();
+  cmd->add_flag("-v,--verbose", options->verbose,
+                "Print the hardware tracer's device limits and acceleration-structure details");
   cmd->callback([&action, options, cmd] {
     options->common.given.record(*cmd);
     action = [options] { return runBenchRays(*options); };

@@ -1,9 +1,12 @@
-# Compiles every compute shader under shaders/ to SPIR-V with glslc and embeds the words in the
+# Compiles every shader under shaders/ to SPIR-V with glslc and embeds the words in the
 # library, so `bounce` needs no files beside it. A shader is looked up by its path without the
 # extension, e.g. "rt/trace_rays" (see src/vk/shader_registry.h). Graphics stages keep their
-# extension, since a pass's vertex and fragment shaders share a base name: "passes/vbuffer.vert".
+# extension, since a pass's vertex and fragment shaders share a base name: "passes/vbuffer.vert";
+# so do the ray-tracing stages (.rgen, .rchit, .rahit, .rmiss): "rt/bench_rays.rgen".
 file(GLOB_RECURSE BOUNCE_SHADER_SOURCES CONFIGURE_DEPENDS
-  ${PROJECT_SOURCE_DIR}/shaders/*.comp ${PROJECT_SOURCE_DIR}/shaders/*.vert ${PROJECT_SOURCE_DIR}/shaders/*.frag)
+  ${PROJECT_SOURCE_DIR}/shaders/*.comp ${PROJECT_SOURCE_DIR}/shaders/*.vert ${PROJECT_SOURCE_DIR}/shaders/*.frag
+  ${PROJECT_SOURCE_DIR}/shaders/*.rgen ${PROJECT_SOURCE_DIR}/shaders/*.rchit ${PROJECT_SOURCE_DIR}/shaders/*.rahit
+  ${PROJECT_SOURCE_DIR}/shaders/*.rmiss)
 
 add_executable(bounce_embed_spirv ${PROJECT_SOURCE_DIR}/cmake/embed_spirv.cpp)
 

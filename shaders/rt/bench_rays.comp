@@ -1,51 +1,47 @@
-// bench-rays: one kind of ray per dispatch (see shared/bench_rays_io.h), so each kind's
-// traversal cost can be timed alone. Results are written per pixel so no ray is optimised away.
+// bench-rays, software tracer: one kind of ray per dispatch (see shared/bench_rays_io.h), so
+// each kind's traversal cost can be timed alone. Results are written per pixel so no ray is
+// optimised away. The rays come from rt/bench_rays_common.glsl, shared with the hardware
+// tracer's rt/bench_rays.rgen.
 #version 460
-#include "common/random.glsl"
-#include "common/sampling.glsl"
+#include "rt/bench_rays_common.glsl"
 #include "rt/trace.glsl"
-#include "shared/bench_rays_io.h"
 
 layout(local_size_x = BENCH_RAYS_GROUP_SIZE, local_size_y = BENCH_RAYS_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { BenchRaysConstants pc; };
-layout(buffer_reference, scalar, buffer_reference_align = 4) buffer SurfaceArray { BenchSurface v[]; };
-layout(buffer_reference, scalar, buffer_reference_align = 4) buffer ResultArray { uint v[]; };
 
-// Offset along the normal, scaled with the position's magnitude, so secondary rays do not
-// re-hit their own surface.
-vec3 offsetOrigin(vec3 p, vec3 n) { return p + n * (1e-4 + 1e-5 * length(p)); }
+// The agreement run only (pc.hits != 0, a uniform branch): the ray and what it hit.
+void record(uint index, BenchRay ray, BenchHit hit) {
+  if (pc.hits == uint64_t(0)) return;
+  BenchRayArray(pc.rays).v[index] = ray;
+  BenchHitArray(pc.hits).v[index] = hit;
+}
+
+BenchHit benchHit(TraceHit h) {
+  return makeBenchHit(traceHitFound(h), h.t, h.instance, h.geometry, h.primitive);
+}
 
 void tracePrimary(uvec2 pixel, uint index) {
-  vec3 dir = cameraRayDirection(pc.camera, vec2(pixel) + 0.5, vec2(pc.resolution));
-  TraceHit hit = traceClosest(pc.camera.position, dir, 0.0, 3.0e38, true);
-  BenchSurface s;
-  s.valid = traceHitFound(hit) ? 1u : 0u;
-  s.position = vec3(0.0);
-  s.normal = vec3(0.0, 1.0, 0.0);
-  s.pad = 0.0;
-  if (traceHitFound(hit)) {
-    GpuGeometry g = sceneGeometry(hit.geometry);
-    vec3 n = interpolateNormal(triangleVertices(g, hit.primitive), hit.barycentrics);
-    n = normalize(transformNormal(sceneInstance(hit.instance), n));
-    if (dot(n, dir) > 0.0) n = -n;
-    s.normal = n;
-    s.position = offsetOrigin(pc.camera.position + hit.t * dir, n);
-  }
+  BenchRay ray = benchPrimaryRay(pc.camera, pixel, pc.resolution);
+  TraceHit hit = traceClosest(ray.origin, ray.direction, ray.tMin, ray.tMax, true);
+  BenchSurface s = benchSurface(ray, traceHitFound(hit), hit.t, hit.instance, hit.geometry,
+                                hit.primitive, hit.barycentrics);
   SurfaceArray(pc.surfaces).v[index] = s;
   ResultArray(pc.results).v[index] = s.valid;
+  record(index, ray, benchHit(hit));
 }
 
 void traceSecondary(uvec2 pixel, uint index) {
   BenchSurface s = SurfaceArray(pc.surfaces).v[index];
   uint result = 2u;
   if (s.valid != 0u) {
-    if (pc.mode == BENCH_RAYS_SHADOW) {
-      vec3 dir = sampleCone(pc.toSun, pc.sunCosHalfAngle, random2(pixel, pc.frame, RANDOM_BENCH_SUN));
-      result = traceVisibility(s.position, dir, 0.0, 3.0e38, true) ? 0u : 1u;
-    } else {
-      vec3 dir = sampleCosineHemisphere(s.normal, random2(pixel, pc.frame, RANDOM_BENCH_DIFFUSE));
-      result = traceHitFound(traceClosest(s.position, dir, 0.0, 3.0e38, true)) ? 1u : 0u;
-    }
+    BenchRay ray = benchSecondaryRay(s, pc.mode, pixel, pc.frame, pc.toSun, pc.sunCosHalfAngle);
+    TraceHit hit = pc.mode == BENCH_RAYS_SHADOW
+                       ? traceAnyHit(ray.origin, ray.direction, ray.tMin, ray.tMax, true)
+                       : traceClosest(ray.origin, ray.direction, ray.tMin, ray.tMax, true);
+    result = traceHitFound(hit) ? 1u : 0u;
+    record(index, ray, benchHit(hit));
+  } else {
+    record(index, noBenchRay(), noBenchHit());
   }
   ResultArray(pc.results).v[index] = result;
 }

@@ -8,6 +8,7 @@
 // that height. src/rt/cpu_trace.cpp mirrors this loop step by step.
 #ifndef BOUNCE_RT_TRACE_GLSL
 #define BOUNCE_RT_TRACE_GLSL
+#include "rt/alpha_test.glsl"
 #include "rt/scene.glsl"
 #include "shared/ray_triangle.h"
 
@@ -65,20 +66,6 @@ float intersectBox(vec3 boxMin, vec3 boxMax, BoxRay r, float tMin, float tMax) {
   float enter = max(max(tNear.x, tNear.y), max(tNear.z, tMin));
   float exit = min(min(tFar.x, tFar.y), min(tFar.z, tMax)) * 1.0000004;
   return enter <= exit ? enter : 1.0 / 0.0;
-}
-
-// Alpha test of a candidate hit on a MASK/BLEND material: base-colour alpha (factor x texel,
-// nearest, mip 0, x vertex colour) against the cutoff; BLEND counts as a mask at 0.5.
-bool alphaAccepts(uint globalGeometry, uint primitive, vec2 bary) {
-  GpuGeometry g = sceneGeometry(globalGeometry);
-  GpuMaterial m = sceneMaterial(g.material);
-  float alpha = m.baseColor.a;
-  uvec3 tri = triangleVertices(g, primitive);
-  if (m.baseColorTexture != NO_TEXTURE)
-    alpha *= fetchSceneTexelNearest(m.baseColorTexture, interpolateUv(tri, bary)).a;
-  alpha *= interpolateVertexColor(tri, bary).a;
-  float cutoff = (m.flags & MATERIAL_ALPHA_BLEND) != 0u ? 0.5 : m.alphaCutoff;
-  return alpha >= cutoff;
 }
 
 // State of the traversal at one level (world space for the TLAS, object space in a BLAS).
@@ -223,10 +210,15 @@ TraceHit traceClosest(vec3 origin, vec3 dir, float tMin, float tMax, bool alphaT
   return traceScene(origin, dir, tMin, tMax, alphaTest, false);
 }
 
+// The first accepted hit found on (tMin, tMax), not necessarily the closest.
+TraceHit traceAnyHit(vec3 origin, vec3 dir, float tMin, float tMax, bool alphaTest) {
+  countRay();
+  return traceScene(origin, dir, tMin, tMax, alphaTest, true);
+}
+
 // True when nothing blocks the segment (tMin, tMax) of the ray.
 bool traceVisibility(vec3 origin, vec3 dir, float tMin, float tMax, bool alphaTest) {
-  countRay();
-  return !traceHitFound(traceScene(origin, dir, tMin, tMax, alphaTest, true));
+  return !traceHitFound(traceAnyHit(origin, dir, tMin, tMax, alphaTest));
 }
 
 #endif

@@ -2,17 +2,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
+#include "core/error.h"
 #include "passes/primary_view.h"
-#include "shared/bench_rays_io.h"
+#include "shared/scene_layout.h"
 #include "vk/gpu_timer.h"
+#include "vk/memory_barrier.h"
 #include "vk/pipeline.h"
+#include "vk/ray_tracing.h"
 
 namespace bounce {
 
 namespace {
 
 const char* kKindNames[] = {"primary", "shadow", "diffuse"};
+constexpr uint32_t kKinds = 3;
 
 double median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
@@ -31,48 +36,36 @@ double hitFraction(const std::vector<uint32_t>& results, uint64_t* traced) {
   return count ? double(hits) / double(count) : 0.0;
 }
 
-}  // namespace
+// Records one launch of a tracer over the view with constants `pc` (mode, buffers set), then
+// a barrier that makes its writes visible to what follows.
+using Launch = std::function<void(VkCommandBuffer, const gpu::BenchRaysConstants&)>;
 
-std::vector<RayKindResult> runRayBench(vk::Context& context, const GpuScene& gpuScene,
-                                       const Scene& scene, const RayBenchOptions& options) {
-  const uint32_t w = options.resolution.width, h = options.resolution.height;
-  const uint64_t pixels = uint64_t(w) * h;
-  vk::ComputePipeline pipeline(context, "rt/bench_rays", {&gpuScene.setLayout()},
-                               sizeof(gpu::BenchRaysConstants));
-  vk::Buffer surfaces(context, pixels * sizeof(gpu::BenchSurface),
-                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::DeviceOnly,
-                      "bench-rays.surfaces");
-  std::vector<vk::Buffer> results;
-  for (int k = 0; k < 3; ++k)
-    results.emplace_back(context, pixels * sizeof(uint32_t),
-                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                         vk::MemoryUse::DeviceOnly, std::string("bench-rays.") + kKindNames[k]);
+// The buffers both tracers write in timed runs (one tracer at a time).
+struct BenchBuffers {
+  vk::Buffer surfaces;
+  std::vector<vk::Buffer> results;  // per kind
+};
+
+// Times the three kinds with `launch`, `iterations` times each (median reported, frame =
+// iteration so the secondary rays change), then reads back the last run's hit fractions.
+std::vector<RayKindResult> timeKinds(vk::Context& context, const Launch& launch,
+                                     gpu::BenchRaysConstants pc, BenchBuffers& buffers,
+                                     uint32_t iterations, uint64_t pixels) {
   vk::GpuTimer timer(context);
-
-  gpu::BenchRaysConstants pc{};
-  pc.camera = makeGpuCamera(effectiveCamera(scene), w, h, gpuScene.bounds());
-  pc.surfaces = surfaces.address();
-  pc.resolution = {w, h};
-  glm::vec3 sunDir =
-      scene.sun.irradiance > 0.0f ? scene.sun.direction : glm::vec3(-0.3f, -1.0f, -0.2f);
-  pc.toSun = -glm::normalize(sunDir);
-  pc.sunCosHalfAngle = std::cos(glm::radians(scene.sun.angularDiameterDegrees * 0.5f));
-
-  std::vector<std::vector<double>> times(3);
-  for (uint32_t it = 0; it < options.iterations; ++it) {
+  pc.surfaces = buffers.surfaces.address();
+  pc.rays = 0;
+  pc.hits = 0;
+  std::vector<std::vector<double>> times(kKinds);
+  for (uint32_t it = 0; it < iterations; ++it) {
     pc.frame = it;
     context.submitAndWait([&](VkCommandBuffer cmd) {
       timer.reset(cmd);
-      pipeline.bind(cmd, {gpuScene.descriptorSet()});
-      for (uint32_t mode = 0; mode < 3; ++mode) {
+      for (uint32_t mode = 0; mode < kKinds; ++mode) {
         pc.mode = mode;
-        pc.results = results[mode].address();
-        pipeline.push(cmd, pc);
+        pc.results = buffers.results[mode].address();
         timer.begin(cmd, kKindNames[mode]);
-        vk::ComputePipeline::dispatchCovering(cmd, w, h, gpu::BENCH_RAYS_GROUP_SIZE,
-                                              gpu::BENCH_RAYS_GROUP_SIZE);
+        launch(cmd, pc);
         timer.end(cmd);
-        vk::computeBarrier(cmd);
       }
     });
     std::vector<vk::PassTiming> t = timer.read();
@@ -80,9 +73,9 @@ std::vector<RayKindResult> runRayBench(vk::Context& context, const GpuScene& gpu
   }
 
   std::vector<RayKindResult> out;
-  for (uint32_t k = 0; k < 3; ++k) {
+  for (uint32_t k = 0; k < kKinds; ++k) {
     std::vector<uint32_t> r(pixels);
-    vk::downloadBuffer(context, results[k], std::as_writable_bytes(std::span(r)));
+    vk::downloadBuffer(context, buffers.results[k], std::as_writable_bytes(std::span(r)));
     RayKindResult kind;
     kind.kind = kKindNames[k];
     kind.hitFraction = hitFraction(r, &kind.rays);
@@ -94,6 +87,142 @@ std::vector<RayKindResult> runRayBench(vk::Context& context, const GpuScene& gpu
     out.push_back(kind);
   }
   return out;
+}
+
+// Everything written before is visible to everything after (the ray-tracing stages included).
+void fullBarrier(VkCommandBuffer cmd) {
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                    VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+}
+
+// The agreement run: per kind, the software tracer traces frame 0 and records its rays and
+// hits; the hardware tracer traces those same rays and records its hits.
+std::vector<RayAgreement> compareTracers(vk::Context& context, const Launch& software,
+                                         const Launch& hardware, gpu::BenchRaysConstants pc,
+                                         BenchBuffers& buffers, uint64_t pixels) {
+  const VkBufferUsageFlags usage =
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+  vk::Buffer rays(context, pixels * sizeof(gpu::BenchRay), usage, vk::MemoryUse::DeviceOnly,
+                  "bench-rays.recorded-rays");
+  vk::Buffer softwareHits(context, pixels * sizeof(gpu::BenchHit), usage, vk::MemoryUse::DeviceOnly,
+                          "bench-rays.software-hits");
+  vk::Buffer hardwareHits(context, pixels * sizeof(gpu::BenchHit), usage, vk::MemoryUse::DeviceOnly,
+                          "bench-rays.hardware-hits");
+  pc.frame = 0;
+  pc.surfaces = buffers.surfaces.address();
+  pc.rays = rays.address();
+  std::vector<RayAgreement> out;
+  for (uint32_t mode = 0; mode < kKinds; ++mode) {
+    pc.mode = mode;
+    pc.results = buffers.results[mode].address();
+    context.submitAndWait([&](VkCommandBuffer cmd) {
+      pc.hits = softwareHits.address();
+      software(cmd, pc);
+      fullBarrier(cmd);  // the software launch's barrier covers compute and copies only
+      pc.hits = hardwareHits.address();
+      hardware(cmd, pc);
+    });
+    std::vector<gpu::BenchHit> sw(pixels), hw(pixels);
+    vk::downloadBuffer(context, softwareHits, std::as_writable_bytes(std::span(sw)));
+    vk::downloadBuffer(context, hardwareHits, std::as_writable_bytes(std::span(hw)));
+    out.push_back(compareHits(kKindNames[mode], sw, hw, mode != gpu::BENCH_RAYS_SHADOW));
+  }
+  return out;
+}
+
+}  // namespace
+
+RayAgreement compareHits(const std::string& kind, std::span<const gpu::BenchHit> software,
+                         std::span<const gpu::BenchHit> hardware, bool closest) {
+  RayAgreement a;
+  a.kind = kind;
+  uint64_t agree = 0, same = 0;
+  for (size_t i = 0; i < std::min(software.size(), hardware.size()); ++i) {
+    const gpu::BenchHit& sw = software[i];
+    const gpu::BenchHit& hw = hardware[i];
+    if (sw.instance == gpu::BENCH_RAYS_NO_RAY) continue;
+    ++a.rays;
+    const bool swHit = sw.instance != gpu::BVH_INVALID;
+    const bool hwHit = hw.instance != gpu::BVH_INVALID && hw.instance != gpu::BENCH_RAYS_NO_RAY;
+    agree += swHit == hwHit;
+    if (!closest || !swHit || !hwHit) continue;
+    ++a.bothHit;
+    const bool samePrimitive =
+        sw.instance == hw.instance && sw.geometry == hw.geometry && sw.primitive == hw.primitive;
+    const bool sameDistance =
+        std::abs(double(hw.t) - double(sw.t)) <= RayAgreement::kRelativeTolerance * sw.t;
+    same += samePrimitive && sameDistance;
+    a.tiedOtherPrimitive += !samePrimitive && sameDistance;
+  }
+  a.hitMissAgreement = a.rays ? double(agree) / double(a.rays) : 1.0;
+  if (closest) a.sameHit = a.bothHit ? double(same) / double(a.bothHit) : 1.0;
+  return a;
+}
+
+RayBenchResult runRayBench(vk::Context& context, const GpuScene& gpuScene, const Scene& scene,
+                           const RayBenchOptions& options) {
+  const uint32_t w = options.resolution.width, h = options.resolution.height;
+  const uint64_t pixels = uint64_t(w) * h;
+  RayBenchResult result;
+  bool runSoftware = options.tracer != RayTracer::Hardware;
+  bool runHardware = options.tracer != RayTracer::Software;
+  if (runHardware && !HardwareTracer::supported(context)) {
+    if (options.tracer == RayTracer::Hardware)
+      fail("{}", HardwareTracer::unsupportedMessage(context));
+    result.hardwareSkipped = HardwareTracer::unsupportedMessage(context);
+    runHardware = false;
+  }
+
+  BenchBuffers buffers;
+  buffers.surfaces =
+      vk::Buffer(context, pixels * sizeof(gpu::BenchSurface), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                 vk::MemoryUse::DeviceOnly, "bench-rays.surfaces");
+  for (uint32_t k = 0; k < kKinds; ++k)
+    buffers.results.emplace_back(
+        context, pixels * sizeof(uint32_t),
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+        vk::MemoryUse::DeviceOnly, std::string("bench-rays.") + kKindNames[k]);
+
+  gpu::BenchRaysConstants pc{};
+  pc.camera = makeGpuCamera(effectiveCamera(scene), w, h, gpuScene.bounds());
+  pc.resolution = {w, h};
+  glm::vec3 sunDir =
+      scene.sun.irradiance > 0.0f ? scene.sun.direction : glm::vec3(-0.3f, -1.0f, -0.2f);
+  pc.toSun = -glm::normalize(sunDir);
+  pc.sunCosHalfAngle = std::cos(glm::radians(scene.sun.angularDiameterDegrees * 0.5f));
+
+  vk::ComputePipeline compute;
+  Launch software;
+  if (runSoftware) {
+    compute = vk::ComputePipeline(context, "rt/bench_rays", {&gpuScene.setLayout()},
+                                  sizeof(gpu::BenchRaysConstants));
+    software = [&](VkCommandBuffer cmd, const gpu::BenchRaysConstants& c) {
+      compute.bind(cmd, {gpuScene.descriptorSet()});
+      compute.push(cmd, c);
+      vk::ComputePipeline::dispatchCovering(cmd, w, h, gpu::BENCH_RAYS_GROUP_SIZE,
+                                            gpu::BENCH_RAYS_GROUP_SIZE);
+      vk::computeBarrier(cmd);
+    };
+    result.software = timeKinds(context, software, pc, buffers, options.iterations, pixels);
+  }
+
+  if (!runHardware) return result;
+  HardwareTracer tracer(context, gpuScene);
+  result.hardwareStats = tracer.stats();
+  result.hardwareDescription = tracer.describe();
+  std::unique_ptr<vk::RayTracingPipeline> pipeline =
+      tracer.makePipeline("rt/bench_rays.rgen", sizeof(gpu::BenchRaysConstants));
+  Launch hardware = [&](VkCommandBuffer cmd, const gpu::BenchRaysConstants& c) {
+    pipeline->bind(cmd, {gpuScene.descriptorSet(), tracer.descriptorSet()});
+    pipeline->push(cmd, c);
+    pipeline->traceRays(cmd, w, h);
+    fullBarrier(cmd);
+  };
+  result.hardware = timeKinds(context, hardware, pc, buffers, options.iterations, pixels);
+  if (runSoftware)
+    result.agreement = compareTracers(context, software, hardware, pc, buffers, pixels);
+  return result;
 }
 
 }  // namespace bounce

@@ -209,11 +209,23 @@ DeviceInfo describeDevice(VkPhysicalDevice pd, uint32_t index) {
   vkGetPhysicalDeviceFeatures2(pd, &f2);
   info.shaderFloat16 = f12.shaderFloat16;
 
+  bool accelerationStructure = false, deferredHostOperations = false;
   for (const std::string& ext : deviceExtensions(pd)) {
-    if (ext == "VK_KHR_ray_tracing_pipeline") info.rayTracingPipeline = true;
+    if (ext == VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME) info.rayTracingPipeline = true;
+    if (ext == VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME) accelerationStructure = true;
+    if (ext == VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME) deferredHostOperations = true;
     if (ext == "VK_KHR_ray_query") info.rayQuery = true;
     if (ext == "VK_KHR_cooperative_matrix" || ext == "VK_NV_cooperative_matrix")
       info.cooperativeMatrix = true;
+  }
+  if (info.rayTracingPipeline && accelerationStructure && deferredHostOperations) {
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR as{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+    VkPhysicalDeviceRayTracingPipelineFeaturesKHR rtp{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR, &as};
+    VkPhysicalDeviceFeatures2 rt2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &rtp};
+    vkGetPhysicalDeviceFeatures2(pd, &rt2);
+    info.hardwareRayTracingUsable = rtp.rayTracingPipeline && as.accelerationStructure;
   }
   VkPhysicalDeviceMemoryProperties mem;
   vkGetPhysicalDeviceMemoryProperties(pd, &mem);
@@ -499,7 +511,26 @@ void Context::createDevice() {
   VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, features.chain()};
   ci.queueCreateInfoCount = 1;
   ci.pQueueCreateInfos = &queueInfo;
+
+  // The hardware tracer's extensions, only where the device has them all (DeviceInfo::
+  // hardwareRayTracingUsable): a device without them is created exactly as before.
+  const char* rayTracingExtensions[] = {VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME,
+                                        VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+                                        VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR accelerationStructure{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  VkPhysicalDeviceRayTracingPipelineFeaturesKHR rayTracingPipeline{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR, &accelerationStructure};
+  if (info_.hardwareRayTracingUsable) {
+    accelerationStructure.accelerationStructure = VK_TRUE;
+    rayTracingPipeline.rayTracingPipeline = VK_TRUE;
+    // Ahead of the required chain: features.vulkan13's pNext is the chain's end.
+    features.vulkan13.pNext = &rayTracingPipeline;
+    ci.enabledExtensionCount = uint32_t(std::size(rayTracingExtensions));
+    ci.ppEnabledExtensionNames = rayTracingExtensions;
+  }
   VK_CHECK(vkCreateDevice(physicalDevice_, &ci, nullptr, &device_));
+  hardwareRayTracing_ = info_.hardwareRayTracingUsable;
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
   createCommandPoolAndFence();
 }

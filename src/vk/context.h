@@ -32,9 +32,13 @@ struct DeviceInfo {
   bool timestampsOnComputeQueue = false;
   bool shaderFloat16 = false;
   bool rayTracingPipeline = false;  // optional back end, not required
-  bool rayQuery = false;            // optional back end, not required
-  bool cooperativeMatrix = false;   // optional, not required
-  int rank = 0;                     // higher is preferred
+  // VK_KHR_ray_tracing_pipeline with VK_KHR_acceleration_structure and
+  // VK_KHR_deferred_host_operations and their features: what Context enables for the hardware
+  // tracer (src/rt/hardware_tracer.h) when it creates the device.
+  bool hardwareRayTracingUsable = false;
+  bool rayQuery = false;           // optional back end, not required
+  bool cooperativeMatrix = false;  // optional, not required
+  int rank = 0;                    // higher is preferred
 };
 
 struct ContextOptions {
@@ -88,6 +92,10 @@ class Context {
   uint32_t queueFamily() const { return queueFamily_; }
   const DeviceInfo& info() const { return info_; }
   const VkPhysicalDeviceLimits& limits() const { return limits_; }
+  // True when this device was created with the ray-tracing pipeline, acceleration structures
+  // and deferred host operations enabled (DeviceInfo::hardwareRayTracingUsable; never for an
+  // adopted device, whose enabled extensions Bounce cannot know).
+  bool hardwareRayTracing() const { return hardwareRayTracing_; }
 
   // Allocates dedicated memory for a resource; counted so tests can check that frames do
   // not allocate (DESIGN.md §1).
@@ -140,6 +148,7 @@ class Context {
   DeviceInfo info_;
   bool adopted_ = false;  // instance_, device_ and queue_ belong to the host
   bool validationEnabled_ = false;
+  bool hardwareRayTracing_ = false;
   bool debugUtils_ = false;
   PFN_vkCmdBeginDebugUtilsLabelEXT beginLabel_ = nullptr;
   PFN_vkCmdEndDebugUtilsLabelEXT endLabel_ = nullptr;
