@@ -36,6 +36,14 @@ void CommonOptions::addSceneOptions(CLI::App& cmd, const std::string& defaultSce
   cmd.add_option("--sky", sky,
                  "r,g,b constant sky radiance, or daylight[:T] for the Preetham sky lit by the sun "
                  "(turbidity T in [2, 10], default 3)");
+  cmd.add_option("--bvh", bvh,
+                 "BLAS node layout: binary (2-wide) or wide (8-wide compressed, Ylitie et al. "
+                 "2017); docs/ray-tracing.md")
+      ->capture_default_str();
+}
+
+GpuSceneOptions CommonOptions::gpuSceneOptions() const {
+  return GpuSceneOptions{.bvhLayout = rt::parseBvhLayout(bvh)};
 }
 
 void CommonOptions::addDeviceOptions(CLI::App& cmd) {
@@ -73,6 +81,7 @@ void CommonOptions::checkArguments() const {
            joinNames(builtins), didYouMean(scene, builtins));
   }
   if (!res.empty()) parseResolution(res);
+  requireOneOf("--bvh", bvh, {"binary", "wide"});
   parseOverrides(*this);
 }
 

@@ -10,6 +10,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "rt/gpu_scene.h"
 #include "scene/scene.h"
 #include "scene/scene_options.h"
 #include "vk/context.h"
@@ -33,6 +34,7 @@ struct CommonOptions {
   std::string camera;
   std::string sun;
   std::string sky;
+  std::string bvh = "binary";  // --bvh: the BLAS node layout (rt::BvhLayout)
   std::optional<uint32_t> device;
   bool validate = false;
   uint64_t deviceMemoryLimitMiB = 0;  // --device-memory-limit; 0: none
@@ -46,7 +48,8 @@ struct CommonOptions {
   // Checks the scene options' text without loading anything (a scene name not built in gets a
   // suggestion), so that usage errors come before any work.
   void checkArguments() const;
-  Scene loadScene() const;  // --scene plus --camera/--sun/--sky overrides
+  Scene loadScene() const;                  // --scene plus --camera/--sun/--sky overrides
+  GpuSceneOptions gpuSceneOptions() const;  // --bvh
   Resolution resolution() const;
   std::unique_ptr<vk::Context> createContext() const;
 };

@@ -557,7 +557,7 @@ int runBench(const BenchOptions& o) {
   const std::vector<BenchRun> runs = runsFrom(o);
   Scene scene = o.common.loadScene();
   std::unique_ptr<vk::Context> context = o.common.createContext();
-  GpuScene gpuScene(*context, scene);
+  GpuScene gpuScene(*context, scene, o.common.gpuSceneOptions());
   nlohmann::json report = {
       {"scene", scene.name},
       {"scene_source", o.common.scene},

@@ -51,6 +51,8 @@ nlohmann::json reportJson(const Scene& scene, const std::string& source, const s
   j["bvh_build_seconds"] = s.bvhBuildSeconds;
   j["bvh_build_mtriangles_per_second"] =
       s.bvhBuildSeconds > 0 ? double(s.uniqueTriangles) / s.bvhBuildSeconds * 1e-6 : 0.0;
+  j["bvh_layout"] = rt::bvhLayoutName(s.bvhLayout);
+  j["bvh_node_bytes"] = s.bvhNodeBytes;
   j["bvh_bytes"] = s.bvhBytes;
   j["texture_bytes"] = s.textureBytes;
   j["gpu_bytes"] = s.totalBytes;
@@ -94,18 +96,18 @@ int runBenchRays(const BenchRaysOptions& options) {
   // Before the BVH build, which takes a while on large scenes.
   if (tracer == RayTracer::Hardware && !HardwareTracer::supported(*context))
     fail("{}", HardwareTracer::unsupportedMessage(*context));
-  GpuScene gpuScene(*context, scene);
+  GpuScene gpuScene(*context, scene, options.common.gpuSceneOptions());
   const GpuSceneStats& s = gpuScene.stats();
   std::printf("scene %s: %llu triangles (%llu unique), device %s\n", scene.name.c_str(),
               (unsigned long long)s.triangles, (unsigned long long)s.uniqueTriangles,
               context->info().name.c_str());
   std::printf(
-      "BVH build %.3f s (%.2f M triangles/s), BVH %.1f MiB, textures %.1f MiB, GPU total %.1f "
-      "MiB\n",
-      s.bvhBuildSeconds,
+      "BVH %s: build %.3f s (%.2f M triangles/s), nodes %.1f MiB, nodes + triangles %.1f MiB, "
+      "textures %.1f MiB, GPU total %.1f MiB\n",
+      rt::bvhLayoutName(s.bvhLayout), s.bvhBuildSeconds,
       s.bvhBuildSeconds > 0 ? double(s.uniqueTriangles) / s.bvhBuildSeconds * 1e-6 : 0.0,
-      double(s.bvhBytes) / (1 << 20), double(s.textureBytes) / (1 << 20),
-      double(s.totalBytes) / (1 << 20));
+      double(s.bvhNodeBytes) / (1 << 20), double(s.bvhBytes) / (1 << 20),
+      double(s.textureBytes) / (1 << 20), double(s.totalBytes) / (1 << 20));
   RayBenchOptions bench;
   bench.resolution = res;
   bench.iterations = options.iterations;

@@ -109,7 +109,7 @@ int runReference(const ReferenceVerbOptions& o) {
     applyTimeOfDay(*o.timeOfDay, daySun, daySky, scene.sun, scene.sky);
   }
   std::unique_ptr<vk::Context> context = o.common.createContext();
-  GpuScene gpuScene(*context, scene);
+  GpuScene gpuScene(*context, scene, o.common.gpuSceneOptions());
   ReferencePathTracer tracer(*context, gpuScene, scene);
   ProgressLine progress;
   if (progress.enabled())

@@ -203,7 +203,7 @@ int renderPrimaryView(const RenderOptions& options, PrimaryViewKind view) {
                                               : options.common.resolution();
   Scene scene = options.common.loadScene();
   std::unique_ptr<vk::Context> context = options.common.createContext();
-  GpuScene gpuScene(*context, scene);
+  GpuScene gpuScene(*context, scene, options.common.gpuSceneOptions());
   PrimaryViewPass pass(*context, gpuScene);
   vk::GpuTimer timer(*context);
   ImageRGBA32F image = pass.render(effectiveCamera(scene), res.width, res.height, view, &timer);
@@ -456,7 +456,7 @@ int renderHybridFrame(const RenderOptions& options) {
   Scene scene = options.common.loadScene();
   SceneAnimation animation = animationFrom(options, scene);
   std::unique_ptr<vk::Context> context = options.common.createContext();
-  GpuScene gpuScene(*context, scene);
+  GpuScene gpuScene(*context, scene, options.common.gpuSceneOptions());
   HybridFrame frame(*context, gpuScene, scene, settings);
   if (options.listViews) return listViews(frame);
   checkView(frame, options.view);

@@ -1,10 +1,12 @@
 // The CPU BVH: structural invariants of built trees on random and degenerate input,
 // determinism across thread counts, the CPU traversal of the GPU arrays against brute force on
-// random multi-instance scenes (with and without an alpha test), TLAS rebuilds after moves, and
-// build throughput (printed, not asserted).
+// random multi-instance scenes (with and without an alpha test), TLAS rebuilds after moves, the
+// wide compressed BLAS (its encoding, conservative quantisation, and traversal against brute
+// force and the binary layout) and build throughput (printed, not asserted).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +21,7 @@
 #include "rt/bvh_builder.h"
 #include "rt/cpu_trace.h"
 #include "rt/scene_bvh.h"
+#include "rt/wide_bvh.h"
 #include "scene/load.h"
 
 namespace bounce::rt {
@@ -795,6 +798,241 @@ TEST(SceneBvh, RejectsUnusableScenes) {
     bad.instances[1].mesh = 99;
     EXPECT_THROW(buildSceneBvh(bad), Error);
   }
+}
+
+// ---- the wide compressed BLAS (rt/wide_bvh.h) -------------------------------------------------
+
+// Walks a collapsed tree, checking its encoding (scene_layout.h, GpuWideBvhNode) and that every
+// child's decoded box contains the exact box of the primitives under it.
+class WideChecker {
+ public:
+  WideChecker(const WideBvh& wide, const Primitives& input) : wide_(wide), input_(input) {}
+
+  void check() {
+    seen_.assign(input_.boxes.size(), 0);
+    subtree(0, 1);
+    EXPECT_EQ(wide_.primitiveOrder.size(), input_.boxes.size());
+    for (size_t i = 0; i < seen_.size(); ++i)
+      EXPECT_EQ(seen_[i], 1) << "primitive " << i << " reached " << int(seen_[i]) << " times";
+    EXPECT_LE(wide_.maxDepth, gpu::BVH_WIDE_STACK_SIZE);
+    EXPECT_GT(checkedChildren_, 0);
+  }
+  int checkedChildren() const { return checkedChildren_; }
+
+ private:
+  // The exact box of everything under wide node `n`.
+  Aabb subtree(uint32_t n, uint32_t depth) {
+    EXPECT_LE(depth, wide_.maxDepth);
+    const gpu::GpuWideBvhNode& node = wide_.nodes.at(n);
+    const uint32_t interiorMask = node.exponentsAndMask >> 24;
+    uint32_t interiorSeen = 0, triangleBits = 0;
+    Aabb all;
+    for (uint32_t slot = 0; slot < 8; ++slot) {
+      const uint32_t meta = wideByte(node.meta, slot);
+      const bool interior = (interiorMask >> slot) & 1u;
+      if (meta == 0) {
+        EXPECT_FALSE(interior) << "an empty slot marked interior";
+        continue;
+      }
+      Aabb exact;
+      if (interior) {
+        EXPECT_EQ(meta, gpu::BVH_WIDE_INTERIOR_META + slot);
+        exact = subtree(node.childBase + interiorSeen++, depth + 1);
+      } else {
+        const uint32_t offset = meta & 31u, unary = meta >> 5;
+        EXPECT_TRUE(unary == 1 || unary == 3 || unary == 7) << "meta " << meta;
+        const uint32_t count = uint32_t(std::popcount(unary));
+        EXPECT_LE(offset + count, 24u);
+        EXPECT_EQ(triangleBits & (unary << offset), 0u) << "leaves overlap";
+        triangleBits |= unary << offset;
+        for (uint32_t k = 0; k < count; ++k) {
+          const uint32_t p = wide_.primitiveOrder.at(node.triangleBase + offset + k);
+          ++seen_.at(p);
+          exact.extend(input_.boxes[p]);
+        }
+      }
+      const Aabb decoded = decodeWideChildBox(node, slot);
+      EXPECT_TRUE(contains(decoded.min, decoded.max, exact))
+          << "node " << n << " slot " << slot << ": decoded (" << decoded.min.x << ", "
+          << decoded.min.y << ", " << decoded.min.z << ")-(" << decoded.max.x << ", "
+          << decoded.max.y << ", " << decoded.max.z << ") misses exact (" << exact.min.x << ", "
+          << exact.min.y << ", " << exact.min.z << ")-(" << exact.max.x << ", " << exact.max.y
+          << ", " << exact.max.z << ")";
+      ++checkedChildren_;
+      all.extend(exact);
+    }
+    EXPECT_EQ(uint32_t(std::popcount(interiorMask)), interiorSeen);
+    return all;
+  }
+
+  const WideBvh& wide_;
+  const Primitives& input_;
+  std::vector<uint8_t> seen_;
+  int checkedChildren_ = 0;
+};
+
+WideBvh buildWide(const Primitives& input) {
+  return collapseToWide(buildBvh(input.boxes, input.centroids, leafSize(3)));
+}
+
+// Conservativeness of the quantisation, where rounding bites: tiny triangles far from the
+// origin, flat and point-like inputs, huge spreads, and every tree size up to a few thousand.
+TEST(WideBvh, QuantisedBoxesContainTheirChildrenExactly) {
+  int children = 0;
+  for (size_t n : {1u, 2u, 3u, 4u, 9u, 25u, 100u, 1000u, 5000u}) {
+    SCOPED_TRACE(std::to_string(n) + " triangles");
+    Primitives soup = primitivesOf(triangleSoup(n, uint32_t(n) + 11));
+    WideBvh wide = buildWide(soup);
+    WideChecker checker(wide, soup);
+    checker.check();
+    children += checker.checkedChildren();
+  }
+  // 1 cm triangles 1 km from the origin (a grid step of about 2^-16 against coordinates of
+  // 2^10: the float sum origin + q * 2^e rounds at the level of the box itself).
+  std::vector<Triangle> far = triangleSoup(3000, 5, 3.0f, 0.01f);
+  for (Triangle& t : far)
+    for (glm::vec3* p : {&t.a, &t.b, &t.c}) *p += glm::vec3(1000.0f, -1000.0f, 1000.0f);
+  // Flat (z = const), needle and point-like triangles, and a spread of 1e-3 to 1e6.
+  std::vector<Triangle> odd = triangleSoup(500, 6);
+  for (Triangle& t : odd) t.a.z = t.b.z = t.c.z = 2.0f;
+  std::vector<Triangle> points(200, Triangle{glm::vec3(1.5f), glm::vec3(1.5f), glm::vec3(1.5f)});
+  odd.insert(odd.end(), points.begin(), points.end());
+  std::vector<Triangle> spread = triangleSoup(2000, 7, 2e6f, 1e-3f);
+  for (const std::vector<Triangle>* input : {&far, &odd, &spread}) {
+    Primitives primitives = primitivesOf(*input);
+    WideBvh wide = buildWide(primitives);
+    WideChecker checker(wide, primitives);
+    checker.check();
+    children += checker.checkedChildren();
+  }
+  std::printf("[ bvh ] wide: %d quantised child boxes checked\n", children);
+  EXPECT_GT(children, 5000);
+}
+
+TEST(WideBvh, RefusesLeavesAboveThreeTriangles) {
+  Primitives soup = primitivesOf(triangleSoup(400, 3));
+  BvhBuildOptions options = leafSize(8);
+  options.traversalCost = 8.0f;  // full leaves
+  EXPECT_THROW(collapseToWide(buildBvh(soup.boxes, soup.centroids, options)), Error);
+}
+
+SceneBvhOptions wideOptions() {
+  SceneBvhOptions options;
+  options.layout = BvhLayout::Wide;
+  return options;
+}
+
+TEST(CpuTraceWide, MatchesBruteForceOnRandomScenes) {
+  Agreement total;
+  for (uint32_t seed : {1u, 2u, 3u}) {
+    SCOPED_TRACE("scene seed " + std::to_string(seed));
+    Scene scene = randomScene(seed);
+    Agreement a = compareWithBruteForce(scene, randomRays(scene, 3500, seed * 101), wideOptions());
+    total.rays += a.rays;
+    total.hits += a.hits;
+    total.ties += a.ties;
+    total.alphaChanged += a.alphaChanged;
+    if (HasFatalFailure()) return;
+  }
+  std::printf("[ bvh ] wide: %d rays, %d closest hits, %d ties, alpha test changed %d answers\n",
+              total.rays, total.hits, total.ties, total.alphaChanged);
+  EXPECT_GT(total.hits, total.rays / 2);
+  EXPECT_GT(total.alphaChanged, total.rays / 100);
+}
+
+// Tiny triangles 1 km from the origin, rays aimed at their vertices and edge midpoints: where
+// a non-conservative quantised box would cull hits that the watertight test finds.
+TEST(CpuTraceWide, EdgeRaysFarFromTheOriginMatchBruteForce) {
+  std::vector<Triangle> far = triangleSoup(2000, 9, 3.0f, 0.01f);
+  for (Triangle& t : far)
+    for (glm::vec3* p : {&t.a, &t.b, &t.c}) *p += glm::vec3(1000.0f, -1000.0f, 1000.0f);
+  Scene scene;
+  scene.materials.resize(1);
+  Mesh mesh;
+  mesh.geometries.push_back(geometryOf(far, 0));
+  scene.meshes.push_back(mesh);
+  scene.instances.push_back({0, glm::mat4(1.0f), "far"});
+  std::mt19937 rng(10);
+  std::vector<RayQuery> rays;
+  for (size_t i = 0; i < 3000; ++i) {
+    const Triangle& t = far[i % far.size()];
+    const glm::vec3 corners[3] = {t.a, t.b, t.c};
+    const glm::vec3 target =
+        i % 2 ? corners[i % 3] : 0.5f * (corners[i % 3] + corners[(i + 1) % 3]);
+    RayQuery q;
+    q.ray.origin = target + glm::normalize(randomPoint(rng, -1.0f, 1.0f)) * 2.0f;
+    q.ray.direction = target - q.ray.origin;
+    q.tMax = kInfinity;
+    rays.push_back(q);
+  }
+  Agreement a = compareWithBruteForce(scene, rays, wideOptions());
+  std::printf("[ bvh ] wide, far edges: %d rays, %d hits\n", a.rays, a.hits);
+  EXPECT_GT(a.hits, a.rays / 4);
+}
+
+// The two layouts give the same answers on real scenes: the same triangle (or a tie within
+// 1e-5 relative t) with the same t and barycentrics, identical visibility, with and without
+// the alpha test.
+void expectLayoutsAgree(const Scene& scene, size_t rayCount, uint32_t seed) {
+  SceneBvh binary = buildSceneBvh(scene);
+  SceneBvh wide = buildSceneBvh(scene, wideOptions());
+  ASSERT_EQ(wide.layout, BvhLayout::Wide);
+  ASSERT_TRUE(wide.blasNodes.empty());
+  CpuTracer binaryTracer(binary), wideTracer(wide);
+  const std::vector<RayQuery> rays = randomRays(scene, rayCount, seed);
+  Agreement agreement;
+  int visibilityDiffers = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Ray& ray = rays[i].ray;
+    const float tMax = rays[i].tMax;
+    for (const AlphaTest& alpha : {AlphaTest(), AlphaTest(evenPrimitivesOpaque)}) {
+      ++agreement.rays;
+      const TraceHit w = wideTracer.closestHit(ray, tMax, alpha);
+      const TraceHit b = binaryTracer.closestHit(ray, tMax, alpha);
+      expectSameClosestHit(w, b, i, agreement);
+      if (w.hit && b.hit && w.primitive == b.primitive && w.instance == b.instance &&
+          w.geometry == b.geometry)
+        EXPECT_EQ(w.t, b.t) << "ray " << i << ": same triangle, same arithmetic";
+      visibilityDiffers +=
+          wideTracer.anyHit(ray, tMax, alpha) != binaryTracer.anyHit(ray, tMax, alpha);
+    }
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  EXPECT_EQ(visibilityDiffers, 0);
+  std::printf(
+      "[ bvh ] %s: wide %zu nodes (%.2f MiB), binary %zu nodes (%.2f MiB); %d queries, "
+      "%d hits, %d ties, all agree\n",
+      scene.name.c_str(), wide.blasWideNodes.size(), double(wide.stats.bytes.blasNodes) / (1 << 20),
+      binary.blasNodes.size(), double(binary.stats.bytes.blasNodes) / (1 << 20), agreement.rays,
+      agreement.hits, agreement.ties);
+  EXPECT_GT(agreement.hits, agreement.rays / 5);
+}
+
+class CpuTraceWideScenes : public ::testing::TestWithParam<std::string> {};
+TEST_P(CpuTraceWideScenes, MatchesBinary) {
+  std::optional<Scene> scene = makeBuiltinScene(GetParam());
+  if (!scene) GTEST_SKIP() << "built-in scene '" << GetParam() << "' not available";
+  expectLayoutsAgree(*scene, 4000, 31);
+}
+// cornell, sunroom: real rooms; foliage: instancing and alpha-tested leaves; city: a large
+// instanced scene (441 k unique triangles).
+INSTANTIATE_TEST_SUITE_P(Builtin, CpuTraceWideScenes,
+                         ::testing::Values("cornell", "sunroom", "foliage", "city"));
+
+// A soup (overlapping triangles everywhere) and the random scenes' rotated, non-uniformly
+// scaled and mirrored instances.
+TEST(CpuTraceWide, MatchesBinaryOnSoupAndTransformedInstances) {
+  Scene soup;
+  soup.name = "soup";
+  soup.materials.resize(2);
+  soup.materials[1].alphaMode = AlphaMode::Mask;
+  Mesh mesh;
+  mesh.geometries.push_back(geometryOf(triangleSoup(20000, 12, 10.0f, 0.6f), 0));
+  mesh.geometries.push_back(geometryOf(triangleSoup(5000, 13, 10.0f, 0.6f), 1));
+  soup.meshes.push_back(mesh);
+  soup.instances.push_back({0, glm::mat4(1.0f), "soup"});
+  expectLayoutsAgree(soup, 4000, 5);
+  for (uint32_t seed : {6u, 7u}) expectLayoutsAgree(randomScene(seed), 3000, seed);
 }
 
 // ---- throughput (printed, never asserted) -----------------------------------------------------

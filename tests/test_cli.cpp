@@ -115,6 +115,7 @@ TEST(Cli, UsageErrorsAreOneLineWithExitCodeOneAndASuggestion) {
       {"render --gi evolv", {"--gi 'evolv'", "none, evolve, cache", "did you mean evolve?"}},
       {"render --preset desktpo", {"--preset 'desktpo'", "did you mean desktop?"}},
       {"render --vbuffer rastr", {"--vbuffer 'rastr'", "did you mean raster?"}},
+      {"bench-rays --bvh wid", {"--bvh 'wid'", "binary, wide", "did you mean wide?"}},
       {"render --restir-second-vertex pth", {"--restir-second-vertex 'pth'", "did you mean path?"}},
       {"reference --scene cornel", {"--scene 'cornel'", "did you mean cornell?"}},
       {"render --frames abc", {"--frames"}},

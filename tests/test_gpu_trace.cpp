@@ -2,7 +2,8 @@
 // (src/rt/cpu_trace.h), which loops over every triangle of every instance with the same
 // watertight triangle test: on 10,000 random rays per scene, the same closest primitive
 // (unless two hits tie within 1e-5 relative t), t within 1e-4 relative, identical visibility
-// answers, alpha-tested leaves included. Validation layers must stay silent.
+// answers, alpha-tested leaves included; with both BLAS layouts (binary and wide), the wide one
+// also against its CPU mirror. Validation layers must stay silent.
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -66,11 +67,37 @@ struct Mismatches {
   int hitMiss = 0, primitive = 0, distance = 0, visibility = 0, facing = 0, hits = 0;
 };
 
-void compareScene(const std::string& name) {
+// With the wide layout the GPU answers are also checked against the CPU mirror of the wide
+// traversal (rt::CpuTracer on the same arrays): the same hit or miss, primitive, t and facing,
+// and the same visibility answer on every ray.
+void compareWithMirror(const GpuScene& gpuScene, const std::vector<gpu::GpuRay>& rays,
+                       const std::vector<gpu::GpuHit>& gpuHits, const rt::AlphaTest& alpha) {
+  rt::CpuTracer mirror(gpuScene.bvh());
+  int differ = 0, visibility = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    rt::Ray ray{rays[i].origin, rays[i].direction, rays[i].tMin};
+    const rt::TraceHit c = mirror.closestHit(ray, rays[i].tMax, alpha);
+    const gpu::GpuHit& g = gpuHits[i];
+    const bool same =
+        (g.instance != gpu::HIT_NONE) == c.hit &&
+        (!c.hit ||
+         (g.instance == c.instance && g.geometry == c.geometry && g.primitive == c.primitive &&
+          (g.frontFacing != 0) == c.frontFacing && std::abs(g.t - c.t) <= 1e-6f * c.t));
+    if (!same && ++differ <= 5)
+      ADD_FAILURE() << "ray " << i << ": gpu instance " << g.instance << " primitive "
+                    << g.primitive << " t " << g.t << ", cpu mirror " << c.instance << " "
+                    << c.primitive << " " << c.t;
+    visibility += (g.occluded != 0) != mirror.anyHit(ray, rays[i].tMax, alpha);
+  }
+  EXPECT_EQ(differ, 0);
+  EXPECT_EQ(visibility, 0);
+}
+
+void compareScene(const std::string& name, rt::BvhLayout layout = rt::BvhLayout::Binary) {
   SCOPED_TRACE(name);
   Scene scene = loadScene(name);
   vk::Context context(vk::contextOptionsFromEnvironment());
-  GpuScene gpuScene(context, scene);
+  GpuScene gpuScene(context, scene, GpuSceneOptions{.bvhLayout = layout});
   TraceRaysPass pass(context, gpuScene);
   std::vector<gpu::GpuRay> rays = makeRays(scene, 1234);
   std::vector<gpu::GpuHit> gpuHits = pass.trace(rays, true);
@@ -93,6 +120,7 @@ void compareScene(const std::string& name) {
       }
     });
   for (std::thread& t : pool) t.join();
+  if (layout == rt::BvhLayout::Wide) compareWithMirror(gpuScene, rays, gpuHits, alpha);
 
   Mismatches m;
   for (size_t i = 0; i < rays.size(); ++i) {
@@ -124,7 +152,8 @@ void compareScene(const std::string& name) {
   // The comparison must cover real hits, not only misses: at least a thousand of them.
   EXPECT_GE(m.hits, 1000);
   EXPECT_EQ(context.validationErrorCount(), 0u);
-  std::printf("%s: %d rays, %d hits, all agree\n", name.c_str(), kRayCount, m.hits);
+  std::printf("%s (%s BVH): %d rays, %d hits, all agree\n", name.c_str(), rt::bvhLayoutName(layout),
+              kRayCount, m.hits);
 }
 
 class GpuTraceBuiltin : public ::testing::TestWithParam<std::string> {};
@@ -134,6 +163,14 @@ TEST_P(GpuTraceBuiltin, MatchesBruteForce) {
 INSTANTIATE_TEST_SUITE_P(Scenes, GpuTraceBuiltin,
                          ::testing::Values("cornell", "sunroom", "foliage", "manylights", "furnace",
                                            "city"));
+
+// The wide compressed BLAS (--bvh wide) on the same rays: against brute force and against
+// its CPU mirror. cornell and sunroom: rooms; foliage: instances and alpha-tested leaves.
+class GpuTraceWide : public ::testing::TestWithParam<std::string> {};
+TEST_P(GpuTraceWide, MatchesBruteForceAndCpuMirror) {
+  compareScene(GetParam(), rt::BvhLayout::Wide);
+}
+INSTANTIATE_TEST_SUITE_P(Scenes, GpuTraceWide, ::testing::Values("cornell", "sunroom", "foliage"));
 
 TEST(GpuTraceShared, GlassVaseFlowersWithAlphaTestedLeaves) {
   compareScene(test::sharedDir() + "/scenes/glass_vase_flowers/glTF/GlassVaseFlowers.gltf");

@@ -96,7 +96,7 @@ Viewer::Viewer(const ViewerOptions& options, Scene scene)
 
     recreateSwapchain();
     auto owned = std::make_unique<Scene>(std::move(scene));
-    auto gpuScene = std::make_unique<GpuScene>(context_, *owned);
+    auto gpuScene = std::make_unique<GpuScene>(context_, *owned, options.common.gpuSceneOptions());
     useScene(std::move(owned), std::move(gpuScene), options.common.scene);
     initImGui();
     glfwSetWindowUserPointer(window_.window(), this);
@@ -158,7 +158,7 @@ void Viewer::loadScene(const std::string& nameOrPath) {
   try {
     source.checkArguments();
     scene = std::make_unique<Scene>(source.loadScene());
-    gpuScene = std::make_unique<GpuScene>(context_, *scene);
+    gpuScene = std::make_unique<GpuScene>(context_, *scene, source.gpuSceneOptions());
   } catch (const Error& e) {
     ui_.status = e.what();
     std::fprintf(stderr, "bounce view: %s\n", e.what());

@@ -7,6 +7,9 @@
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer BvhNodeArray {
   GpuBvhNode v[];
 };
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer WideBvhNodeArray {
+  GpuWideBvhNode v[];
+};
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer TriangleArray {
   GpuTriangle v[];
 };

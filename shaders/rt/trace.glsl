@@ -97,8 +97,7 @@ uint childEntry(bool inBlas, uint index, uint count) {
 // then leaves (Aila and Laine 2009, "while-while"): the lanes of a warp fetch nodes together and
 // test triangles together instead of taking turns (measured against testing a node's leaves as
 // soon as it is fetched: docs/decisions.md).
-TraceHit traceScene(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax, bool alphaTest,
-                    bool anyHit) {
+TraceHit noHit(float tMax) {
   TraceHit best;
   best.t = tMax;
   best.instance = BVH_INVALID;
@@ -106,6 +105,12 @@ TraceHit traceScene(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax, boo
   best.primitive = BVH_INVALID;
   best.barycentrics = vec2(0.0);
   best.frontFacing = false;
+  return best;
+}
+
+TraceHit traceSceneBinary(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax, bool alphaTest,
+                          bool anyHit) {
+  TraceHit best = noHit(tMax);
   if (scene.instanceCount == 0u) return best;
 
   uint stack[BVH_STACK_SIZE];
@@ -192,6 +197,148 @@ TraceHit traceScene(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax, boo
     }
   }
   return best;
+}
+
+// ---- the wide compressed BLAS (BVH_LAYOUT_WIDE; src/rt/scene_bvh.h, "Wide BLAS traversal") ----
+
+uint wideByte(uvec2 bytes, uint slot) {
+  return (((slot & 4u) != 0u ? bytes.y : bytes.x) >> ((slot & 3u) * 8u)) & 0xFFu;
+}
+
+// A child's quantised box decoded on the node's grid: origin + q * 2^e, where q * 2^e is exact,
+// so the one rounding of the sum gives the planes the builder checked to contain the child's
+// exact box (src/rt/wide_bvh.cpp); then the same conservative slab test as the binary layout.
+float intersectWideChild(GpuWideBvhNode node, vec3 scale, uint slot, BoxRay r, float tMin,
+                         float tMax) {
+  vec3 qLo = vec3(wideByte(node.quantLoX, slot), wideByte(node.quantLoY, slot),
+                  wideByte(node.quantLoZ, slot));
+  vec3 qHi = vec3(wideByte(node.quantHiX, slot), wideByte(node.quantHiY, slot),
+                  wideByte(node.quantHiZ, slot));
+  precise vec3 lo = node.origin + qLo * scale;
+  precise vec3 hi = node.origin + qHi * scale;
+  return intersectBox(lo, hi, r, tMin, tMax);
+}
+
+// Runs one instance's wide BLAS to completion (Ylitie, Karras and Laine 2017, §4): node groups
+// (child base, hit bits 24..31 | interior mask) on a stack of their own; children visited in
+// octant order (highest hit bit first), triangles of a node tested right after it. Returns true
+// when anyHit found a hit (then in best).
+bool traceBlasWide(uint instance, vec3 worldOrigin, vec3 worldDir, float tMin, bool alphaTest,
+                   bool anyHit, inout TraceHit best) {
+  GpuInstance inst = sceneInstance(instance);
+  bool mirrored = dot(inst.worldToObject[0].xyz,
+                      cross(inst.worldToObject[1].xyz, inst.worldToObject[2].xyz)) < 0.0;
+  LevelRay ray = makeLevelRay(transformPoint(inst.worldToObject, worldOrigin),
+                              transformVector(inst.worldToObject, worldDir));
+  uint octant = (ray.box.negative.x ? 1u : 0u) | (ray.box.negative.y ? 2u : 0u) |
+                (ray.box.negative.z ? 4u : 0u);
+  uint octantInv = 7u ^ octant;
+  WideBvhNodeArray nodes = WideBvhNodeArray(scene.blasNodes);
+  TriangleArray triangles = TriangleArray(scene.triangles);
+
+  uvec2 stack[BVH_WIDE_STACK_SIZE];
+  int sp = 0;
+  uvec2 group = uvec2(inst.blasRoot, 0x80000000u);
+  while (true) {
+    if ((group.y & 0xFF000000u) == 0u) {
+      if (sp == 0) return false;
+      group = stack[--sp];
+    }
+    uint bit = uint(findMSB(group.y));
+    group.y &= ~(1u << bit);
+    uint slot = (bit - 24u) ^ octantInv;
+    uint nodeIndex = group.x + bitCount(group.y & 0xFFu & ((1u << slot) - 1u));
+    if ((group.y & 0xFF000000u) != 0u) stack[sp++] = group;
+
+    GpuWideBvhNode node = nodes.v[nodeIndex];
+    uint interiorMask = node.exponentsAndMask >> 24;
+    vec3 scale = vec3(uintBitsToFloat((node.exponentsAndMask & 0xFFu) << 23),
+                      uintBitsToFloat(((node.exponentsAndMask >> 8) & 0xFFu) << 23),
+                      uintBitsToFloat(((node.exponentsAndMask >> 16) & 0xFFu) << 23));
+    uint interiorHits = 0u;
+    uint triangleHits = 0u;
+    for (uint s = 0u; s < 8u; ++s) {
+      uint meta = wideByte(node.meta, s);
+      if (meta == 0u) continue;
+      if (intersectWideChild(node, scale, s, ray.box, tMin, best.t) > best.t) continue;
+      if ((interiorMask & (1u << s)) != 0u)
+        interiorHits |= 1u << (24u + (s ^ octantInv));
+      else
+        triangleHits |= (meta >> 5) << (meta & 31u);
+    }
+    group = uvec2(node.childBase, interiorHits | interiorMask);
+
+    while (triangleHits != 0u) {
+      uint i = node.triangleBase + uint(findLSB(triangleHits));
+      triangleHits &= triangleHits - 1u;
+      GpuTriangle tri = triangles.v[i];
+      TriangleHit h = intersectTriangle(ray.origin, ray.shear, tri.v0, tri.v1, tri.v2, tMin,
+                                        best.t);
+      if (!h.hit) continue;
+      uint geometry = inst.geometryBase + (tri.geometry & ~GPU_TRIANGLE_ALPHA_TESTED);
+      if (alphaTest && (tri.geometry & GPU_TRIANGLE_ALPHA_TESTED) != 0u &&
+          !alphaAccepts(geometry, tri.primitive, vec2(h.b1, h.b2)))
+        continue;
+      best.t = h.t;
+      best.instance = instance;
+      best.geometry = geometry;
+      best.primitive = tri.primitive;
+      best.barycentrics = vec2(h.b1, h.b2);
+      best.frontFacing = h.frontFacing != mirrored;
+      if (anyHit) return true;
+    }
+  }
+  return false;
+}
+
+// The 2-wide TLAS loop of traceSceneBinary with instance entries only; each instance's wide
+// BLAS runs to completion before the next TLAS entry is popped.
+TraceHit traceSceneWide(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax, bool alphaTest,
+                        bool anyHit) {
+  TraceHit best = noHit(tMax);
+  if (scene.instanceCount == 0u) return best;
+  uint stack[BVH_STACK_SIZE / 2];
+  int sp = 0;
+  BoxRay ray = makeBoxRay(worldOrigin, worldDir);
+  BvhNodeArray nodes = BvhNodeArray(scene.tlasNodes);
+  uint next = 0u;  // the TLAS root
+  while (true) {
+    while ((next & BVH_STACK_INSTANCE) == 0u) {
+      GpuBvhNode node = nodes.v[next];
+      float tLeft = intersectBox(node.leftMin, node.leftMax, ray, tMin, best.t);
+      float tRight = intersectBox(node.rightMin, node.rightMax, ray, tMin, best.t);
+      bool hitLeft = tLeft <= best.t;
+      bool hitRight = tRight <= best.t;
+      uint leftEntry = childEntry(false, node.leftIndex, node.leftCount);
+      uint rightEntry = childEntry(false, node.rightIndex, node.rightCount);
+      if (hitLeft && hitRight) {
+        bool leftNear = tLeft <= tRight;
+        stack[sp++] = leftNear ? rightEntry : leftEntry;
+        next = leftNear ? leftEntry : rightEntry;
+      } else if (hitLeft) {
+        next = leftEntry;
+      } else if (hitRight) {
+        next = rightEntry;
+      } else {
+        next = sp > 0 ? stack[--sp] : NO_ENTRY;
+      }
+    }
+    if (next == NO_ENTRY) break;
+    if (traceBlasWide(next & ~BVH_STACK_INSTANCE, worldOrigin, worldDir, tMin, alphaTest, anyHit,
+                      best))
+      return best;
+    next = sp > 0 ? stack[--sp] : NO_ENTRY;
+  }
+  return best;
+}
+
+// The layout is the scene's (GpuSceneRefs::blasLayout): one uniform branch per ray, none per
+// node, so the binary loop runs exactly as before (docs/ray-tracing.md, "Choosing the layout").
+TraceHit traceScene(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax, bool alphaTest,
+                    bool anyHit) {
+  if (scene.blasLayout == BVH_LAYOUT_WIDE)
+    return traceSceneWide(worldOrigin, worldDir, tMin, tMax, alphaTest, anyHit);
+  return traceSceneBinary(worldOrigin, worldDir, tMin, tMax, alphaTest, anyHit);
 }
 
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer RayCounter { uint rays; };

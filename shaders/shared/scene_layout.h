@@ -15,8 +15,8 @@ BOUNCE_BEGIN_SHARED
 // An empty child has count == 0 and index == BVH_INVALID; its box is inverted so no ray hits it.
 // Node 0 of each tree is its root; child indices are absolute in the array (a BLAS's nodes sit
 // in one shared array at an offset given by its instances' blasRoot).
-// The wide compressed layout planned for later (8-wide, quantised boxes) replaces this struct
-// and the traversal loop only; the triangle and instance layouts stay.
+// The BLAS may instead use the 8-wide compressed layout below (GpuWideBvhNode); the TLAS is
+// 2-wide in both layouts, and the triangle and instance layouts are the same.
 BOUNCE_CONST uint BVH_INVALID = 0xFFFFFFFFu;
 BOUNCE_CONST uint BVH_MAX_LEAF_TRIANGLES = 8u;
 BOUNCE_CONST uint BVH_STACK_SIZE = 64u;
@@ -41,6 +41,58 @@ struct GpuBvhNode {
   uint rightCount;
 };
 BOUNCE_CHECK_SIZE(GpuBvhNode, 64);
+
+// ---- the 8-wide compressed BLAS layout ---------------------------------------------------------
+// After Ylitie, Karras and Laine 2017 ("Efficient incoherent ray traversal on GPUs through
+// compressed wide BVHs", §3): one 80-byte node holds up to 8 children, their boxes quantised to
+// 8 bits per plane on a per-node grid. Built by collapsing the binned-SAH binary tree
+// (src/rt/wide_bvh.h); docs/ray-tracing.md has the whole story.
+//
+// Grid: the node's box starts at `origin`; along axis a the grid step is 2^e_a, e_a the signed
+// exponent stored biased by 127 in byte a of `exponentsAndMask` (so the step's float bits are
+// byte << 23). A child's box decodes to origin + q * 2^e per plane (q the 8-bit quantised
+// plane); q * 2^e is exact in float, so the decoded plane is one rounding of that sum, and the
+// builder chooses every q so that the decoded float box contains the child's exact box
+// (conservative: a slab test on the decoded box never culls a hit on the child's triangles).
+// Children: slot i (0..7) is byte i of `meta`, `quantLo*`, `quantHi*` (byte i of a uvec2 is
+// byte i % 4 of word i / 4, little end first). meta byte of a slot:
+//   empty     0: skipped by the traversal (its quantised planes are 0 and mean nothing)
+//   interior  BVH_WIDE_INTERIOR_META + i (= 1 << 5 | (24 + i), the paper's encoding); bit i of
+//             the interior mask (byte 3 of `exponentsAndMask`) is set, and the child node is
+//             childBase + the number of interior slots below i
+//   leaf      (unary triangle count: 1, 3 or 7) << 5 | offset; its triangles are
+//             triangles[triangleBase + offset .. + count), count <= BVH_WIDE_MAX_LEAF_TRIANGLES,
+//             offset + count <= 24, so a node's leaf triangles fit 24 bits of a hit mask.
+// Interior children of a node are contiguous from childBase; its leaf triangles contiguous from
+// triangleBase (absolute indices, already offset when the per-mesh trees are concatenated).
+// Slot order: the child in slot i is the one a ray whose direction lies in octant i reaches
+// first (octant bit 0: x < 0, bit 1: y < 0, bit 2: z < 0), so a ray visits the interior
+// children hit in the order slot ^ octant = 0, 1, .. 7 without sorting by distance.
+BOUNCE_CONST uint BVH_WIDE_MAX_LEAF_TRIANGLES = 3u;
+BOUNCE_CONST uint BVH_WIDE_EXPONENT_BIAS = 127u;
+BOUNCE_CONST uint BVH_WIDE_INTERIOR_META = 0x38u;  // meta of slot i: 0x38 + i (= 32 | 24 + i)
+// Traversal stack of the wide BLAS (node groups: child base, hit bits | interior mask); each
+// level pushes at most one entry and a tree is at most BVH_STACK_SIZE / 2 levels deep.
+BOUNCE_CONST uint BVH_WIDE_STACK_SIZE = 32u;
+
+struct GpuWideBvhNode {
+  vec3 origin;
+  uint exponentsAndMask;  // bytes 0..2: biased exponents of x, y, z; byte 3: interior mask
+  uint childBase;         // first child node (blasNodes index)
+  uint triangleBase;      // first leaf triangle (triangles index)
+  uvec2 meta;
+  uvec2 quantLoX;
+  uvec2 quantLoY;
+  uvec2 quantLoZ;
+  uvec2 quantHiX;
+  uvec2 quantHiY;
+  uvec2 quantHiZ;
+};
+BOUNCE_CHECK_SIZE(GpuWideBvhNode, 80);
+
+// GpuSceneRefs::blasLayout: which node layout blasNodes holds.
+BOUNCE_CONST uint BVH_LAYOUT_BINARY = 0u;  // GpuBvhNode
+BOUNCE_CONST uint BVH_LAYOUT_WIDE = 1u;    // GpuWideBvhNode
 
 // Triangles in BVH leaf order with their positions copied in (object space), so the
 // intersection loop touches one array. `geometry` holds the geometry index local to the mesh
@@ -111,7 +163,7 @@ BOUNCE_CHECK_SIZE(GpuMaterial, 64);
 // ---- the scene as the shaders see it ---------------------------------------------------------
 // Addresses of every scene array; bound as a uniform buffer at (set 0, binding 0).
 struct GpuSceneRefs {
-  DeviceAddress blasNodes;   // GpuBvhNode[]
+  DeviceAddress blasNodes;   // GpuBvhNode[] or GpuWideBvhNode[] (blasLayout)
   DeviceAddress triangles;   // GpuTriangle[]
   DeviceAddress tlasNodes;   // GpuBvhNode[]
   DeviceAddress instances;   // GpuInstance[]
@@ -134,7 +186,9 @@ struct GpuSceneRefs {
   // setRayCounting; `bounce bench` reports rays per pass with it).
   uint rayCounting;
   vec3 boundsMax;
-  float pad1;
+  // BVH_LAYOUT_BINARY or BVH_LAYOUT_WIDE: the layout of blasNodes (the TLAS is always 2-wide).
+  // Read once per ray, uniformly (shaders/rt/trace.glsl).
+  uint blasLayout;
   DeviceAddress rayCounter;  // uint, zeroed per frame by vk::GpuTimer
 };
 BOUNCE_CHECK_SIZE(GpuSceneRefs, 152);

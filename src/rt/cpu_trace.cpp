@@ -1,8 +1,10 @@
 #include "rt/cpu_trace.h"
 
 #include <algorithm>
+#include <bit>
 #include <stdexcept>
 
+#include "rt/wide_bvh.h"
 #include "shared/ray_triangle.h"
 
 namespace bounce::rt {
@@ -169,11 +171,116 @@ TraceHit CpuTracer::traverse(const Ray& ray, float tMax, const AlphaTest& alphaT
   }
 }
 
+// ---- the wide BLAS layout (scene_bvh.h, "Wide BLAS traversal"; traceSceneWide in trace.glsl) --
+
+template <bool kAnyHit>
+TraceHit CpuTracer::traverseWide(const Ray& ray, float tMax, const AlphaTest& alphaTest) const {
+  TraceHit result;
+  const float tMin = ray.tMin;
+  const SpaceRay worldRay = prepareRay(ray.origin, ray.direction);
+  uint32_t stack[gpu::BVH_STACK_SIZE / 2];
+  uint32_t stackSize = 0;
+  auto pop = [&] { return stackSize > 0 ? stack[--stackSize] : kNoEntry; };
+  uint32_t entry = 0;  // the TLAS root
+  while (true) {
+    while ((entry & gpu::BVH_STACK_INSTANCE) == 0) {  // TLAS interior nodes
+      const gpu::GpuBvhNode& node = arrays_.tlasNodes[entry];
+      const BoxHit left = intersectBox(worldRay, node.leftMin, node.leftMax, tMin, tMax);
+      const BoxHit right = intersectBox(worldRay, node.rightMin, node.rightMax, tMin, tMax);
+      const uint32_t leftEntry = childEntry(false, node.leftIndex, node.leftCount);
+      const uint32_t rightEntry = childEntry(false, node.rightIndex, node.rightCount);
+      if (left.hit && right.hit) {
+        const bool leftNear = left.tNear <= right.tNear;
+        if (stackSize == gpu::BVH_STACK_SIZE / 2)
+          throw std::logic_error("TLAS traversal stack overflow: tree deeper than its contract");
+        stack[stackSize++] = leftNear ? rightEntry : leftEntry;
+        entry = leftNear ? leftEntry : rightEntry;
+      } else if (left.hit) {
+        entry = leftEntry;
+      } else if (right.hit) {
+        entry = rightEntry;
+      } else {
+        entry = pop();
+      }
+    }
+    if (entry == kNoEntry) return result;
+    if (traverseWideBlas<kAnyHit>(entry & ~gpu::BVH_STACK_INSTANCE, ray, tMax, alphaTest, result))
+      return result;
+    entry = pop();
+  }
+}
+
+template <bool kAnyHit>
+bool CpuTracer::traverseWideBlas(uint32_t instanceIndex, const Ray& ray, float& tMax,
+                                 const AlphaTest& alphaTest, TraceHit& result) const {
+  const gpu::GpuInstance& instance = arrays_.instances[instanceIndex];
+  const SpaceRay r = prepareRay(transformPoint(instance.worldToObject, ray.origin),
+                                transformVector(instance.worldToObject, ray.direction));
+  const bool mirrored = mirrors(instance.worldToObject);
+  const uint32_t octant =
+      (r.invDir.x < 0.0f ? 1u : 0u) | (r.invDir.y < 0.0f ? 2u : 0u) | (r.invDir.z < 0.0f ? 4u : 0u);
+  const uint32_t octantInv = 7u ^ octant;
+  constexpr uint32_t kHitBits = 0xFF000000u;
+
+  glm::uvec2 stack[gpu::BVH_WIDE_STACK_SIZE];
+  uint32_t stackSize = 0;
+  glm::uvec2 group(instance.blasRoot, 0x80000000u);
+  while (true) {
+    if ((group.y & kHitBits) == 0) {
+      if (stackSize == 0) return false;
+      group = stack[--stackSize];
+    }
+    const uint32_t bit = 31u - uint32_t(std::countl_zero(group.y));
+    group.y &= ~(1u << bit);
+    const uint32_t slot = (bit - 24u) ^ octantInv;
+    const uint32_t nodeIndex =
+        group.x + uint32_t(std::popcount(group.y & 0xFFu & ((1u << slot) - 1u)));
+    if ((group.y & kHitBits) != 0) {
+      if (stackSize == gpu::BVH_WIDE_STACK_SIZE)
+        throw std::logic_error("wide BVH traversal stack overflow: tree deeper than its contract");
+      stack[stackSize++] = group;
+    }
+    const gpu::GpuWideBvhNode& node = arrays_.blasWideNodes[nodeIndex];
+    const uint32_t interiorMask = node.exponentsAndMask >> 24;
+    uint32_t interiorHits = 0, triangleHits = 0;
+    for (uint32_t s = 0; s < 8; ++s) {
+      const uint32_t meta = wideByte(node.meta, s);
+      if (meta == 0) continue;
+      const Aabb box = decodeWideChildBox(node, s);
+      if (!intersectBox(r, box.min, box.max, ray.tMin, tMax).hit) continue;
+      if (interiorMask & (1u << s))
+        interiorHits |= 1u << (24u + (s ^ octantInv));
+      else
+        triangleHits |= (meta >> 5) << (meta & 31u);
+    }
+    group = glm::uvec2(node.childBase, interiorHits | interiorMask);
+    while (triangleHits != 0) {
+      const uint32_t k = node.triangleBase + uint32_t(std::countr_zero(triangleHits));
+      triangleHits &= triangleHits - 1u;
+      const gpu::GpuTriangle& tri = arrays_.triangles[k];
+      gpu::TriangleHit h =
+          gpu::intersectTriangle(r.origin, r.shear, tri.v0, tri.v1, tri.v2, ray.tMin, tMax);
+      if (!h.hit) continue;
+      const uint32_t geometry =
+          instance.geometryBase + (tri.geometry & ~gpu::GPU_TRIANGLE_ALPHA_TESTED);
+      if ((tri.geometry & gpu::GPU_TRIANGLE_ALPHA_TESTED) && alphaTest &&
+          !alphaTest(instanceIndex, geometry, tri.primitive, h.b1, h.b2))
+        continue;
+      result = {true,          h.t,  instanceIndex, geometry,
+                tri.primitive, h.b1, h.b2,          h.frontFacing != mirrored};
+      if constexpr (kAnyHit) return true;
+      tMax = h.t;
+    }
+  }
+}
+
 TraceHit CpuTracer::closestHit(const Ray& ray, float tMax, const AlphaTest& alphaTest) const {
+  if (arrays_.layout == BvhLayout::Wide) return traverseWide<false>(ray, tMax, alphaTest);
   return traverse<false>(ray, tMax, alphaTest);
 }
 
 bool CpuTracer::anyHit(const Ray& ray, float tMax, const AlphaTest& alphaTest) const {
+  if (arrays_.layout == BvhLayout::Wide) return traverseWide<true>(ray, tMax, alphaTest).hit;
   return traverse<true>(ray, tMax, alphaTest).hit;
 }
 

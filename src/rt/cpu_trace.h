@@ -42,16 +42,19 @@ using AlphaTest = std::function<bool(uint32_t instance, uint32_t globalGeometry,
 // The arrays a traversal reads; they must outlive the tracer.
 struct TraceArrays {
   std::span<const gpu::GpuBvhNode> tlasNodes;
-  std::span<const gpu::GpuBvhNode> blasNodes;
+  std::span<const gpu::GpuBvhNode> blasNodes;  // BvhLayout::Binary
   std::span<const gpu::GpuTriangle> triangles;
   std::span<const gpu::GpuInstance> instances;
+  BvhLayout layout = BvhLayout::Binary;
+  std::span<const gpu::GpuWideBvhNode> blasWideNodes;  // BvhLayout::Wide
 };
 
 class CpuTracer {
  public:
   explicit CpuTracer(const TraceArrays& arrays) : arrays_(arrays) {}
   explicit CpuTracer(const SceneBvh& bvh)
-      : arrays_{bvh.tlasNodes, bvh.blasNodes, bvh.triangles, bvh.instances} {}
+      : arrays_{bvh.tlasNodes, bvh.blasNodes, bvh.triangles,
+                bvh.instances, bvh.layout,    bvh.blasWideNodes} {}
 
   TraceHit closestHit(const Ray& ray, float tMax, const AlphaTest& alphaTest = nullptr) const;
   bool anyHit(const Ray& ray, float tMax, const AlphaTest& alphaTest = nullptr) const;
@@ -59,6 +62,13 @@ class CpuTracer {
  private:
   template <bool kAnyHit>
   TraceHit traverse(const Ray& ray, float tMax, const AlphaTest& alphaTest) const;
+  // BvhLayout::Wide: the 2-wide TLAS loop, each instance's wide BLAS run to completion.
+  template <bool kAnyHit>
+  TraceHit traverseWide(const Ray& ray, float tMax, const AlphaTest& alphaTest) const;
+  // One instance's wide BLAS; returns true when kAnyHit found a hit (then in `result`).
+  template <bool kAnyHit>
+  bool traverseWideBlas(uint32_t instanceIndex, const Ray& ray, float& tMax,
+                        const AlphaTest& alphaTest, TraceHit& result) const;
 
   TraceArrays arrays_;
 };

@@ -36,9 +36,12 @@ uint32_t textureSlot(uint32_t sizeClass, bool srgb) {
 
 }  // namespace
 
-GpuScene::GpuScene(vk::Context& context, const Scene& scene) : context_(context) {
+GpuScene::GpuScene(vk::Context& context, const Scene& scene, const GpuSceneOptions& options)
+    : context_(context) {
   auto start = Clock::now();
-  bvh_ = rt::buildSceneBvh(scene);
+  rt::SceneBvhOptions bvhOptions;
+  bvhOptions.layout = options.bvhLayout;
+  bvh_ = rt::buildSceneBvh(scene, bvhOptions);
   stats_.bvhBuildSeconds = secondsSince(start);
   textures_ = packSceneTextures(scene);
   bounds_ = scene.bounds();
@@ -77,7 +80,9 @@ void GpuScene::uploadArrays() {
   std::vector<gpu::GpuBvhNode> tlasRoom = bvh_.tlasNodes;
   tlasRoom.resize(std::max<size_t>(tlasRoom.size(), tlasCapacity_));
   gpu::GpuSceneRefs refs{};
-  refs.blasNodes = upload(bvh_.blasNodes, "blas-nodes");
+  refs.blasNodes = bvh_.layout == rt::BvhLayout::Wide ? upload(bvh_.blasWideNodes, "blas-nodes")
+                                                      : upload(bvh_.blasNodes, "blas-nodes");
+  refs.blasLayout = uint32_t(bvh_.layout);
   refs.triangles = upload(bvh_.triangles, "triangles");
   refs.tlasNodes = upload(tlasRoom, "tlas-nodes");
   tlasBufferIndex_ = buffers_.size() - 1;
@@ -113,7 +118,10 @@ void GpuScene::uploadArrays() {
   refsHost_ = refs;
   refs_ = vk::uploadBuffer(context_, std::as_bytes(std::span(&refs, 1)),
                            VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "scene.refs");
-  stats_.bvhBytes = bytesOf(bvh_.blasNodes) + bytesOf(bvh_.tlasNodes) + bytesOf(bvh_.triangles);
+  stats_.bvhLayout = bvh_.layout;
+  stats_.bvhNodeBytes =
+      bytesOf(bvh_.blasNodes) + bytesOf(bvh_.blasWideNodes) + bytesOf(bvh_.tlasNodes);
+  stats_.bvhBytes = stats_.bvhNodeBytes + bytesOf(bvh_.triangles);
 }
 
 void GpuScene::setRayCounting(bool on) {

@@ -15,11 +15,18 @@
 
 namespace bounce {
 
+struct GpuSceneOptions {
+  // Node layout of the BLAS (`--bvh binary|wide`); the shaders read it from GpuSceneRefs.
+  rt::BvhLayout bvhLayout = rt::BvhLayout::Binary;
+};
+
 struct GpuSceneStats {
+  rt::BvhLayout bvhLayout = rt::BvhLayout::Binary;
   double bvhBuildSeconds = 0.0;
   double uploadSeconds = 0.0;
   uint64_t triangles = 0;        // as seen by rays (instanced)
   uint64_t uniqueTriangles = 0;  // in BLASes
+  uint64_t bvhNodeBytes = 0;     // BLAS + TLAS nodes
   uint64_t bvhBytes = 0;         // BLAS + TLAS nodes + triangles
   uint64_t textureBytes = 0;
   uint64_t totalBytes = 0;
@@ -27,7 +34,7 @@ struct GpuSceneStats {
 
 class GpuScene {
  public:
-  GpuScene(vk::Context& context, const Scene& scene);
+  GpuScene(vk::Context& context, const Scene& scene, const GpuSceneOptions& options = {});
   ~GpuScene();
   GpuScene(const GpuScene&) = delete;
   GpuScene& operator=(const GpuScene&) = delete;

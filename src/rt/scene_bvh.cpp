@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "rt/task_pool.h"
+#include "rt/wide_bvh.h"
 
 namespace bounce::rt {
 namespace {
@@ -137,12 +138,20 @@ MeshTriangles numberTriangles(const Mesh& mesh) {
 }
 
 struct MeshBlas {
-  Bvh bvh;
+  Bvh bvh;  // with BvhLayout::Wide, only its stats are kept (the nodes are collapsed into wide)
+  WideBvh wide;
   MeshTriangles triangles;
   Aabb bounds;
+  // Leaf order of the layout built: indices of the mesh's triangles.
+  const std::vector<uint32_t>& order(BvhLayout layout) const {
+    return layout == BvhLayout::Wide ? wide.primitiveOrder : bvh.primitiveOrder;
+  }
+  size_t nodeCount(BvhLayout layout) const {
+    return layout == BvhLayout::Wide ? wide.nodes.size() : bvh.nodes.size();
+  }
 };
 
-MeshBlas buildMeshBlas(const Mesh& mesh, const BvhBuildOptions& options) {
+MeshBlas buildMeshBlas(const Mesh& mesh, const BvhBuildOptions& options, BvhLayout layout) {
   MeshBlas blas;
   blas.triangles = numberTriangles(mesh);
   std::vector<Aabb> boxes(blas.triangles.count());
@@ -160,10 +169,16 @@ MeshBlas buildMeshBlas(const Mesh& mesh, const BvhBuildOptions& options) {
     }
   }
   blas.bvh = buildBvh(boxes, centroids, options);
+  if (layout == BvhLayout::Wide) {
+    blas.wide = collapseToWide(blas.bvh);
+    blas.bvh.nodes = {};
+    blas.bvh.primitiveOrder = {};
+  }
   return blas;
 }
 
-std::vector<MeshBlas> buildAllBlas(const Scene& scene, const BvhBuildOptions& options) {
+std::vector<MeshBlas> buildAllBlas(const Scene& scene, const BvhBuildOptions& options,
+                                   BvhLayout layout) {
   const size_t meshCount = scene.meshes.size();
   std::vector<MeshBlas> blas(meshCount);
   std::vector<size_t> small;
@@ -173,14 +188,14 @@ std::vector<MeshBlas> buildAllBlas(const Scene& scene, const BvhBuildOptions& op
     uint64_t triangles = 0;
     for (const Geometry& g : scene.meshes[m].geometries) triangles += g.triangleCount();
     if (triangles >= kLargeMeshTriangles)
-      blas[m] = buildMeshBlas(scene.meshes[m], options);
+      blas[m] = buildMeshBlas(scene.meshes[m], options, layout);
     else
       small.push_back(m);
   }
   // Each build is deterministic on its own, so the schedule cannot change the result.
   TaskPool pool(std::min<uint32_t>(resolveThreads(options.threadCount), uint32_t(small.size())));
   pool.parallelFor(uint32_t(small.size()), [&](uint32_t i) {
-    blas[small[i]] = buildMeshBlas(scene.meshes[small[i]], single);
+    blas[small[i]] = buildMeshBlas(scene.meshes[small[i]], single, layout);
   });
   return blas;
 }
@@ -190,23 +205,34 @@ std::vector<MeshBlas> buildAllBlas(const Scene& scene, const BvhBuildOptions& op
 void appendBlas(const Scene& scene, size_t meshIndex, const MeshBlas& blas, uint32_t nodeOffset,
                 uint32_t triangleOffset, SceneBvh& out) {
   const Mesh& mesh = scene.meshes[meshIndex];
-  auto relocate = [&](uint32_t& index, uint32_t count) {
-    if (count > 0)
-      index += triangleOffset;
-    else if (index != gpu::BVH_INVALID)
-      index += nodeOffset;
-  };
-  gpu::GpuBvhNode* nodes = out.blasNodes.data() + nodeOffset;
-  for (size_t i = 0; i < blas.bvh.nodes.size(); ++i) {
-    gpu::GpuBvhNode node = blas.bvh.nodes[i];
-    relocate(node.leftIndex, node.leftCount);
-    relocate(node.rightIndex, node.rightCount);
-    nodes[i] = node;
+  if (out.layout == BvhLayout::Wide) {
+    gpu::GpuWideBvhNode* nodes = out.blasWideNodes.data() + nodeOffset;
+    for (size_t i = 0; i < blas.wide.nodes.size(); ++i) {
+      gpu::GpuWideBvhNode node = blas.wide.nodes[i];
+      node.childBase += nodeOffset;
+      node.triangleBase += triangleOffset;
+      nodes[i] = node;
+    }
+  } else {
+    auto relocate = [&](uint32_t& index, uint32_t count) {
+      if (count > 0)
+        index += triangleOffset;
+      else if (index != gpu::BVH_INVALID)
+        index += nodeOffset;
+    };
+    gpu::GpuBvhNode* nodes = out.blasNodes.data() + nodeOffset;
+    for (size_t i = 0; i < blas.bvh.nodes.size(); ++i) {
+      gpu::GpuBvhNode node = blas.bvh.nodes[i];
+      relocate(node.leftIndex, node.leftCount);
+      relocate(node.rightIndex, node.rightCount);
+      nodes[i] = node;
+    }
   }
   gpu::GpuTriangle* triangles = out.triangles.data() + triangleOffset;
   const std::vector<uint32_t>& first = blas.triangles.firstTriangle;
-  for (size_t i = 0; i < blas.bvh.primitiveOrder.size(); ++i) {
-    const uint32_t t = blas.bvh.primitiveOrder[i];
+  const std::vector<uint32_t>& order = blas.order(out.layout);
+  for (size_t i = 0; i < order.size(); ++i) {
+    const uint32_t t = order[i];
     const uint32_t g =
         uint32_t(std::upper_bound(first.begin(), first.end(), t) - first.begin() - 1);
     const Geometry& geometry = mesh.geometries[g];
@@ -226,8 +252,8 @@ void concatenateBlas(const Scene& scene, const std::vector<MeshBlas>& blas, uint
   for (size_t m = 0; m < blas.size(); ++m) {
     nodeOffset[m] = uint32_t(nodes);
     triangleOffset[m] = uint32_t(triangles);
-    nodes += blas[m].bvh.nodes.size();
-    triangles += blas[m].bvh.primitiveOrder.size();
+    nodes += blas[m].nodeCount(out.layout);
+    triangles += blas[m].order(out.layout).size();
     // The traversal stack packs a leaf's first triangle into 26 bits and a node index into 30
     // (shared/scene_layout.h).
     if (triangles >= gpu::BVH_MAX_SCENE_TRIANGLES)
@@ -237,7 +263,10 @@ void concatenateBlas(const Scene& scene, const std::vector<MeshBlas>& blas, uint
       fail("scene BVH: {} BLAS nodes; at most {} fit the traversal's stack entries", nodes,
            gpu::BVH_STACK_LEAF - 1);
   }
-  out.blasNodes.resize(nodes);
+  if (out.layout == BvhLayout::Wide)
+    out.blasWideNodes.resize(nodes);
+  else
+    out.blasNodes.resize(nodes);
   out.triangles.resize(triangles);
   out.blasRoot = nodeOffset;
   TaskPool pool(std::min<uint32_t>(threads, uint32_t(blas.size())));
@@ -246,12 +275,14 @@ void concatenateBlas(const Scene& scene, const std::vector<MeshBlas>& blas, uint
   });
 }
 
-void recordBlasStats(const std::vector<MeshBlas>& blas, SceneBvhStats& stats) {
+void recordBlasStats(const std::vector<MeshBlas>& blas, BvhLayout layout, SceneBvhStats& stats) {
   double weightedSah = 0.0;
   for (const MeshBlas& b : blas) {
-    stats.triangleCount += b.bvh.primitiveOrder.size();
-    stats.maxBlasDepth = std::max(stats.maxBlasDepth, b.bvh.stats.maxDepth);
-    weightedSah += b.bvh.stats.sahCost * double(b.bvh.primitiveOrder.size());
+    const double triangles = double(b.bvh.stats.primitiveCount);
+    stats.triangleCount += b.bvh.stats.primitiveCount;
+    stats.maxBlasDepth = std::max(
+        stats.maxBlasDepth, layout == BvhLayout::Wide ? b.wide.maxDepth : b.bvh.stats.maxDepth);
+    weightedSah += b.bvh.stats.sahCost * triangles;
   }
   if (stats.triangleCount > 0) stats.blasSahCost = weightedSah / double(stats.triangleCount);
 }
@@ -262,6 +293,16 @@ size_t bytesOf(const std::vector<T>& v) {
 }
 
 }  // namespace
+
+const char* bvhLayoutName(BvhLayout layout) {
+  return layout == BvhLayout::Wide ? "wide" : "binary";
+}
+
+BvhLayout parseBvhLayout(const std::string& name) {
+  if (name == "binary") return BvhLayout::Binary;
+  if (name == "wide") return BvhLayout::Wide;
+  fail("BVH layout '{}': expected binary or wide", name);
+}
 
 // ---- instances --------------------------------------------------------------------------------
 
@@ -371,12 +412,16 @@ SceneBvh buildSceneBvh(const Scene& scene, const SceneBvhOptions& options) {
   if (options.blas.maxLeafSize > leafLimit)
     fail("scene BVH: BLAS leaves of up to {} triangles; the traversal's stack entries hold {}",
          options.blas.maxLeafSize, leafLimit);
+  out.layout = options.layout;
+  BvhBuildOptions blasOptions = options.blas;
+  if (options.layout == BvhLayout::Wide)
+    blasOptions.maxLeafSize = std::min(blasOptions.maxLeafSize, gpu::BVH_WIDE_MAX_LEAF_TRIANGLES);
   const auto blasStart = Clock::now();
-  std::vector<MeshBlas> blas = buildAllBlas(scene, options.blas);
+  std::vector<MeshBlas> blas = buildAllBlas(scene, blasOptions, options.layout);
   concatenateBlas(scene, blas, resolveThreads(options.blas.threadCount), out);
   for (const MeshBlas& b : blas) out.meshBounds.push_back(b.bounds);
   out.stats.blasSeconds = secondsSince(blasStart);
-  recordBlasStats(blas, out.stats);
+  recordBlasStats(blas, options.layout, out.stats);
   blas.clear();
 
   out.instances.reserve(scene.instances.size());
@@ -395,16 +440,23 @@ SceneBvh buildSceneBvh(const Scene& scene, const SceneBvhOptions& options) {
   out.stats.tlasSeconds = secondsSince(tlasStart);
 
   SceneBvhStats& stats = out.stats;
-  stats.blasNodeCount = uint32_t(out.blasNodes.size());
+  stats.blasNodeCount = uint32_t(out.blasNodes.size() + out.blasWideNodes.size());
   stats.tlasNodeCount = uint32_t(out.tlasNodes.size());
   stats.tlasDepth = tlasStats.maxDepth;
   stats.tlasSahCost = tlasStats.sahCost;
   stats.trianglesPerSecond =
       stats.blasSeconds > 0.0 ? double(stats.triangleCount) / stats.blasSeconds : 0.0;
-  stats.bytes = {bytesOf(out.blasNodes), bytesOf(out.triangles),  bytesOf(out.tlasNodes),
-                 bytesOf(out.instances), bytesOf(out.geometries), bytesOf(out.indices),
-                 bytesOf(out.positions), bytesOf(out.normals),    bytesOf(out.uvs),
-                 bytesOf(out.tangents),  bytesOf(out.colors)};
+  stats.bytes = {bytesOf(out.blasNodes) + bytesOf(out.blasWideNodes),
+                 bytesOf(out.triangles),
+                 bytesOf(out.tlasNodes),
+                 bytesOf(out.instances),
+                 bytesOf(out.geometries),
+                 bytesOf(out.indices),
+                 bytesOf(out.positions),
+                 bytesOf(out.normals),
+                 bytesOf(out.uvs),
+                 bytesOf(out.tangents),
+                 bytesOf(out.colors)};
   stats.seconds = secondsSince(start);
   return out;
 }

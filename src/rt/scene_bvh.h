@@ -65,11 +65,33 @@
 //     frontFacing = the triangle test's frontFacing, flipped when the instance's transform
 //     mirrors (det(worldToObject 3x3) < 0), matching glTF's rule for negative-determinant
 //     nodes.
+//
+// ==== Wide BLAS traversal (BvhLayout::Wide; Ylitie, Karras and Laine 2017, §4) ==================
+//
+// The TLAS part is the loop above, with instance entries only. Entering an instance runs its
+// BLAS to completion with a stack of its own (BVH_WIDE_STACK_SIZE node groups), then pops the
+// next TLAS entry. The same slab test (decoded planes origin + q * 2^e, then exactly the box
+// test above) and triangle test are used, so the precision rules hold unchanged.
+//   - octant: bit a set when the object-space invDir component a is negative; octantInv =
+//     7 ^ octant.
+//   - A node group is (base, bits): base = a node's childBase, bits 24..31 = the interior
+//     children still to visit (child slot s sits at bit 24 + (s ^ octantInv), so the highest
+//     bit is the child nearest along the ray's octant), bits 0..7 = that node's interior mask.
+//     The root starts as (blasRoot, 1 << 31): bit 31 maps to a slot with no interior slot below
+//     it in a zero mask, i.e. node base + 0.
+//   - Loop: take the highest hit bit of the current group, clear it, push the group if hits
+//     remain, fetch node base + bitCount(mask & ((1 << s) - 1)). Test its 8 children (empty
+//     slots, meta 0, skipped): hit interior children set their bits in the new group
+//     (childBase, bits | interior mask); hit leaves set (unary count) << offset in a triangle
+//     mask. Then intersect the triangle mask's triangles (triangleBase + bit, lowest first);
+//     then, if the new group has no hits left, pop (end of the BLAS when the stack is empty).
+//     Popped groups are not re-tested against a shortened tMax.
 // ================================================================================================
 #pragma once
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -80,9 +102,21 @@
 
 namespace bounce::rt {
 
+// The node layout of the BLAS (the TLAS is 2-wide in both). Binary: GpuBvhNode, the layout
+// described above. Wide: GpuWideBvhNode (shared/scene_layout.h), the 8-wide compressed layout
+// of Ylitie et al. 2017, traversed as written under "Wide BLAS traversal" below.
+enum class BvhLayout : uint32_t { Binary = gpu::BVH_LAYOUT_BINARY, Wide = gpu::BVH_LAYOUT_WIDE };
+
+// "binary" / "wide" (the --bvh values); parseBvhLayout throws bounce::Error on anything else.
+const char* bvhLayoutName(BvhLayout layout);
+BvhLayout parseBvhLayout(const std::string& name);
+
 struct SceneBvhOptions {
-  BvhBuildOptions blas;                       // maxLeafSize defaults to BVH_MAX_LEAF_TRIANGLES
+  // maxLeafSize defaults to BVH_MAX_LEAF_TRIANGLES; with BvhLayout::Wide it is capped at
+  // BVH_WIDE_MAX_LEAF_TRIANGLES (the wide node's leaves hold at most 3 triangles).
+  BvhBuildOptions blas;
   BvhBuildOptions tlas = tlasBuildOptions();  // maxLeafSize 1
+  BvhLayout layout = BvhLayout::Binary;
 };
 
 struct SceneBvhStats {
@@ -91,16 +125,18 @@ struct SceneBvhStats {
   double tlasSeconds = 0.0;
   double trianglesPerSecond = 0.0;  // unique triangles / blasSeconds
   uint64_t triangleCount = 0;       // unique (per mesh) triangles
-  uint32_t blasNodeCount = 0;
+  uint32_t blasNodeCount = 0;       // of the layout built (wide nodes with BvhLayout::Wide)
   uint32_t tlasNodeCount = 0;
-  uint32_t maxBlasDepth = 0;
+  uint32_t maxBlasDepth = 0;  // in nodes of the layout built
   uint32_t tlasDepth = 0;
-  // SAH cost of each BLAS, averaged with the meshes' triangle counts as weights.
+  // SAH cost of each (binary) BLAS, averaged with the meshes' triangle counts as weights; with
+  // BvhLayout::Wide, of the binary tree it was collapsed from.
   double blasSahCost = 0.0;
   double tlasSahCost = 0.0;
   // Bytes of each array as uploaded.
   struct Bytes {
-    size_t blasNodes = 0, triangles = 0, tlasNodes = 0, instances = 0, geometries = 0;
+    size_t blasNodes = 0 /* of either layout */, triangles = 0, tlasNodes = 0, instances = 0,
+           geometries = 0;
     size_t indices = 0, positions = 0, normals = 0, uvs = 0, tangents = 0, colors = 0;
     size_t total() const {
       return blasNodes + triangles + tlasNodes + instances + geometries + indices + positions +
@@ -115,10 +151,12 @@ struct SceneBvh {
   std::vector<uint32_t> geometryBase;  // index of the mesh's geometry 0 in geometries
   std::vector<Aabb> meshBounds;        // object-space bounds (empty for a mesh without triangles)
 
-  std::vector<gpu::GpuBvhNode> blasNodes;
-  std::vector<gpu::GpuTriangle> triangles;   // BLAS leaf order, object-space positions
-  std::vector<gpu::GpuGeometry> geometries;  // every (mesh, geometry) in mesh order
-  std::vector<uint32_t> indices;             // relative to the geometry's vertexOffset
+  BvhLayout layout = BvhLayout::Binary;
+  std::vector<gpu::GpuBvhNode> blasNodes;          // BvhLayout::Binary (else empty)
+  std::vector<gpu::GpuWideBvhNode> blasWideNodes;  // BvhLayout::Wide (else empty)
+  std::vector<gpu::GpuTriangle> triangles;         // BLAS leaf order, object-space positions
+  std::vector<gpu::GpuGeometry> geometries;        // every (mesh, geometry) in mesh order
+  std::vector<uint32_t> indices;                   // relative to the geometry's vertexOffset
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;
