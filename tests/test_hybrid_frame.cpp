@@ -26,6 +26,7 @@
 #include "scene/load.h"
 #include "scene/scene_options.h"
 #include "shared/camera.h"
+#include "shared/restir_gi_io.h"
 #include "vk/context.h"
 
 namespace bounce {
@@ -311,6 +312,51 @@ TEST(HybridFrame, CountedRaysMatchWhatEachPassTraces) {
   frame.countRays(false);
   timings = frame.render(*scene.camera);
   for (const vk::PassTiming& t : timings) EXPECT_FALSE(t.rays.has_value()) << t.name;
+}
+
+// The two passes that walk a ray list (shared/restir_gi_io.h, "Ray lists") trace for exactly
+// the pixels that need rays, none twice and none lost: on the Cornell box (the light's NEE rays
+// from the walls, occluder edges around the two blocks), gi-trace-diffuse-nee-rays counts one
+// ray per GI pixel whose gi.nee-ray is set, and gi-trace-resolve-visibility some rays and at most
+// one per resolve sample (4) for each pixel gi.resolve-occlusion marks beside an occluder (a
+// sample not on the pixel's surface or behind it takes no ray).
+TEST(HybridFrame, RayListPassesTraceForEveryListedPixelOnce) {
+  vk::Context context(vk::contextOptionsFromEnvironment({}));
+  Scene scene = loadScene("cornell");
+  GpuScene gpuScene(context, scene);
+  HybridSettings settings = presetSettings(Preset::Desktop);
+  settings.gi = GiMode::Evolve;
+  settings.width = 48;
+  settings.height = 36;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.countRays(true);
+  frame.requestDebugView("gi.nee-ray");
+  frame.requestDebugView("gi.resolve-occlusion");
+  std::vector<vk::PassTiming> timings;
+  for (int i = 0; i < 3; ++i) timings = frame.render(*scene.camera);
+  auto raysOf = [&](const std::string& pass) -> uint64_t {
+    for (const vk::PassTiming& t : timings)
+      if (t.name == pass && t.rays) return *t.rays;
+    ADD_FAILURE() << "no ray count for " << pass;
+    return 0;
+  };
+  const ImageRGBA32F neeRays = frame.debugViewImage("gi.nee-ray");
+  uint64_t neePixels = 0;
+  for (size_t i = 0; i < neeRays.pixelCount(); ++i)
+    neePixels += neeRays.pixels[4 * i] != 0.0f || neeRays.pixels[4 * i + 1] != 0.0f ||
+                 neeRays.pixels[4 * i + 2] != 0.0f;
+  const ImageRGBA32F occlusion = frame.debugViewImage("gi.resolve-occlusion");
+  uint64_t besideOccluder = 0;
+  for (size_t i = 0; i < occlusion.pixelCount(); ++i)
+    besideOccluder += (uint32_t(occlusion.pixels[4 * i]) & gpu::RESOLVE_BESIDE_OCCLUDER) != 0;
+  std::printf("NEE: %llu GI pixels with a ray; beside an occluder: %llu pixels, %llu rays\n",
+              (unsigned long long)neePixels, (unsigned long long)besideOccluder,
+              (unsigned long long)raysOf("gi-trace-resolve-visibility"));
+  ASSERT_GT(neePixels, 0u);
+  EXPECT_EQ(raysOf("gi-trace-diffuse-nee-rays"), neePixels);
+  ASSERT_GT(besideOccluder, 0u);
+  EXPECT_GT(raysOf("gi-trace-resolve-visibility"), 0u);
+  EXPECT_LE(raysOf("gi-trace-resolve-visibility"), 4 * besideOccluder);
 }
 
 TEST(HybridFrame, ViewProjectionMapsPixelRaysBackToTheirPixels) {

@@ -332,11 +332,15 @@ TraceHit traceSceneWide(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax,
   return best;
 }
 
-// The layout is the scene's (GpuSceneRefs::blasLayout): one uniform branch per ray, none per
-// node, so the binary loop runs exactly as before (docs/ray-tracing.md, "Choosing the layout").
+// The scene's layout, set when the pipeline is created (BVH_SPEC_BLAS_LAYOUT), so the other loop
+// is compiled out; else GpuSceneRefs::blasLayout, one uniform branch per ray, none per node
+// (docs/ray-tracing.md, "Choosing the layout").
+layout(constant_id = BVH_SPEC_BLAS_LAYOUT) const uint SPEC_BLAS_LAYOUT = BVH_LAYOUT_ANY;
+
 TraceHit traceScene(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax, bool alphaTest,
                     bool anyHit) {
-  if (scene.blasLayout == BVH_LAYOUT_WIDE)
+  uint blasLayout = SPEC_BLAS_LAYOUT == BVH_LAYOUT_ANY ? scene.blasLayout : SPEC_BLAS_LAYOUT;
+  if (blasLayout == BVH_LAYOUT_WIDE)
     return traceSceneWide(worldOrigin, worldDir, tMin, tMax, alphaTest, anyHit);
   return traceSceneBinary(worldOrigin, worldDir, tMin, tMax, alphaTest, anyHit);
 }

@@ -93,6 +93,12 @@ BOUNCE_CHECK_SIZE(GpuWideBvhNode, 80);
 // GpuSceneRefs::blasLayout: which node layout blasNodes holds.
 BOUNCE_CONST uint BVH_LAYOUT_BINARY = 0u;  // GpuBvhNode
 BOUNCE_CONST uint BVH_LAYOUT_WIDE = 1u;    // GpuWideBvhNode
+// Specialization constant 0 of every pipeline that traces (GpuScene::specialization()): the
+// scene's layout, so the driver compiles one traversal loop, not both (the second loop doubled
+// lavapipe's compile time and sets the registers of the binary loop on a GPU). A pipeline created
+// without it keeps BVH_LAYOUT_ANY and reads blasLayout per ray.
+BOUNCE_CONST uint BVH_SPEC_BLAS_LAYOUT = 0u;
+BOUNCE_CONST uint BVH_LAYOUT_ANY = 2u;
 
 // Triangles in BVH leaf order with their positions copied in (object space), so the
 // intersection loop touches one array. `geometry` holds the geometry index local to the mesh

@@ -32,7 +32,8 @@ ComputePass::ComputePass(vk::Context& context, const GpuScene& scene, const std:
     pool_.emplace(context, dispatches, imageCount * dispatches);
     for (uint32_t i = 0; i < dispatches; ++i) sets_.push_back(pool_->allocate(*layout_));
   }
-  pipeline_ = vk::ComputePipeline(context, shader, setLayouts(scene, layout_), pushConstantBytes);
+  pipeline_ = vk::ComputePipeline(context, shader, setLayouts(scene, layout_), pushConstantBytes,
+                                  scene.specialization());
   infos_.resize(imageCount);
   writes_.resize(imageCount);
 }

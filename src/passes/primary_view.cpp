@@ -45,7 +45,7 @@ PrimaryViewPass::PrimaryViewPass(vk::Context& context, const GpuScene& scene)
     : context_(context),
       scene_(scene),
       pipeline_(context, "passes/primary_view", {&scene.setLayout()},
-                sizeof(gpu::PrimaryViewConstants)) {}
+                sizeof(gpu::PrimaryViewConstants), scene.specialization()) {}
 
 ImageRGBA32F PrimaryViewPass::render(const Camera& camera, uint32_t width, uint32_t height,
                                      PrimaryViewKind view, vk::GpuTimer* timer) {

@@ -196,7 +196,7 @@ RayBenchResult runRayBench(vk::Context& context, const GpuScene& gpuScene, const
   Launch software;
   if (runSoftware) {
     compute = vk::ComputePipeline(context, "rt/bench_rays", {&gpuScene.setLayout()},
-                                  sizeof(gpu::BenchRaysConstants));
+                                  sizeof(gpu::BenchRaysConstants), gpuScene.specialization());
     software = [&](VkCommandBuffer cmd, const gpu::BenchRaysConstants& c) {
       compute.bind(cmd, {gpuScene.descriptorSet()});
       compute.push(cmd, c);

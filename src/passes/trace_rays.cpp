@@ -5,7 +5,8 @@ namespace bounce {
 TraceRaysPass::TraceRaysPass(vk::Context& context, const GpuScene& scene)
     : context_(context),
       scene_(scene),
-      pipeline_(context, "rt/trace_rays", {&scene.setLayout()}, sizeof(gpu::TraceRaysConstants)) {}
+      pipeline_(context, "rt/trace_rays", {&scene.setLayout()}, sizeof(gpu::TraceRaysConstants),
+                scene.specialization()) {}
 
 std::vector<gpu::GpuHit> TraceRaysPass::trace(std::span<const gpu::GpuRay> rays, bool alphaTest) {
   std::vector<gpu::GpuHit> hits(rays.size());

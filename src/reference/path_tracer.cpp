@@ -61,7 +61,7 @@ ReferencePathTracer::ReferencePathTracer(vk::Context& context, const GpuScene& g
       sun_(scene.sun),
       lights_(buildLightTable(scene, gpuScene.bvh())),
       pipeline_(context, "reference/path_trace", {&gpuScene.setLayout()},
-                sizeof(gpu::ReferenceConstants)) {
+                sizeof(gpu::ReferenceConstants), gpuScene.specialization()) {
   emissiveTriangles_ = uploadTable(context, lights_.emissiveTriangles, "emissive-triangles");
   punctualLights_ = uploadTable(context, lights_.punctualLights, "punctual-lights");
   lightAlias_ = uploadTable(context, lights_.alias, "light-alias");

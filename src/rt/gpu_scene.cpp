@@ -83,6 +83,7 @@ void GpuScene::uploadArrays() {
   refs.blasNodes = bvh_.layout == rt::BvhLayout::Wide ? upload(bvh_.blasWideNodes, "blas-nodes")
                                                       : upload(bvh_.blasNodes, "blas-nodes");
   refs.blasLayout = uint32_t(bvh_.layout);
+  specialization_[gpu::BVH_SPEC_BLAS_LAYOUT] = refs.blasLayout;
   refs.triangles = upload(bvh_.triangles, "triangles");
   refs.tlasNodes = upload(tlasRoom, "tlas-nodes");
   tlasBufferIndex_ = buffers_.size() - 1;

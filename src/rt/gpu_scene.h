@@ -3,6 +3,7 @@
 // every tracing shader binds (shaders/rt/scene.glsl). The CPU copies stay available for the
 // CPU reference tracer and tests.
 #pragma once
+#include <array>
 #include <memory>
 #include <span>
 #include <vector>
@@ -40,6 +41,9 @@ class GpuScene {
   GpuScene& operator=(const GpuScene&) = delete;
 
   const vk::DescriptorSetLayout& setLayout() const { return setLayout_; }
+  // The specialization constants of a pipeline that traces this scene (BVH_SPEC_BLAS_LAYOUT:
+  // its BLAS layout), for vk::ComputePipeline.
+  std::span<const uint32_t> specialization() const { return specialization_; }
   VkDescriptorSet descriptorSet() const { return set_; }
   const rt::SceneBvh& bvh() const { return bvh_; }
   const Aabb& bounds() const { return bounds_; }
@@ -96,9 +100,10 @@ class GpuScene {
   bool uploadPending_ = false;
   bool previousDiffers_ = false;  // the device's previous instances differ from the current
   vk::Buffer refs_;
-  gpu::GpuSceneRefs refsHost_{};          // what refs_ holds
-  vk::Buffer rayCounter_;                 // one uint, storage and transfer source/destination
-  std::vector<vk::Image> textureImages_;  // one per binding slot (placeholder when unused)
+  gpu::GpuSceneRefs refsHost_{};              // what refs_ holds
+  vk::Buffer rayCounter_;                     // one uint, storage and transfer source/destination
+  std::array<uint32_t, 1> specialization_{};  // [BVH_SPEC_BLAS_LAYOUT]
+  std::vector<vk::Image> textureImages_;      // one per binding slot (placeholder when unused)
   VkSampler sampler_ = VK_NULL_HANDLE;
   vk::DescriptorSetLayout setLayout_;
   std::unique_ptr<vk::DescriptorPool> pool_;

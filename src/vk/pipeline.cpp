@@ -66,7 +66,8 @@ VkDescriptorSet DescriptorPool::allocate(const DescriptorSetLayout& layout) {
 
 ComputePipeline::ComputePipeline(Context& context, const std::string& shader,
                                  const std::vector<const DescriptorSetLayout*>& setLayouts,
-                                 uint32_t pushConstantBytes)
+                                 uint32_t pushConstantBytes,
+                                 std::span<const uint32_t> specialization)
     : context_(&context), name_(shader) {
   std::span<const uint32_t> spirv = embeddedShader(shader);
   VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
@@ -90,6 +91,12 @@ ComputePipeline::ComputePipeline(Context& context, const std::string& shader,
   ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   ci.stage.module = module;
   ci.stage.pName = "main";
+  std::vector<VkSpecializationMapEntry> entries;
+  for (uint32_t i = 0; i < specialization.size(); ++i)
+    entries.push_back({i, uint32_t(i * sizeof(uint32_t)), sizeof(uint32_t)});
+  VkSpecializationInfo si{uint32_t(entries.size()), entries.data(), specialization.size_bytes(),
+                          specialization.data()};
+  if (!specialization.empty()) ci.stage.pSpecializationInfo = &si;
   ci.layout = layout_;
   const HostCost start = HostCost::now();
   VkResult r =

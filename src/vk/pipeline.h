@@ -3,6 +3,7 @@
 // order of calls.
 #pragma once
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -51,10 +52,11 @@ class DescriptorPool {
 class ComputePipeline {
  public:
   ComputePipeline() = default;
-  // `shader` names an embedded shader, e.g. "rt/trace_rays".
+  // `shader` names an embedded shader, e.g. "rt/trace_rays". `specialization[i]` is the value of
+  // specialization constant i (a shader without constant i ignores it).
   ComputePipeline(Context& context, const std::string& shader,
                   const std::vector<const DescriptorSetLayout*>& setLayouts,
-                  uint32_t pushConstantBytes);
+                  uint32_t pushConstantBytes, std::span<const uint32_t> specialization = {});
   ~ComputePipeline();
   ComputePipeline(ComputePipeline&& o) noexcept { *this = std::move(o); }
   ComputePipeline& operator=(ComputePipeline&& o) noexcept;

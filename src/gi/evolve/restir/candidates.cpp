@@ -96,8 +96,7 @@ GiHits declareGiTrace(graph::FrameGraph& graph, const RestirFrame& f, graph::Ima
       .read(h.neeRay, Access::StorageRead, gpu::GI_NEE_BINDING_NEE_RAY)
       .write(h.neeVisibility, Access::StorageReadWrite, gpu::GI_NEE_BINDING_VISIBILITY)
       .record([&traceNee, f](VkCommandBuffer cmd, const graph::PassResources& r) {
-        traceNee.recordOverRayList(cmd, r, f.rayListConstants(r), f.rayLists,
-                                   gpu::GI_RAY_LIST_NEE);
+        traceNee.recordOverRayList(cmd, r, f.rayListConstants(r), f.rayLists, gpu::GI_RAY_LIST_NEE);
       });
   return h;
 }

@@ -24,8 +24,9 @@ ResolvedGi ResolveStage::declare(graph::FrameGraph& graph, const RestirFrame& f,
     declarePass(graph, f, "gi-trace-resolve-visibility", visibility_, reservoirs,
                 gpu::GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, *out.occlusion, RayListUse::Walks);
   }
-  graph::PassBuilder resolve = declarePass(graph, f, "gi-restir-resolve", resolve_, reservoirs,
-                                           gpu::GI_RESOLVE_BINDING_OUTPUT, target, RayListUse::None);
+  graph::PassBuilder resolve =
+      declarePass(graph, f, "gi-restir-resolve", resolve_, reservoirs,
+                  gpu::GI_RESOLVE_BINDING_OUTPUT, target, RayListUse::None);
   if (out.occlusion)
     resolve.read(*out.occlusion, Access::StorageRead, gpu::GI_RESOLVE_BINDING_OCCLUSION);
   else  // the shader ignores the binding without gi-trace-resolve-visibility

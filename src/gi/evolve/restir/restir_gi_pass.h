@@ -32,9 +32,9 @@ class RestirGiPass : public ComputePass {
                          const gpu::RestirGiPassConstants& constants, graph::BufferHandle rayLists,
                          uint32_t list) {
     bind(cmd, constants, resources);
-    vkCmdDispatchIndirect(cmd, resources.buffer(rayLists).buffer,
-                          list * sizeof(gpu::GiRayListHeader) +
-                              offsetof(gpu::GiRayListHeader, groupsX));
+    vkCmdDispatchIndirect(
+        cmd, resources.buffer(rayLists).buffer,
+        list * sizeof(gpu::GiRayListHeader) + offsetof(gpu::GiRayListHeader, groupsX));
   }
 };
 
@@ -51,8 +51,13 @@ struct RestirFrame {
   graph::BufferHandle rayLists;
 
   gpu::RestirGiPassConstants passConstants(bool historyValid, uint32_t variant = 0) const {
-    return {in.frame.constantsAddress, constants, historyValid ? 1u : 0u, variant, historyScale,
-            0u, 0u};
+    return {in.frame.constantsAddress,
+            constants,
+            historyValid ? 1u : 0u,
+            variant,
+            historyScale,
+            0u,
+            0u};
   }
   // The same for the passes that fill or walk a ray list: with gi.ray-lists' address.
   gpu::RestirGiPassConstants rayListConstants(const graph::PassResources& r) const {
