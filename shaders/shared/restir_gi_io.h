@@ -240,6 +240,9 @@ BOUNCE_CONST uint GI_RESOLVE_BINDING_COUNT = 9u;
 BOUNCE_CONST uint GI_RESOLVE_VISIBILITY_BINDING_OUTPUT = 7u;
 BOUNCE_CONST uint GI_RESOLVE_VISIBILITY_BINDING_COUNT = 8u;
 BOUNCE_CONST uint RESOLVE_BESIDE_OCCLUDER = 16u;
+// Most reservoirs gi-restir-resolve reads per pixel (RestirGiConstants::resolveSamples is
+// clamped to it): gi-trace-resolve-visibility runs this many threads per listed pixel.
+BOUNCE_CONST uint RESOLVE_MAX_SAMPLES = 4u;
 
 // gi-restir-spatial-0 / -1 and gi-restir-patch-reservoir: a reservoir in, a reservoir out
 BOUNCE_CONST uint GI_SPATIAL_BINDING_INPUT = 0u;   // 0-3

@@ -52,5 +52,5 @@ void main() {
     beside = besideOccluder(f, gi, pixel, x);
   }
   imageStore(occlusionOut, pixel, uvec4(beside ? RESOLVE_BESIDE_OCCLUDER : 0u));
-  if (beside) rayListAppend(pc.rayLists, GI_RAY_LIST_RESOLVE, gi.giResolution, pixel);
+  if (beside) rayListAppend(pc.rayLists, GI_RAY_LIST_RESOLVE, gi.giResolution, pixel, RESOLVE_MAX_SAMPLES);
 }

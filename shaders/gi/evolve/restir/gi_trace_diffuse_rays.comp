@@ -102,5 +102,5 @@ void main() {
   }
   writeResult(g, s.position, RESTIR_GI_KIND_SURFACE, s.geometricNormal, radiance, neeRay, neeRadiance);
   if (any(notEqual(neeRay.xyz, vec3(0.0))))
-    rayListAppend(pc.rayLists, GI_RAY_LIST_NEE, gi.giResolution, g);
+    rayListAppend(pc.rayLists, GI_RAY_LIST_NEE, gi.giResolution, g, 1u);
 }

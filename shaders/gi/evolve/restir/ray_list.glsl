@@ -15,15 +15,18 @@ uint rayListBase(uint list, uvec2 giResolution) {
 }
 
 // Appends `pixel` with one atomic per subgroup (the lanes that call it together), and adds a
-// group to the tracing pass's dispatch for every GI_RAY_LIST_GROUP_SIZE-th entry.
-void rayListAppend(DeviceAddress lists, uint list, uvec2 giResolution, ivec2 pixel) {
+// group to the tracing pass's dispatch for every GI_RAY_LIST_GROUP_SIZE / threadsPerEntry-th
+// entry (the tracing pass runs threadsPerEntry threads per entry; a power of two).
+void rayListAppend(DeviceAddress lists, uint list, uvec2 giResolution, ivec2 pixel,
+                   uint threadsPerEntry) {
   GiRayListsRef r = GiRayListsRef(lists);
   uvec4 lanes = subgroupBallot(true);
   uint first = 0u;
   if (subgroupElect()) first = atomicAdd(r.header[list].count, subgroupBallotBitCount(lanes));
   uint index = subgroupBroadcastFirst(first) + subgroupBallotExclusiveBitCount(lanes);
   r.entries[rayListBase(list, giResolution) + index] = uint(pixel.x) | uint(pixel.y) << 16;
-  if (index % GI_RAY_LIST_GROUP_SIZE == 0u && index / GI_RAY_LIST_GROUP_SIZE < GI_RAY_LIST_MAX_GROUPS)
+  uint entriesPerGroup = GI_RAY_LIST_GROUP_SIZE / threadsPerEntry;
+  if (index % entriesPerGroup == 0u && index / entriesPerGroup < GI_RAY_LIST_MAX_GROUPS)
     atomicAdd(r.header[list].groupsX, 1u);
 }
 
@@ -34,8 +37,9 @@ ivec2 rayListPixel(DeviceAddress lists, uint list, uvec2 giResolution, uint inde
   return ivec2(packed & 0xFFFFu, packed >> 16);
 }
 
-// The entries this thread walks: its own, and every GI_RAY_LIST_GROUP_SIZE x
-// GI_RAY_LIST_MAX_GROUPS-th after it (lists longer than one dispatch can cover).
+// The work items (entries x threads per entry) a thread takes: its own, and every
+// GI_RAY_LIST_GROUP_SIZE x GI_RAY_LIST_MAX_GROUPS-th after it (lists longer than one dispatch
+// can cover).
 const uint RAY_LIST_STRIDE = GI_RAY_LIST_GROUP_SIZE * GI_RAY_LIST_MAX_GROUPS;
 
 #endif

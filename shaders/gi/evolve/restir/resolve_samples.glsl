@@ -36,7 +36,7 @@ ivec2 homeGiPixel(FrameConstants f, RestirGiConstants gi, ivec2 pixel, PrimaryVe
 // Reservoirs per pixel: the own one and up to 3 neighbours (one without resolve reuse).
 uint resolveSampleCount(RestirGiConstants gi) {
   bool reuse = (gi.flags & RESTIR_GI_FLAG_RESOLVE_REUSE) != 0u;
-  return reuse ? clamp(gi.resolveSamples, 1u, 4u) : 1u;
+  return reuse ? clamp(gi.resolveSamples, 1u, RESOLVE_MAX_SAMPLES) : 1u;
 }
 
 // The spiral's rotation for this pixel and frame.
