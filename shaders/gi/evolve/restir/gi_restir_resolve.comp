@@ -18,7 +18,7 @@
 // that lies on this one (homeGiPixel), so that edges are not left to the fallback.
 // At pixels beside an occluder, samples that gi-trace-resolve-visibility found hidden from this
 // pixel's vertex count with zero (see that pass: light leaking into gaps).
-// With RESTIR_GI_FLAG_PRODUCER_NORMALISATION the home reservoir is the canonical one of a
+// With RESTIR_GI_FLAG_CANONICAL_RESOLVE the home reservoir is the canonical one of a
 // combination whose weights sum to one over the reservoirs that can produce each sample
 // (Wyman et al. 2023, §5.3, the canonical reservoir taking the remainder): it reaches this
 // pixel by a direction shift (homeSample), never refused; a neighbour's accepted sample
@@ -116,7 +116,7 @@ void main() {
   float rotation = resolveRotation(f, pixel);
   bool occlusionKnown = (gi.flags & RESTIR_GI_FLAG_OCCLUDER_VISIBILITY) != 0u;
   uint hidden = occlusionKnown ? imageLoad(resolveOcclusion, pixel).x : 0u;
-  bool canonical = (gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) != 0u;
+  bool canonical = (gi.flags & RESTIR_GI_FLAG_CANONICAL_RESOLVE) != 0u;
   ShL1 sh = ShL1(vec4(0.0), vec4(0.0), vec4(0.0));
   vec3 exact = vec3(0.0);           // the direct estimate L cos / pi W at the shading normal
   vec3 exactGeometric = vec3(0.0);  // ... and at the geometric normal

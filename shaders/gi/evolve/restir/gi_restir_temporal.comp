@@ -271,7 +271,7 @@ void main() {
         streamReservoir(s, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, uk);
       }
     }
-    bool normalise = (gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) != 0u;
+    bool normalise = (gi.flags & RESTIR_GI_FLAG_TEMPORAL_PRODUCERS) != 0u;
     result = normalise ? endStreamNormalised(s, x1, confidenceOfProducers(gi, x1, candidate.M, s.chosen, merged))
                        : endStream(s, x1);
   }
