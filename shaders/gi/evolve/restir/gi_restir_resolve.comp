@@ -86,14 +86,14 @@ bool shiftedSample(PrimaryVertex x, Reservoir r, float maxJacobian, out vec3 dir
   return c > 0.0 && jacobian > 0.0 && jacobian <= maxJacobian;
 }
 
-// The home reservoir's sample at x by a direction shift (random replay of the direction from
-// its own vertex, Jacobian 1; Lin et al. 2022, §4): x lies within the GI pixel whose vertex traced
-// it, so the radiance along the direction is the same but where the hit is about as close as x
-// is to that vertex. The reconnection shift there has a Jacobian that grows without bound
-// ((distance from the home vertex / distance from x)^2 near contact, the other wall of a
-// corner): refused above maxJacobian, those samples were lost to every pixel but the GI
-// pixel's own; accepted, they are fireflies whose mean a finite number of frames undershoots
-// and that the denoiser's anti-firefly clamp cuts (docs/gi/restir-gi.md, "Energy").
+// The home reservoir's sample at x by a direction shift (the direction from its own vertex
+// replayed at x, Jacobian 1; Lin et al. 2022's random replay for one vertex): x lies within
+// the GI pixel whose vertex traced it, so the radiance along that direction is the same except
+// where the hit is about as close as x is to that vertex. The reconnection shift there has a
+// Jacobian that grows without bound ((distance from the home vertex / distance from x)^2 near
+// contact, the other wall of a corner): refused above maxJacobian, those samples were lost to
+// every pixel but the GI pixel's own; accepted, they are fireflies whose mean a finite number
+// of frames undershoots and that the anti-firefly clamp cut (docs/gi/restir-gi.md, "Energy").
 bool homeSample(PrimaryVertex x, Reservoir r, out vec3 direction, out vec3 radianceTimesW) {
   direction = normalize(r.samplePosition - r.origin);
   radianceTimesW = r.radiance * r.W;
