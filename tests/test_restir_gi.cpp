@@ -174,9 +174,9 @@ TEST(RestirGi, FullChainConvergesOnCornell) {
 // White furnace (issue 23: "each mode within 3 % of the analytic value"): the default chain
 // (desktop preset) at 24x16, the mean composite of frames 33-48 within 3 % of 2
 // (test::runFurnace; LuxGi.DISABLED_WhiteFurnace runs Lux, whose reuse is this chain's, the
-// same way). Measured 1.962 and 1.972 (before 1/Z in gi-restir-temporal, the canonical home
+// same way). Measured 1.962, 1.972, 1.998 (before 1/Z in gi-restir-temporal, the canonical home
 // reservoir in gi-restir-resolve and the anti-firefly clamp that keeps energy: 1.899; stage by
-// stage in docs/gi/restir-gi.md, "Energy"). 40-70 s on lavapipe.
+// stage in docs/gi/restir-gi.md, "Energy"). 25-70 s on lavapipe.
 TEST(RestirGi, WhiteFurnace) {
   vk::Context context(vk::contextOptionsFromEnvironment());
   HybridSettings settings = giSettings(24, 16, presetSettings(Preset::Desktop).restirGi);
