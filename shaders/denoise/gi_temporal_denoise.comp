@@ -109,16 +109,25 @@ vec3 excessOf(FrameConstants f, RestirGiConstants gi, ivec2 q, vec3 value, int s
 vec3 withoutFirefly(FrameConstants f, RestirGiConstants gi, ivec2 pixel, vec3 value) {
   if (!(gi.fireflyRatio > 1.0)) return value;
   int stride = 2 * int(gi.divisor);
-  float members;
-  vec3 result = value - excessOf(f, gi, pixel, value, stride, members);
-  float own = brdfLuminance(value);
-  if (!(own > 0.0)) return result;  // not a ring member of anyone
+  // The ring's luminances, read once: this pixel's own clamp and the test of which ring pixels
+  // were clamped (brighter than fireflyRatio x this one) both use them.
+  float ring[RING];
+  float brightest = 0.0;
   for (int k = 0; k < RING; ++k) {
+    ring[k] = brdfLuminance(inputAt(f, pixel + stride * ringOffset(k)));
+    brightest = max(brightest, ring[k]);
+  }
+  float own = brdfLuminance(value);
+  float limit = gi.fireflyRatio * brightest;
+  vec3 result = own > limit && brightest > 0.0 ? value * (limit / own) : value;
+  if (!(own > 0.0) || !(brightest > gi.fireflyRatio * own)) return result;
+  // Rare: a ring pixel bright enough to have been clamped; its ring is read again. Not unrolled,
+  // so that its eight copies do not cost every pixel registers.
+  [[dont_unroll]] for (int k = 0; k < RING; ++k) {
+    if (!(ring[k] > gi.fireflyRatio * own)) continue;  // q's ring holds this pixel
     ivec2 q = pixel + stride * ringOffset(k);
-    if (!insideImage(f, q)) continue;
-    vec3 v = inputAt(f, q);
-    if (!(brdfLuminance(v) > gi.fireflyRatio * own)) continue;  // q's ring holds this pixel
-    vec3 excess = excessOf(f, gi, q, v, stride, members);
+    float members;
+    vec3 excess = excessOf(f, gi, q, inputAt(f, q), stride, members);
     if (members > 0.0) result += excess / members;
   }
   return result;
