@@ -77,6 +77,10 @@ nlohmann::json reportJson(const Scene& scene, const std::string& source, const s
                               {"hit_miss_agreement", a.hitMissAgreement},
                               {"both_hit", a.bothHit},
                               {"tied_other_primitive", a.tiedOtherPrimitive},
+                              {"same_primitive_other_t", a.samePrimitiveOtherT},
+                              {"largest_relative_t_gap", a.largestRelativeTGap},
+                              {"hardware_nearer", a.hardwareNearer},
+                              {"software_nearer", a.softwareNearer},
                               {"relative_t_tolerance", RayAgreement::kRelativeTolerance}};
     if (a.sameHit) j["agreement"][a.kind]["same_hit"] = *a.sameHit;
   }
@@ -150,6 +154,15 @@ int runBenchRays(const BenchRaysOptions& options) {
                   a.sameHit ? fmt::format("{:.4f}", 100.0 * *a.sameHit).c_str() : "-",
                   (unsigned long long)a.tiedOtherPrimitive, ratio);
     }
+    // Where closest hits differ beyond a tie: the same primitive at another t, or another
+    // primitive nearer in one tracer's answer.
+    for (const RayAgreement& a : result.agreement)
+      if (a.samePrimitiveOtherT + a.hardwareNearer + a.softwareNearer > 0)
+        std::printf(
+            "%s: %llu same primitive at another t (largest |dt|/t %.2g), another primitive "
+            "nearer: %llu hardware, %llu software\n",
+            a.kind.c_str(), (unsigned long long)a.samePrimitiveOtherT, a.largestRelativeTGap,
+            (unsigned long long)a.hardwareNearer, (unsigned long long)a.softwareNearer);
   }
   if (!options.json.empty()) {
     const nlohmann::json report =

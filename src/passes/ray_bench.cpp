@@ -154,6 +154,15 @@ RayAgreement compareHits(const std::string& kind, std::span<const gpu::BenchHit>
         std::abs(double(hw.t) - double(sw.t)) <= RayAgreement::kRelativeTolerance * sw.t;
     same += samePrimitive && sameDistance;
     a.tiedOtherPrimitive += !samePrimitive && sameDistance;
+    if (sameDistance) continue;
+    if (samePrimitive) {
+      ++a.samePrimitiveOtherT;
+      a.largestRelativeTGap =
+          std::max(a.largestRelativeTGap, std::abs(double(hw.t) - double(sw.t)) / sw.t);
+    } else {
+      a.hardwareNearer += hw.t < sw.t;
+      a.softwareNearer += sw.t < hw.t;
+    }
   }
   a.hitMissAgreement = a.rays ? double(agree) / double(a.rays) : 1.0;
   if (closest) a.sameHit = a.bothHit ? double(same) / double(a.bothHit) : 1.0;

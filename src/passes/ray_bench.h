@@ -43,6 +43,13 @@ struct RayAgreement {
   // within the tolerance: ties such as shared edges or coplanar overlapping triangles, where
   // either answer is right.
   uint64_t tiedOtherPrimitive = 0;
+  // The other disagreements among rays both hit: the same primitive at a t further apart than
+  // the tolerance (and the largest |t_hw - t_sw| / t_sw of those), and another primitive nearer
+  // to the origin in the hardware's or in the software's answer.
+  uint64_t samePrimitiveOtherT = 0;
+  double largestRelativeTGap = 0.0;
+  uint64_t hardwareNearer = 0;
+  uint64_t softwareNearer = 0;
   static constexpr double kRelativeTolerance = 1e-4;
 };
 
