@@ -81,7 +81,13 @@ nlohmann::json reportJson(const Scene& scene, const std::string& source, const s
                               {"largest_relative_t_gap", a.largestRelativeTGap},
                               {"hardware_nearer", a.hardwareNearer},
                               {"software_nearer", a.softwareNearer},
-                              {"relative_t_tolerance", RayAgreement::kRelativeTolerance}};
+                              {"relative_t_tolerance", RayAgreement::kRelativeTolerance},
+                              {"judged", a.judged},
+                              {"software_matches_brute_force", a.softwareMatchesBruteForce},
+                              {"hardware_matches_brute_force", a.hardwareMatchesBruteForce},
+                              {"software_largest_plane_t_error", a.softwareLargestPlaneTError},
+                              {"hardware_largest_plane_t_error", a.hardwareLargestPlaneTError},
+                              {"examples", a.examples}};
     if (a.sameHit) j["agreement"][a.kind]["same_hit"] = *a.sameHit;
   }
   return j;
@@ -163,6 +169,18 @@ int runBenchRays(const BenchRaysOptions& options) {
             "nearer: %llu hardware, %llu software\n",
             a.kind.c_str(), (unsigned long long)a.samePrimitiveOtherT, a.largestRelativeTGap,
             (unsigned long long)a.hardwareNearer, (unsigned long long)a.softwareNearer);
+    // The brute-force tracer's verdict on the first disagreements.
+    for (const RayAgreement& a : result.agreement) {
+      if (a.judged == 0) continue;
+      std::printf(
+          "%s: of %llu judged by brute force, software right %llu, hardware right %llu; largest "
+          "|t - plane t| / t: software %.2g, hardware %.2g\n",
+          a.kind.c_str(), (unsigned long long)a.judged,
+          (unsigned long long)a.softwareMatchesBruteForce,
+          (unsigned long long)a.hardwareMatchesBruteForce, a.softwareLargestPlaneTError,
+          a.hardwareLargestPlaneTError);
+      for (const std::string& e : a.examples) std::printf("  %s\n", e.c_str());
+    }
   }
   if (!options.json.empty()) {
     const nlohmann::json report =

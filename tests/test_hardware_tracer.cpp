@@ -40,23 +40,28 @@ gpu::BenchHit hit(float t, uint32_t instance, uint32_t primitive) {
 TEST(HardwareTracerAgreement, CountsHitMissPrimitiveAndDistance) {
   const gpu::BenchHit miss = hit(0.0f, gpu::BVH_INVALID, gpu::BVH_INVALID);
   const gpu::BenchHit none = hit(0.0f, gpu::BENCH_RAYS_NO_RAY, gpu::BVH_INVALID);
-  std::vector<gpu::BenchHit> sw = {
-      hit(10.0f, 1, 5), hit(10.0f, 1, 5), hit(10.0f, 1, 5), hit(10.0f, 1, 5), miss, none};
+  const gpu::BenchHit at10 = hit(10.0f, 1, 5);
+  std::vector<gpu::BenchHit> sw = {at10, at10, at10, at10, at10, miss, none};
   std::vector<gpu::BenchHit> hw = {hit(10.0005f, 1, 5),  // same within 1e-4 relative
-                                   hit(10.01f, 1, 5),    // t too far
-                                   hit(10.0f, 1, 6),     // other primitive
+                                   hit(10.01f, 1, 5),    // same primitive: t rounded otherwise
+                                   hit(10.0f, 1, 6),     // another primitive, tied
+                                   hit(12.0f, 1, 7),     // another primitive, further
                                    miss,                 // hit/miss disagree
                                    miss,
                                    none};
   RayAgreement a = compareHits("primary", sw, hw, true);
-  EXPECT_EQ(a.rays, 5u);  // the pixel without a ray is not counted
-  EXPECT_DOUBLE_EQ(a.hitMissAgreement, 4.0 / 5.0);
-  EXPECT_EQ(a.bothHit, 3u);
+  EXPECT_EQ(a.rays, 6u);  // the pixel without a ray is not counted
+  EXPECT_DOUBLE_EQ(a.hitMissAgreement, 5.0 / 6.0);
+  EXPECT_EQ(a.bothHit, 4u);
   ASSERT_TRUE(a.sameHit.has_value());
-  EXPECT_DOUBLE_EQ(*a.sameHit, 1.0 / 3.0);
+  EXPECT_DOUBLE_EQ(*a.sameHit, 3.0 / 4.0);
   EXPECT_EQ(a.tiedOtherPrimitive, 1u);  // primitive 6 at the same distance
+  EXPECT_EQ(a.samePrimitiveOtherT, 1u);
+  EXPECT_NEAR(a.largestRelativeTGap, 0.001, 1e-5);
+  EXPECT_EQ(a.softwareNearer, 1u);
+  EXPECT_EQ(a.hardwareNearer, 0u);
   RayAgreement shadow = compareHits("shadow", sw, hw, false);
-  EXPECT_DOUBLE_EQ(shadow.hitMissAgreement, 4.0 / 5.0);
+  EXPECT_DOUBLE_EQ(shadow.hitMissAgreement, 5.0 / 6.0);
   EXPECT_FALSE(shadow.sameHit.has_value());
 }
 
@@ -168,16 +173,13 @@ TEST_P(HardwareTracerHits, AgreeWithSoftwareOnTheSameRays) {
   }
 }
 
-// The diffuse bounces' closest hits: same primitive and t within 1e-4 relative for at least
-// kAgreementBound of the rays both tracers hit with. DISABLED, not met: NVIDIA H100 (driver
-// 580.159.04, 2026-11-26), hit/miss agreement 1.00000 on all three scenes, same hit cornell
-// 0.999818, foliage 0.997766 (0 ties), city 0.995471 (10 ties). Nearly every disagreement is the
-// same triangle at another t (cornell 4 rays, largest |dt|/t 0.001; foliage 101, 0.03; city
-// 155, 0.026; at 1920x1080 city 6,506 with |dt|/t up to 1), not another primitive (0-3 rays).
-// The rays are the same (recorded once), and one triangle meets a ray at one t, so the two
-// tracers report t differently on those rays (in what space, or for which instances) rather
-// than traverse differently: the lead for the next session.
-TEST_P(HardwareTracerHits, DISABLED_DiffuseBouncesHitTheSamePrimitive) {
+// The diffuse bounces' closest hits: the same primitive (or a tie) for at least kAgreementBound
+// of the rays both tracers hit. Until the comparison counted the same primitive at another t
+// as the same hit, this failed (H100, 1920x1080 city 99.49 %, foliage 99.71 %): `bench-rays
+// --tracer both` judged those rays by brute force and by the exact plane t in double precision,
+// and they were all hits at t < 0.05 where both tracers' t were rounding of the origin's
+// coordinates (both within 1.1e-2 relative of the exact t); docs/ray-tracing.md.
+TEST_P(HardwareTracerHits, DiffuseBouncesHitTheSamePrimitive) {
   if (!hardwareTracingHere()) GTEST_SKIP() << "no VK_KHR_ray_tracing_pipeline";
   for (const RayAgreement& a : agreementOn(GetParam()))
     if (a.kind == "diffuse") EXPECT_GE(a.sameHit.value_or(0.0), kAgreementBound);

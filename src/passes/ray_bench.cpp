@@ -4,8 +4,11 @@
 #include <cmath>
 #include <functional>
 
+#include <fmt/format.h>
+
 #include "core/error.h"
 #include "passes/primary_view.h"
+#include "rt/cpu_trace.h"
 #include "shared/scene_layout.h"
 #include "vk/gpu_timer.h"
 #include "vk/memory_barrier.h"
@@ -96,9 +99,80 @@ void fullBarrier(VkCommandBuffer cmd) {
                     VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
 }
 
+// The exact t, in double precision, at which the ray's line meets the plane of `hit`'s triangle
+// (world space); 0 when the line is parallel to it.
+double exactPlaneT(const Scene& scene, const std::vector<uint32_t>& geometryBase,
+                   const gpu::BenchRay& ray, const gpu::BenchHit& hit) {
+  const Instance& instance = scene.instances[hit.instance];
+  const Geometry& geometry =
+      scene.meshes[instance.mesh].geometries[hit.geometry - geometryBase[instance.mesh]];
+  const glm::dmat4 toWorld(instance.transform);
+  glm::dvec3 v[3];
+  for (int k = 0; k < 3; ++k)
+    v[k] = glm::dvec3(
+        toWorld *
+        glm::dvec4(geometry.positions[geometry.indices[size_t(hit.primitive) * 3 + k]], 1.0));
+  const glm::dvec3 n = glm::cross(v[1] - v[0], v[2] - v[0]);
+  const glm::dvec3 o(ray.origin), d(ray.direction);
+  const double denominator = glm::dot(d, n);
+  return denominator == 0.0 ? 0.0 : glm::dot(v[0] - o, n) / denominator;
+}
+
+// Judges the first RayAgreement::kMaxJudged closest-hit disagreements with the brute-force
+// tracer and the exact plane distance (RayAgreement's judged fields).
+void judgeDisagreements(const Scene& scene, const GpuScene& gpuScene,
+                        std::span<const gpu::BenchRay> rays,
+                        std::span<const gpu::BenchHit> software,
+                        std::span<const gpu::BenchHit> hardware, RayAgreement& a) {
+  std::vector<uint32_t> geometryBase(scene.meshes.size(), 0);
+  for (size_t m = 1; m < scene.meshes.size(); ++m)
+    geometryBase[m] = geometryBase[m - 1] + uint32_t(scene.meshes[m - 1].geometries.size());
+  const rt::BruteForceTracer bruteForce(scene);
+  const rt::AlphaTest alpha = [&](uint32_t, uint32_t geometry, uint32_t primitive, float b1,
+                                  float b2) {
+    return gpuScene.alphaAccepts(geometry, primitive, b1, b2);
+  };
+  auto matches = [](const gpu::BenchHit& h, const rt::TraceHit& b) {
+    const bool samePrimitive =
+        h.instance == b.instance && h.geometry == b.geometry && h.primitive == b.primitive;
+    return b.hit && (samePrimitive ||
+                     std::abs(double(h.t) - double(b.t)) <= RayAgreement::kRelativeTolerance * b.t);
+  };
+  for (size_t i = 0; i < rays.size() && a.judged < RayAgreement::kMaxJudged; ++i) {
+    const gpu::BenchHit& sw = software[i];
+    const gpu::BenchHit& hw = hardware[i];
+    if (sw.instance == gpu::BENCH_RAYS_NO_RAY || sw.instance == gpu::BVH_INVALID ||
+        hw.instance == gpu::BVH_INVALID || hw.instance == gpu::BENCH_RAYS_NO_RAY)
+      continue;
+    if (std::abs(double(hw.t) - double(sw.t)) <= RayAgreement::kRelativeTolerance * sw.t) continue;
+    ++a.judged;
+    const gpu::BenchRay& ray = rays[i];
+    const rt::TraceHit b =
+        bruteForce.closestHit({ray.origin, ray.direction, ray.tMin}, ray.tMax, alpha);
+    a.softwareMatchesBruteForce += matches(sw, b);
+    a.hardwareMatchesBruteForce += matches(hw, b);
+    const double swExact = exactPlaneT(scene, geometryBase, ray, sw);
+    const double hwExact = exactPlaneT(scene, geometryBase, ray, hw);
+    a.softwareLargestPlaneTError =
+        std::max(a.softwareLargestPlaneTError, std::abs(sw.t - swExact) / std::abs(swExact));
+    a.hardwareLargestPlaneTError =
+        std::max(a.hardwareLargestPlaneTError, std::abs(hw.t - hwExact) / std::abs(hwExact));
+    if (a.examples.size() < 4)
+      a.examples.push_back(fmt::format(
+          "ray {} origin ({:.6g}, {:.6g}, {:.6g}) dir ({:.6g}, {:.6g}, {:.6g}) t in ({:.6g}, "
+          "{:.6g}): software {}/{}/{} t {:.7g} (plane {:.7g}), hardware {}/{}/{} t {:.7g} "
+          "(plane {:.7g}), brute force {} t {:.7g}",
+          i, ray.origin.x, ray.origin.y, ray.origin.z, ray.direction.x, ray.direction.y,
+          ray.direction.z, ray.tMin, ray.tMax, sw.instance, sw.geometry, sw.primitive, sw.t,
+          swExact, hw.instance, hw.geometry, hw.primitive, hw.t, hwExact,
+          b.hit ? fmt::format("{}/{}/{}", b.instance, b.geometry, b.primitive) : "miss", b.t));
+  }
+}
+
 // The agreement run: per kind, the software tracer traces frame 0 and records its rays and
 // hits; the hardware tracer traces those same rays and records its hits.
-std::vector<RayAgreement> compareTracers(vk::Context& context, const Launch& software,
+std::vector<RayAgreement> compareTracers(vk::Context& context, const Scene& scene,
+                                         const GpuScene& gpuScene, const Launch& software,
                                          const Launch& hardware, gpu::BenchRaysConstants pc,
                                          BenchBuffers& buffers, uint64_t pixels) {
   const VkBufferUsageFlags usage =
@@ -127,6 +201,11 @@ std::vector<RayAgreement> compareTracers(vk::Context& context, const Launch& sof
     vk::downloadBuffer(context, softwareHits, std::as_writable_bytes(std::span(sw)));
     vk::downloadBuffer(context, hardwareHits, std::as_writable_bytes(std::span(hw)));
     out.push_back(compareHits(kKindNames[mode], sw, hw, mode != gpu::BENCH_RAYS_SHADOW));
+    if (mode != gpu::BENCH_RAYS_SHADOW) {
+      std::vector<gpu::BenchRay> traced(pixels);
+      vk::downloadBuffer(context, rays, std::as_writable_bytes(std::span(traced)));
+      judgeDisagreements(scene, gpuScene, traced, sw, hw, out.back());
+    }
   }
   return out;
 }
@@ -152,17 +231,24 @@ RayAgreement compareHits(const std::string& kind, std::span<const gpu::BenchHit>
         sw.instance == hw.instance && sw.geometry == hw.geometry && sw.primitive == hw.primitive;
     const bool sameDistance =
         std::abs(double(hw.t) - double(sw.t)) <= RayAgreement::kRelativeTolerance * sw.t;
-    same += samePrimitive && sameDistance;
+    // One triangle meets a ray at one point: the same primitive is the same hit whatever the
+    // two t's rounding (measured on the H100: the same-primitive gaps were all at t < 0.05,
+    // where both tracers' t are a few ulps of the origin's coordinates off the exact plane t;
+    // docs/ray-tracing.md). Another primitive at the same t is a tie (a shared edge, coplanar
+    // triangles): either answer is right.
+    same += samePrimitive || sameDistance;
     a.tiedOtherPrimitive += !samePrimitive && sameDistance;
-    if (sameDistance) continue;
     if (samePrimitive) {
-      ++a.samePrimitiveOtherT;
-      a.largestRelativeTGap =
-          std::max(a.largestRelativeTGap, std::abs(double(hw.t) - double(sw.t)) / sw.t);
-    } else {
-      a.hardwareNearer += hw.t < sw.t;
-      a.softwareNearer += sw.t < hw.t;
+      if (!sameDistance) {
+        ++a.samePrimitiveOtherT;
+        a.largestRelativeTGap =
+            std::max(a.largestRelativeTGap, std::abs(double(hw.t) - double(sw.t)) / sw.t);
+      }
+      continue;
     }
+    if (sameDistance) continue;
+    a.hardwareNearer += hw.t < sw.t;
+    a.softwareNearer += sw.t < hw.t;
   }
   a.hitMissAgreement = a.rays ? double(agree) / double(a.rays) : 1.0;
   if (closest) a.sameHit = a.bothHit ? double(same) / double(a.bothHit) : 1.0;
@@ -230,7 +316,8 @@ RayBenchResult runRayBench(vk::Context& context, const GpuScene& gpuScene, const
   };
   result.hardware = timeKinds(context, hardware, pc, buffers, options.iterations, pixels);
   if (runSoftware)
-    result.agreement = compareTracers(context, software, hardware, pc, buffers, pixels);
+    result.agreement =
+        compareTracers(context, scene, gpuScene, software, hardware, pc, buffers, pixels);
   return result;
 }
 

@@ -35,7 +35,8 @@ struct RayAgreement {
   uint64_t rays = 0;              // rays compared (pixels with a ray of this kind)
   double hitMissAgreement = 0.0;  // fraction of rays whose hit/miss answers agree
   // Closest-hit kinds (primary, diffuse): among rays both tracers hit, the fraction with the
-  // same instance, geometry and primitive and |t_hw - t_sw| <= kRelativeTolerance * t_sw.
+  // same hit: the same instance, geometry and primitive (a ray meets a triangle at one point,
+  // whatever the rounding of the two t's), or a tie (below).
   // Visibility rays stop at any hit, so shadow rays compare hit/miss only (sameHit unset).
   uint64_t bothHit = 0;
   std::optional<double> sameHit;
@@ -43,14 +44,26 @@ struct RayAgreement {
   // within the tolerance: ties such as shared edges or coplanar overlapping triangles, where
   // either answer is right.
   uint64_t tiedOtherPrimitive = 0;
-  // The other disagreements among rays both hit: the same primitive at a t further apart than
-  // the tolerance (and the largest |t_hw - t_sw| / t_sw of those), and another primitive nearer
-  // to the origin in the hardware's or in the software's answer.
+  // Of the same hits, those with the same primitive at a t further apart than the tolerance
+  // (rounding at small t), and the largest |t_hw - t_sw| / t_sw of those. The disagreements:
+  // another primitive nearer to the origin in the hardware's or in the software's answer.
   uint64_t samePrimitiveOtherT = 0;
   double largestRelativeTGap = 0.0;
   uint64_t hardwareNearer = 0;
   uint64_t softwareNearer = 0;
+  // The first kMaxJudged rays whose t's differ beyond the tolerance judged by the brute-force
+  // tracer (rt::BruteForceTracer, alpha test included): how many of each tracer's answers it gives
+  // (the same primitive, or another within the tolerance of its t), and, per tracer, the largest
+  // relative distance of its t from the exact double-precision t of the line with its reported
+  // triangle's plane.
+  uint64_t judged = 0;
+  uint64_t softwareMatchesBruteForce = 0;
+  uint64_t hardwareMatchesBruteForce = 0;
+  double softwareLargestPlaneTError = 0.0;
+  double hardwareLargestPlaneTError = 0.0;
+  std::vector<std::string> examples;  // the first few judged rays, one line each
   static constexpr double kRelativeTolerance = 1e-4;
+  static constexpr uint64_t kMaxJudged = 256;
 };
 
 struct RayBenchResult {
