@@ -486,49 +486,63 @@ TEST(Motion, HundredAnimatedFramesAllocateNothingAfterFrameThree) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
-// 20 animated frames (the scene's motion or a sway, a moving sun) of every built-in scene under
+// 20 animated frames (the scene's motion or a sway, a moving sun) of a built-in scene under
 // the validation layers with synchronization validation: no NaN, silent layers, and no device
-// allocation after the 3rd frame (the frame graph allocates everything up front).
-void expectAnimatedFramesClean(Preset preset) {
-  for (const std::string& name : builtinSceneNames()) {
-    SCOPED_TRACE(name);
-    vk::Context context(
-        vk::contextOptionsFromEnvironment({.validation = true, .synchronizationValidation = true}));
-    ASSERT_TRUE(context.validationEnabled()) << "the Khronos validation layer is missing";
-    Scene scene = loadScene(name);
-    GpuScene gpuScene(context, scene);
-    HybridSettings settings = presetSettings(preset);
-    settings.width = 64;
-    settings.height = 30;
-    HybridFrame frame(context, gpuScene, scene, settings);
-    frame.requestDebugView("composite");
-    SceneAnimation animation = scene.animation;
-    if (!animation.camera)
-      animation.camera = swayCameraPath(effectiveCamera(scene), 4.0f, 0.3f, 8.0f);
-    animation.timeOfDay = TimeOfDayTrack{16.0f, 60.0f};  // the sun moves too
-    AnimationPlayer player(scene, animation);
-    uint64_t allocationsAfterFrame2 = 0;
-    for (uint32_t i = 0; i < 20; ++i) {
-      std::vector<vk::PassTiming> timings = frame.render(player.apply(frame, float(i) / 10.0f));
-      if (i == 2) allocationsAfterFrame2 = context.allocationCount();
-      if (i > 2) EXPECT_EQ(context.allocationCount(), allocationsAfterFrame2) << "frame " << i;
-      if (context.info().timestampPeriodNs > 0.0f) EXPECT_FALSE(timings.empty());
-    }
-    ImageRGBA32F hdr = frame.debugViewImage("composite");
-    uint32_t nonFinite = 0;
-    for (float v : hdr.pixels) nonFinite += !std::isfinite(v);
-    EXPECT_EQ(nonFinite, 0u);
-    EXPECT_EQ(context.validationErrorCount(), 0u);
+// allocation after the 3rd frame (the frame graph allocates everything up front). One case per
+// scene and preset, so that CTest spreads them over the cores. Scenes of over a million
+// triangles find their primary hits by tracing (the presets' other vbuffer mode): lavapipe
+// rasterises every triangle on the CPU whatever the image size, and city-10k's raster vbuffer
+// alone took 12.6 s a frame at 64x30 (3 minutes a case); the raster path is the same code on
+// the smaller scenes.
+void expectAnimatedFramesClean(const std::string& name, Preset preset) {
+  vk::Context context(
+      vk::contextOptionsFromEnvironment({.validation = true, .synchronizationValidation = true}));
+  ASSERT_TRUE(context.validationEnabled()) << "the Khronos validation layer is missing";
+  Scene scene = loadScene(name);
+  GpuScene gpuScene(context, scene);
+  HybridSettings settings = presetSettings(preset);
+  settings.width = 64;
+  settings.height = 30;
+  if (scene.triangleCount() > 1'000'000) settings.vbuffer = VBufferMode::Trace;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("composite");
+  SceneAnimation animation = scene.animation;
+  if (!animation.camera)
+    animation.camera = swayCameraPath(effectiveCamera(scene), 4.0f, 0.3f, 8.0f);
+  animation.timeOfDay = TimeOfDayTrack{16.0f, 60.0f};  // the sun moves too
+  AnimationPlayer player(scene, animation);
+  uint64_t allocationsAfterFrame2 = 0;
+  for (uint32_t i = 0; i < 20; ++i) {
+    std::vector<vk::PassTiming> timings = frame.render(player.apply(frame, float(i) / 10.0f));
+    if (i == 2) allocationsAfterFrame2 = context.allocationCount();
+    if (i > 2) EXPECT_EQ(context.allocationCount(), allocationsAfterFrame2) << "frame " << i;
+    if (context.info().timestampPeriodNs > 0.0f) EXPECT_FALSE(timings.empty());
   }
+  ImageRGBA32F hdr = frame.debugViewImage("composite");
+  uint32_t nonFinite = 0;
+  for (float v : hdr.pixels) nonFinite += !std::isfinite(v);
+  EXPECT_EQ(nonFinite, 0u);
+  EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
-TEST(Motion, TwentyAnimatedFramesOfEveryBuiltinSceneAreCleanAtMobileSettings) {
-  expectAnimatedFramesClean(Preset::Mobile);
+class TwentyAnimatedFrames : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(TwentyAnimatedFrames, AreCleanAtMobileSettings) {
+  expectAnimatedFramesClean(GetParam(), Preset::Mobile);
 }
 
-TEST(Motion, TwentyAnimatedFramesOfEveryBuiltinSceneAreCleanAtDesktopSettings) {
-  expectAnimatedFramesClean(Preset::Desktop);
+TEST_P(TwentyAnimatedFrames, AreCleanAtDesktopSettings) {
+  expectAnimatedFramesClean(GetParam(), Preset::Desktop);
 }
+
+// Every built-in scene; '-' is not allowed in a test name.
+INSTANTIATE_TEST_SUITE_P(BuiltinScenes, TwentyAnimatedFrames,
+                         ::testing::ValuesIn(builtinSceneNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           std::string name = info.param;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 TEST(Motion, CameraCutResetsHistory) {
   vk::Context context(vk::contextOptionsFromEnvironment({}));
