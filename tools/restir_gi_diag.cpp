@@ -27,6 +27,7 @@
 #include "rt/gpu_scene.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
+#include "split_list.h"
 #include "tools/image_io.h"
 #include "tools/metrics.h"
 #include "vk/context.h"
@@ -146,17 +147,6 @@ HybridSettings configurationSettings(const std::string& name, uint32_t width, ui
   if (name.find("vtrace") != std::string::npos) settings.vbuffer = VBufferMode::Trace;
   if (name.find("vraster") != std::string::npos) settings.vbuffer = VBufferMode::Raster;
   return settings;
-}
-
-std::vector<std::string> splitList(const std::string& text, char separator) {
-  std::vector<std::string> items;
-  for (size_t start = 0; start < text.size();) {
-    size_t end = text.find(separator, start);
-    if (end == std::string::npos) end = text.size();
-    if (end > start) items.push_back(text.substr(start, end - start));
-    start = end + 1;
-  }
-  return items;
 }
 
 struct Pixel {

@@ -27,6 +27,7 @@
 #include "scene/load.h"
 #include "scene/procedural/builtin_scenes.h"
 #include "scene/scene_options.h"
+#include "split_list.h"
 #include "tools/image_io.h"
 #include "tools/metrics.h"
 #include "vk/context.h"
@@ -56,17 +57,6 @@ struct Options {
   uint32_t maxBounces = 16;
   uint32_t seed = 1;
 };
-
-std::vector<std::string> splitList(const std::string& text, char separator) {
-  std::vector<std::string> items;
-  for (size_t start = 0; start < text.size();) {
-    size_t end = text.find(separator, start);
-    if (end == std::string::npos) end = text.size();
-    if (end > start) items.push_back(text.substr(start, end - start));
-    start = end + 1;
-  }
-  return items;
-}
 
 // A configuration name is a '+'-separated list of parts: the GI mode (none, cache, evolve),
 // dN (reflection divisor N), maxrX (maxTracedRoughness X), mirrorX (mirrorRoughness X),

@@ -12,22 +12,11 @@
 
 #include "core/error.h"
 #include "vk/check.h"
+#include "vk/validation.h"
 
 namespace bounce::view {
 
 namespace {
-
-constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
-
-bool hasLayer(const char* name) {
-  uint32_t count = 0;
-  vkEnumerateInstanceLayerProperties(&count, nullptr);
-  std::vector<VkLayerProperties> layers(count);
-  vkEnumerateInstanceLayerProperties(&count, layers.data());
-  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
-    return std::strcmp(l.layerName, name) == 0;
-  });
-}
 
 bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
   uint32_t count = 0;
@@ -120,12 +109,8 @@ void WindowDevice::release() {
   }
   if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
   surface_ = VK_NULL_HANDLE;
-  if (messenger_) {
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-    if (destroy) destroy(instance_, messenger_, nullptr);
-    messenger_ = VK_NULL_HANDLE;
-  }
+  vk::destroyDebugMessenger(instance_, messenger_);
+  messenger_ = VK_NULL_HANDLE;
   if (instance_) vkDestroyInstance(instance_, nullptr);
   instance_ = VK_NULL_HANDLE;
   if (window_) {
@@ -142,25 +127,16 @@ void WindowDevice::createInstance(bool validation) {
   std::vector<const char*> extensions(glfwExtensions, glfwExtensions + glfwCount);
   std::vector<const char*> layers;
 
-  VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
-      VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-  messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                                  VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                              VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                              VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-  messengerInfo.pfnUserCallback = &WindowDevice::onValidationMessage;
-  messengerInfo.pUserData = this;
+  VkDebugUtilsMessengerCreateInfoEXT messengerInfo =
+      vk::validationMessengerInfo(&WindowDevice::onValidationMessage, this);
   VkValidationFeatureEnableEXT syncValidation =
       VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
   VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT, &messengerInfo};
   features.enabledValidationFeatureCount = 1;
   features.pEnabledValidationFeatures = &syncValidation;
   if (validation) {
-    if (!hasLayer(kValidationLayer))
-      fail("validation requested but {} is not installed (apt-get install vulkan-validationlayers)",
-           kValidationLayer);
-    layers.push_back(kValidationLayer);
+    vk::requireValidationLayer();
+    layers.push_back(vk::kValidationLayer);
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
 
@@ -178,20 +154,14 @@ void WindowDevice::createInstance(bool validation) {
   if (r != VK_SUCCESS)
     fail("cannot create a Vulkan 1.3 instance with window-system extensions ({})",
          vk::resultName(r));
-  if (validation) {
-    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-    VK_CHECK(create(instance_, &messengerInfo, nullptr, &messenger_));
-  }
+  if (validation) messenger_ = vk::createDebugMessenger(instance_, messengerInfo);
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL WindowDevice::onValidationMessage(
     VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
     const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
-  bool error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  if (error) ++static_cast<WindowDevice*>(self)->validationErrors_;
-  std::fprintf(stderr, "bounce view: validation %s: %s\n", error ? "error" : "warning",
-               data->pMessage ? data->pMessage : "");
+  if (vk::printValidationMessage("bounce view", severity, data))
+    ++static_cast<WindowDevice*>(self)->validationErrors_;
   return VK_FALSE;
 }
 

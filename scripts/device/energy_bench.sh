@@ -8,14 +8,6 @@
 # then run from the repository root on the GPU machine with .devicepack carried.
 set -u
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
-passes="gi-|frame \(GPU\)|error"
-for round in 1 2; do
-  for program in ${PROGRAMS:-bounce-base bounce}; do
-    for scene in sunroom city; do
-      echo "== $program $scene (round $round)"
-      bash .devicepack/run.sh $program bench --scene $scene --res 1920x1080 --gi evolve \
-        --frames 120 --time-of-day 12 --day-cycle 100000 --out /tmp/energy/$program-$scene-$round \
-        2>&1 | tr '\r' '\n' | grep -E "$passes"
-    done
-  done
-done
+source "$(dirname "${BASH_SOURCE[0]}")/evolve_rounds.sh"
+# $PROGRAMS unquoted: one word a program
+evolve_rounds /tmp/energy "gi-|frame \(GPU\)|error" ${PROGRAMS:-bounce-base bounce}

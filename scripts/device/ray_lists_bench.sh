@@ -8,20 +8,11 @@
 # then run from the repository root on the GPU machine with .devicepack carried.
 set -u
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader
+source "$(dirname "${BASH_SOURCE[0]}")/evolve_rounds.sh"
 passes="gi-|cache-trace-diffuse-rays |frame \(GPU\)|error"
-for round in 1 2; do
-  for program in bounce-base bounce; do
-    for scene in sunroom city; do
-      echo "== $program $scene (round $round)"
-      bash .devicepack/run.sh $program bench --scene $scene --res 1920x1080 --gi evolve \
-        --frames 120 --time-of-day 12 --day-cycle 100000 --out /tmp/rl/$program-$scene-$round \
-        2>&1 | tr '\r' '\n' | grep -E "$passes"
-    done
-  done
-done
+evolve_rounds /tmp/rl "$passes" bounce-base bounce
 for scene in sunroom city; do
   echo "== bounce --bvh wide $scene"
-  bash .devicepack/run.sh bounce bench --scene $scene --res 1920x1080 --gi evolve --bvh wide \
-    --frames 120 --time-of-day 12 --day-cycle 100000 --out /tmp/rl/wide-$scene \
-    2>&1 | tr '\r' '\n' | grep -E "$passes|vbuffer|shadows-trace|di-generate|reflections-trace"
+  evolve_bench bounce $scene /tmp/rl/wide-$scene \
+    "$passes|vbuffer|shadows-trace|di-generate|reflections-trace" --bvh wide
 done

@@ -92,6 +92,74 @@ uint childEntry(bool inBlas, uint index, uint count) {
                 : (index | BVH_STACK_INSTANCE);
 }
 
+// The children of a binary node (TLAS, or a binary BLAS) that the ray enters before tMax.
+struct EnteredChildren {
+  uint nearer;   // the nearer entered child's entry, when any is entered
+  uint farther;  // the other one's, when both are
+  bool any;
+  bool both;
+};
+
+EnteredChildren enterBinaryNode(GpuBvhNode node, BoxRay ray, float tMin, float tMax,
+                                bool inBlas) {
+  float tLeft = intersectBox(node.leftMin, node.leftMax, ray, tMin, tMax);
+  float tRight = intersectBox(node.rightMin, node.rightMax, ray, tMin, tMax);
+  bool hitLeft = tLeft <= tMax;
+  bool hitRight = tRight <= tMax;
+  uint leftEntry = childEntry(inBlas, node.leftIndex, node.leftCount);
+  uint rightEntry = childEntry(inBlas, node.rightIndex, node.rightCount);
+  bool leftNear = hitLeft && (!hitRight || tLeft <= tRight);
+  EnteredChildren c;
+  c.nearer = leftNear ? leftEntry : rightEntry;
+  c.farther = leftNear ? rightEntry : leftEntry;
+  c.any = hitLeft || hitRight;
+  c.both = hitLeft && hitRight;
+  return c;
+}
+
+// An instance as its BLAS is traversed: the ray in object space (not renormalised, so t means
+// the same in both spaces) and what a hit records of the instance.
+struct InstanceSpace {
+  LevelRay ray;
+  uint instance;
+  uint geometryBase;
+  uint blasRoot;
+  bool mirrored;  // a mirroring transform turns the triangles' winding around
+};
+
+InstanceSpace enterInstance(uint instance, vec3 worldOrigin, vec3 worldDir) {
+  GpuInstance inst = sceneInstance(instance);
+  InstanceSpace s;
+  s.ray = makeLevelRay(transformPoint(inst.worldToObject, worldOrigin),
+                       transformVector(inst.worldToObject, worldDir));
+  s.instance = instance;
+  s.geometryBase = inst.geometryBase;
+  s.blasRoot = inst.blasRoot;
+  s.mirrored = dot(inst.worldToObject[0].xyz,
+                   cross(inst.worldToObject[1].xyz, inst.worldToObject[2].xyz)) < 0.0;
+  return s;
+}
+
+// Tests triangle i of the instance's BLAS; an accepted hit nearer than best.t replaces best.
+// Returns whether it did.
+bool hitTriangle(uint i, InstanceSpace space, float tMin, bool alphaTest, inout TraceHit best) {
+  GpuTriangle tri = TriangleArray(scene.triangles).v[i];
+  TriangleHit h = intersectTriangle(space.ray.origin, space.ray.shear, tri.v0, tri.v1, tri.v2,
+                                    tMin, best.t);
+  uint geometry = space.geometryBase + (tri.geometry & ~GPU_TRIANGLE_ALPHA_TESTED);
+  bool accepted = h.hit && (!alphaTest || (tri.geometry & GPU_TRIANGLE_ALPHA_TESTED) == 0u ||
+                            alphaAccepts(geometry, tri.primitive, vec2(h.b1, h.b2)));
+  if (accepted) {
+    best.t = h.t;
+    best.instance = space.instance;
+    best.geometry = geometry;
+    best.primitive = tri.primitive;
+    best.barycentrics = vec2(h.b1, h.b2);
+    best.frontFacing = h.frontFacing != space.mirrored;
+  }
+  return accepted;
+}
+
 // The shared traversal (src/rt/cpu_trace.cpp mirrors it). anyHit: stop at the first accepted
 // hit. BLAS leaves go through the stack like nodes, so the loop runs as two inner loops, nodes
 // then leaves (Aila and Laine 2009, "while-while"): the lanes of a warp fetch nodes together and
@@ -115,85 +183,46 @@ TraceHit traceSceneBinary(vec3 worldOrigin, vec3 worldDir, float tMin, float tMa
 
   uint stack[BVH_STACK_SIZE];
   int sp = 0;
-  LevelRay ray = makeLevelRay(worldOrigin, worldDir);
+  // The level being traversed: the world ray in the TLAS, the entered instance in a BLAS (its
+  // other fields are first read after enterInstance has set them).
+  InstanceSpace space;
+  space.ray = makeLevelRay(worldOrigin, worldDir);
   BvhNodeArray nodes = BvhNodeArray(scene.tlasNodes);
-  TriangleArray triangles = TriangleArray(scene.triangles);
   bool inBlas = false;
   int blasStackBase = 0;
-  uint instance = 0u;
-  uint geometryBase = 0u;
-  bool mirrored = false;
   uint next = 0u;  // the TLAS root
 
   while (true) {
     // Interior nodes, until the next entry is a leaf, an instance or nothing.
     while ((next & STACK_KIND_BITS) == 0u) {
-      GpuBvhNode node = nodes.v[next];
-      float tLeft = intersectBox(node.leftMin, node.leftMax, ray.box, tMin, best.t);
-      float tRight = intersectBox(node.rightMin, node.rightMax, ray.box, tMin, best.t);
-      bool hitLeft = tLeft <= best.t;
-      bool hitRight = tRight <= best.t;
-      uint leftEntry = childEntry(inBlas, node.leftIndex, node.leftCount);
-      uint rightEntry = childEntry(inBlas, node.rightIndex, node.rightCount);
-      if (hitLeft && hitRight) {
-        bool leftNear = tLeft <= tRight;
-        stack[sp++] = leftNear ? rightEntry : leftEntry;
-        next = leftNear ? leftEntry : rightEntry;
-      } else if (hitLeft) {
-        next = leftEntry;
-      } else if (hitRight) {
-        next = rightEntry;
-      } else {
-        next = sp > (inBlas ? blasStackBase : 0) ? stack[--sp] : NO_ENTRY;
-      }
+      EnteredChildren c = enterBinaryNode(nodes.v[next], space.ray.box, tMin, best.t, inBlas);
+      if (c.both) stack[sp++] = c.farther;
+      next = c.any ? c.nearer : (sp > (inBlas ? blasStackBase : 0) ? stack[--sp] : NO_ENTRY);
     }
     // BLAS leaves, until the next entry is not one.
     while ((next & STACK_KIND_BITS) == BVH_STACK_LEAF) {
       uint first = next & BVH_STACK_LEAF_INDEX_MASK;
       uint count = ((next & ~STACK_KIND_BITS) >> BVH_STACK_LEAF_COUNT_SHIFT) + 1u;
-      for (uint i = first; i < first + count; ++i) {
-        GpuTriangle tri = triangles.v[i];
-        TriangleHit h = intersectTriangle(ray.origin, ray.shear, tri.v0, tri.v1, tri.v2, tMin,
-                                          best.t);
-        if (!h.hit) continue;
-        uint geometry = geometryBase + (tri.geometry & ~GPU_TRIANGLE_ALPHA_TESTED);
-        if (alphaTest && (tri.geometry & GPU_TRIANGLE_ALPHA_TESTED) != 0u &&
-            !alphaAccepts(geometry, tri.primitive, vec2(h.b1, h.b2)))
-          continue;
-        best.t = h.t;
-        best.instance = instance;
-        best.geometry = geometry;
-        best.primitive = tri.primitive;
-        best.barycentrics = vec2(h.b1, h.b2);
-        best.frontFacing = h.frontFacing != mirrored;
-        if (anyHit) return best;
-      }
+      for (uint i = first; i < first + count; ++i)
+        if (hitTriangle(i, space, tMin, alphaTest, best) && anyHit) return best;
       next = sp > blasStackBase ? stack[--sp] : NO_ENTRY;
     }
     if (next == NO_ENTRY) {
       if (inBlas && sp == blasStackBase) {  // the instance is done: back to the world ray
         inBlas = false;
-        ray = makeLevelRay(worldOrigin, worldDir);
+        space.ray = makeLevelRay(worldOrigin, worldDir);
         nodes = BvhNodeArray(scene.tlasNodes);
       }
       if (sp == 0) break;
       next = stack[--sp];
       continue;
     }
-    if (!inBlas && (next & BVH_STACK_INSTANCE) != 0u) {
-      // Enter an instance: continue in its BLAS with the object-space ray (not renormalised,
-      // so t means the same in both spaces).
-      instance = next & ~BVH_STACK_INSTANCE;
-      GpuInstance inst = sceneInstance(instance);
-      geometryBase = inst.geometryBase;
-      mirrored = dot(inst.worldToObject[0].xyz,
-                     cross(inst.worldToObject[1].xyz, inst.worldToObject[2].xyz)) < 0.0;
-      ray = makeLevelRay(transformPoint(inst.worldToObject, worldOrigin),
-                         transformVector(inst.worldToObject, worldDir));
+    if (!inBlas && (next & BVH_STACK_INSTANCE) != 0u) {  // continue in the instance's BLAS
+      space = enterInstance(next & ~BVH_STACK_INSTANCE, worldOrigin, worldDir);
       nodes = BvhNodeArray(scene.blasNodes);
       blasStackBase = sp;
       inBlas = true;
-      next = inst.blasRoot;
+      next = space.blasRoot;
     }
   }
   return best;
@@ -225,20 +254,15 @@ float intersectWideChild(GpuWideBvhNode node, vec3 scale, uint slot, BoxRay r, f
 // when anyHit found a hit (then in best).
 bool traceBlasWide(uint instance, vec3 worldOrigin, vec3 worldDir, float tMin, bool alphaTest,
                    bool anyHit, inout TraceHit best) {
-  GpuInstance inst = sceneInstance(instance);
-  bool mirrored = dot(inst.worldToObject[0].xyz,
-                      cross(inst.worldToObject[1].xyz, inst.worldToObject[2].xyz)) < 0.0;
-  LevelRay ray = makeLevelRay(transformPoint(inst.worldToObject, worldOrigin),
-                              transformVector(inst.worldToObject, worldDir));
-  uint octant = (ray.box.negative.x ? 1u : 0u) | (ray.box.negative.y ? 2u : 0u) |
-                (ray.box.negative.z ? 4u : 0u);
+  InstanceSpace space = enterInstance(instance, worldOrigin, worldDir);
+  bvec3 negative = space.ray.box.negative;
+  uint octant = (negative.x ? 1u : 0u) | (negative.y ? 2u : 0u) | (negative.z ? 4u : 0u);
   uint octantInv = 7u ^ octant;
   WideBvhNodeArray nodes = WideBvhNodeArray(scene.blasNodes);
-  TriangleArray triangles = TriangleArray(scene.triangles);
 
   uvec2 stack[BVH_WIDE_STACK_SIZE];
   int sp = 0;
-  uvec2 group = uvec2(inst.blasRoot, 0x80000000u);
+  uvec2 group = uvec2(space.blasRoot, 0x80000000u);
   while (true) {
     if ((group.y & 0xFF000000u) == 0u) {
       if (sp == 0) return false;
@@ -260,7 +284,7 @@ bool traceBlasWide(uint instance, vec3 worldOrigin, vec3 worldDir, float tMin, b
     for (uint s = 0u; s < 8u; ++s) {
       uint meta = wideByte(node.meta, s);
       if (meta == 0u) continue;
-      if (intersectWideChild(node, scale, s, ray.box, tMin, best.t) > best.t) continue;
+      if (intersectWideChild(node, scale, s, space.ray.box, tMin, best.t) > best.t) continue;
       if ((interiorMask & (1u << s)) != 0u)
         interiorHits |= 1u << (24u + (s ^ octantInv));
       else
@@ -271,21 +295,7 @@ bool traceBlasWide(uint instance, vec3 worldOrigin, vec3 worldDir, float tMin, b
     while (triangleHits != 0u) {
       uint i = node.triangleBase + uint(findLSB(triangleHits));
       triangleHits &= triangleHits - 1u;
-      GpuTriangle tri = triangles.v[i];
-      TriangleHit h = intersectTriangle(ray.origin, ray.shear, tri.v0, tri.v1, tri.v2, tMin,
-                                        best.t);
-      if (!h.hit) continue;
-      uint geometry = inst.geometryBase + (tri.geometry & ~GPU_TRIANGLE_ALPHA_TESTED);
-      if (alphaTest && (tri.geometry & GPU_TRIANGLE_ALPHA_TESTED) != 0u &&
-          !alphaAccepts(geometry, tri.primitive, vec2(h.b1, h.b2)))
-        continue;
-      best.t = h.t;
-      best.instance = instance;
-      best.geometry = geometry;
-      best.primitive = tri.primitive;
-      best.barycentrics = vec2(h.b1, h.b2);
-      best.frontFacing = h.frontFacing != mirrored;
-      if (anyHit) return true;
+      if (hitTriangle(i, space, tMin, alphaTest, best) && anyHit) return true;
     }
   }
   return false;
@@ -304,24 +314,9 @@ TraceHit traceSceneWide(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax,
   uint next = 0u;  // the TLAS root
   while (true) {
     while ((next & BVH_STACK_INSTANCE) == 0u) {
-      GpuBvhNode node = nodes.v[next];
-      float tLeft = intersectBox(node.leftMin, node.leftMax, ray, tMin, best.t);
-      float tRight = intersectBox(node.rightMin, node.rightMax, ray, tMin, best.t);
-      bool hitLeft = tLeft <= best.t;
-      bool hitRight = tRight <= best.t;
-      uint leftEntry = childEntry(false, node.leftIndex, node.leftCount);
-      uint rightEntry = childEntry(false, node.rightIndex, node.rightCount);
-      if (hitLeft && hitRight) {
-        bool leftNear = tLeft <= tRight;
-        stack[sp++] = leftNear ? rightEntry : leftEntry;
-        next = leftNear ? leftEntry : rightEntry;
-      } else if (hitLeft) {
-        next = leftEntry;
-      } else if (hitRight) {
-        next = rightEntry;
-      } else {
-        next = sp > 0 ? stack[--sp] : NO_ENTRY;
-      }
+      EnteredChildren c = enterBinaryNode(nodes.v[next], ray, tMin, best.t, false);
+      if (c.both) stack[sp++] = c.farther;
+      next = c.any ? c.nearer : (sp > 0 ? stack[--sp] : NO_ENTRY);
     }
     if (next == NO_ENTRY) break;
     if (traceBlasWide(next & ~BVH_STACK_INSTANCE, worldOrigin, worldDir, tMin, alphaTest, anyHit,

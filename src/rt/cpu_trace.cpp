@@ -82,6 +82,60 @@ uint32_t childEntry(bool inBlas, uint32_t index, uint32_t count) {
                 : (index | gpu::BVH_STACK_INSTANCE);
 }
 
+// The children of a binary node (TLAS, or a binary BLAS) that the ray enters before tMax.
+struct EnteredChildren {
+  uint32_t nearer;   // the nearer entered child's entry, when any is entered
+  uint32_t farther;  // the other one's, when both are
+  bool any;
+  bool both;
+};
+
+EnteredChildren enterBinaryNode(const gpu::GpuBvhNode& node, const SpaceRay& ray, float tMin,
+                                float tMax, bool inBlas) {
+  const BoxHit left = intersectBox(ray, node.leftMin, node.leftMax, tMin, tMax);
+  const BoxHit right = intersectBox(ray, node.rightMin, node.rightMax, tMin, tMax);
+  const uint32_t leftEntry = childEntry(inBlas, node.leftIndex, node.leftCount);
+  const uint32_t rightEntry = childEntry(inBlas, node.rightIndex, node.rightCount);
+  const bool leftNear = left.hit && (!right.hit || left.tNear <= right.tNear);
+  return {leftNear ? leftEntry : rightEntry, leftNear ? rightEntry : leftEntry,
+          left.hit || right.hit, left.hit && right.hit};
+}
+
+// An instance as its BLAS is traversed: the ray in object space (same t in both spaces, because
+// the direction is not normalised) and what a hit records of the instance.
+struct InstanceSpace {
+  SpaceRay ray;
+  uint32_t instance = 0;
+  uint32_t geometryBase = 0;
+  uint32_t blasRoot = 0;
+  bool mirrored = false;
+};
+
+InstanceSpace enterInstance(std::span<const gpu::GpuInstance> instances, uint32_t index,
+                            const Ray& ray) {
+  const gpu::GpuInstance& instance = instances[index];
+  return {prepareRay(transformPoint(instance.worldToObject, ray.origin),
+                     transformVector(instance.worldToObject, ray.direction)),
+          index, instance.geometryBase, instance.blasRoot, mirrors(instance.worldToObject)};
+}
+
+// Tests one triangle of the instance's BLAS; an accepted hit before tMax replaces result and
+// becomes the new tMax. Returns whether it did.
+bool hitTriangle(const gpu::GpuTriangle& tri, const InstanceSpace& space, float tMin, float& tMax,
+                 const AlphaTest& alphaTest, TraceHit& result) {
+  const gpu::TriangleHit h =
+      gpu::intersectTriangle(space.ray.origin, space.ray.shear, tri.v0, tri.v1, tri.v2, tMin, tMax);
+  if (!h.hit) return false;
+  const uint32_t geometry = space.geometryBase + (tri.geometry & ~gpu::GPU_TRIANGLE_ALPHA_TESTED);
+  if ((tri.geometry & gpu::GPU_TRIANGLE_ALPHA_TESTED) && alphaTest &&
+      !alphaTest(space.instance, geometry, tri.primitive, h.b1, h.b2))
+    return false;
+  result = {true,          h.t,  space.instance, geometry,
+            tri.primitive, h.b1, h.b2,           h.frontFacing != space.mirrored};
+  tMax = h.t;
+  return true;
+}
+
 }  // namespace
 
 // The loop of shaders/rt/trace.glsl, step by step: interior nodes until a leaf, an instance or
@@ -91,14 +145,13 @@ TraceHit CpuTracer::traverse(const Ray& ray, float tMax, const AlphaTest& alphaT
   TraceHit result;
   const float tMin = ray.tMin;
   const SpaceRay worldRay = prepareRay(ray.origin, ray.direction);
-  SpaceRay current = worldRay;
+  // The level being traversed: the world ray in the TLAS, the entered instance in a BLAS.
+  InstanceSpace space{worldRay};
 
   uint32_t stack[gpu::BVH_STACK_SIZE];
   uint32_t stackSize = 0;
   bool inBlas = false;
   uint32_t blasStackBase = 0;
-  uint32_t instanceIndex = 0;
-  bool mirrored = false;
   uint32_t entry = 0;  // the TLAS root
   auto popWithinLevel = [&] {
     const uint32_t base = inBlas ? blasStackBase : 0;
@@ -108,49 +161,26 @@ TraceHit CpuTracer::traverse(const Ray& ray, float tMax, const AlphaTest& alphaT
   while (true) {
     while ((entry & kEntryKindBits) == 0) {  // interior nodes
       const gpu::GpuBvhNode& node = inBlas ? arrays_.blasNodes[entry] : arrays_.tlasNodes[entry];
-      const BoxHit left = intersectBox(current, node.leftMin, node.leftMax, tMin, tMax);
-      const BoxHit right = intersectBox(current, node.rightMin, node.rightMax, tMin, tMax);
-      const uint32_t leftEntry = childEntry(inBlas, node.leftIndex, node.leftCount);
-      const uint32_t rightEntry = childEntry(inBlas, node.rightIndex, node.rightCount);
-      if (left.hit && right.hit) {
-        const bool leftNear = left.tNear <= right.tNear;
+      const EnteredChildren c = enterBinaryNode(node, space.ray, tMin, tMax, inBlas);
+      if (c.both) {
         if (stackSize == gpu::BVH_STACK_SIZE)
           throw std::logic_error("BVH traversal stack overflow: tree deeper than its contract");
-        stack[stackSize++] = leftNear ? rightEntry : leftEntry;
-        entry = leftNear ? leftEntry : rightEntry;
-      } else if (left.hit) {
-        entry = leftEntry;
-      } else if (right.hit) {
-        entry = rightEntry;
-      } else {
-        entry = popWithinLevel();
+        stack[stackSize++] = c.farther;
       }
+      entry = c.any ? c.nearer : popWithinLevel();
     }
     while ((entry & kEntryKindBits) == gpu::BVH_STACK_LEAF) {  // BLAS leaves
       const uint32_t first = entry & gpu::BVH_STACK_LEAF_INDEX_MASK;
       const uint32_t count = ((entry & ~kEntryKindBits) >> gpu::BVH_STACK_LEAF_COUNT_SHIFT) + 1;
-      for (uint32_t k = first; k < first + count; ++k) {
-        const gpu::GpuTriangle& tri = arrays_.triangles[k];
-        gpu::TriangleHit h = gpu::intersectTriangle(current.origin, current.shear, tri.v0, tri.v1,
-                                                    tri.v2, tMin, tMax);
-        if (!h.hit) continue;
-        const gpu::GpuInstance& instance = arrays_.instances[instanceIndex];
-        const uint32_t geometry =
-            instance.geometryBase + (tri.geometry & ~gpu::GPU_TRIANGLE_ALPHA_TESTED);
-        if ((tri.geometry & gpu::GPU_TRIANGLE_ALPHA_TESTED) && alphaTest &&
-            !alphaTest(instanceIndex, geometry, tri.primitive, h.b1, h.b2))
-          continue;
-        result = {true,          h.t,  instanceIndex, geometry,
-                  tri.primitive, h.b1, h.b2,          h.frontFacing != mirrored};
-        if constexpr (kAnyHit) return result;
-        tMax = h.t;
-      }
+      for (uint32_t k = first; k < first + count; ++k)
+        if (hitTriangle(arrays_.triangles[k], space, tMin, tMax, alphaTest, result) && kAnyHit)
+          return result;
       entry = popWithinLevel();
     }
     if (entry == kNoEntry) {
       if (inBlas && stackSize == blasStackBase) {  // the instance is done: back to the world ray
         inBlas = false;
-        current = worldRay;
+        space.ray = worldRay;
       }
       if (stackSize == 0) return result;
       entry = stack[--stackSize];
@@ -159,15 +189,10 @@ TraceHit CpuTracer::traverse(const Ray& ray, float tMax, const AlphaTest& alphaT
     if ((entry & kEntryKindBits) == 0) continue;  // a node popped after the leaves
     if (inBlas || (entry & kEntryKindBits) != gpu::BVH_STACK_INSTANCE)
       throw std::logic_error("BVH traversal: an instance entry inside a BLAS");
-    // Enter the instance: same t in both spaces, because the direction is not normalised.
-    instanceIndex = entry & ~gpu::BVH_STACK_INSTANCE;
-    const gpu::GpuInstance& instance = arrays_.instances[instanceIndex];
-    current = prepareRay(transformPoint(instance.worldToObject, ray.origin),
-                         transformVector(instance.worldToObject, ray.direction));
-    mirrored = mirrors(instance.worldToObject);
+    space = enterInstance(arrays_.instances, entry & ~gpu::BVH_STACK_INSTANCE, ray);
     inBlas = true;
     blasStackBase = stackSize;
-    entry = instance.blasRoot;
+    entry = space.blasRoot;
   }
 }
 
@@ -184,24 +209,14 @@ TraceHit CpuTracer::traverseWide(const Ray& ray, float tMax, const AlphaTest& al
   uint32_t entry = 0;  // the TLAS root
   while (true) {
     while ((entry & gpu::BVH_STACK_INSTANCE) == 0) {  // TLAS interior nodes
-      const gpu::GpuBvhNode& node = arrays_.tlasNodes[entry];
-      const BoxHit left = intersectBox(worldRay, node.leftMin, node.leftMax, tMin, tMax);
-      const BoxHit right = intersectBox(worldRay, node.rightMin, node.rightMax, tMin, tMax);
-      const uint32_t leftEntry = childEntry(false, node.leftIndex, node.leftCount);
-      const uint32_t rightEntry = childEntry(false, node.rightIndex, node.rightCount);
-      if (left.hit && right.hit) {
-        const bool leftNear = left.tNear <= right.tNear;
+      const EnteredChildren c =
+          enterBinaryNode(arrays_.tlasNodes[entry], worldRay, tMin, tMax, false);
+      if (c.both) {
         if (stackSize == gpu::BVH_STACK_SIZE / 2)
           throw std::logic_error("TLAS traversal stack overflow: tree deeper than its contract");
-        stack[stackSize++] = leftNear ? rightEntry : leftEntry;
-        entry = leftNear ? leftEntry : rightEntry;
-      } else if (left.hit) {
-        entry = leftEntry;
-      } else if (right.hit) {
-        entry = rightEntry;
-      } else {
-        entry = pop();
+        stack[stackSize++] = c.farther;
       }
+      entry = c.any ? c.nearer : pop();
     }
     if (entry == kNoEntry) return result;
     if (traverseWideBlas<kAnyHit>(entry & ~gpu::BVH_STACK_INSTANCE, ray, tMax, alphaTest, result))
@@ -213,18 +228,16 @@ TraceHit CpuTracer::traverseWide(const Ray& ray, float tMax, const AlphaTest& al
 template <bool kAnyHit>
 bool CpuTracer::traverseWideBlas(uint32_t instanceIndex, const Ray& ray, float& tMax,
                                  const AlphaTest& alphaTest, TraceHit& result) const {
-  const gpu::GpuInstance& instance = arrays_.instances[instanceIndex];
-  const SpaceRay r = prepareRay(transformPoint(instance.worldToObject, ray.origin),
-                                transformVector(instance.worldToObject, ray.direction));
-  const bool mirrored = mirrors(instance.worldToObject);
+  const InstanceSpace space = enterInstance(arrays_.instances, instanceIndex, ray);
+  const glm::vec3& invDir = space.ray.invDir;
   const uint32_t octant =
-      (r.invDir.x < 0.0f ? 1u : 0u) | (r.invDir.y < 0.0f ? 2u : 0u) | (r.invDir.z < 0.0f ? 4u : 0u);
+      (invDir.x < 0.0f ? 1u : 0u) | (invDir.y < 0.0f ? 2u : 0u) | (invDir.z < 0.0f ? 4u : 0u);
   const uint32_t octantInv = 7u ^ octant;
   constexpr uint32_t kHitBits = 0xFF000000u;
 
   glm::uvec2 stack[gpu::BVH_WIDE_STACK_SIZE];
   uint32_t stackSize = 0;
-  glm::uvec2 group(instance.blasRoot, 0x80000000u);
+  glm::uvec2 group(space.blasRoot, 0x80000000u);
   while (true) {
     if ((group.y & kHitBits) == 0) {
       if (stackSize == 0) return false;
@@ -247,7 +260,7 @@ bool CpuTracer::traverseWideBlas(uint32_t instanceIndex, const Ray& ray, float& 
       const uint32_t meta = wideByte(node.meta, s);
       if (meta == 0) continue;
       const Aabb box = decodeWideChildBox(node, s);
-      if (!intersectBox(r, box.min, box.max, ray.tMin, tMax).hit) continue;
+      if (!intersectBox(space.ray, box.min, box.max, ray.tMin, tMax).hit) continue;
       if (interiorMask & (1u << s))
         interiorHits |= 1u << (24u + (s ^ octantInv));
       else
@@ -257,19 +270,8 @@ bool CpuTracer::traverseWideBlas(uint32_t instanceIndex, const Ray& ray, float& 
     while (triangleHits != 0) {
       const uint32_t k = node.triangleBase + uint32_t(std::countr_zero(triangleHits));
       triangleHits &= triangleHits - 1u;
-      const gpu::GpuTriangle& tri = arrays_.triangles[k];
-      gpu::TriangleHit h =
-          gpu::intersectTriangle(r.origin, r.shear, tri.v0, tri.v1, tri.v2, ray.tMin, tMax);
-      if (!h.hit) continue;
-      const uint32_t geometry =
-          instance.geometryBase + (tri.geometry & ~gpu::GPU_TRIANGLE_ALPHA_TESTED);
-      if ((tri.geometry & gpu::GPU_TRIANGLE_ALPHA_TESTED) && alphaTest &&
-          !alphaTest(instanceIndex, geometry, tri.primitive, h.b1, h.b2))
-        continue;
-      result = {true,          h.t,  instanceIndex, geometry,
-                tri.primitive, h.b1, h.b2,          h.frontFacing != mirrored};
-      if constexpr (kAnyHit) return true;
-      tMax = h.t;
+      if (hitTriangle(arrays_.triangles[k], space, ray.tMin, tMax, alphaTest, result) && kAnyHit)
+        return true;
     }
   }
 }

@@ -9,26 +9,15 @@
 #include <bounce/external_device.h>
 
 #include "vk/check.h"
+#include "vk/validation.h"
 
 namespace bounce::vk {
 
 namespace {
 
-constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
-
 std::unordered_map<VkDeviceMemory, VkDeviceSize>& allocationSizes() {
   static std::unordered_map<VkDeviceMemory, VkDeviceSize> sizes;
   return sizes;
-}
-
-bool hasLayer(const char* name) {
-  uint32_t count = 0;
-  vkEnumerateInstanceLayerProperties(&count, nullptr);
-  std::vector<VkLayerProperties> layers(count);
-  vkEnumerateInstanceLayerProperties(&count, layers.data());
-  return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
-    return std::strcmp(l.layerName, name) == 0;
-  });
 }
 
 bool hasInstanceExtension(const char* name) {
@@ -382,11 +371,7 @@ Context::~Context() {
     vkDestroyCommandPool(device_, commandPool_, nullptr);
     if (!adopted_) vkDestroyDevice(device_, nullptr);
   }
-  if (messenger_) {
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-    if (destroy) destroy(instance_, messenger_, nullptr);
-  }
+  destroyDebugMessenger(instance_, messenger_);
   if (instance_ && !adopted_) vkDestroyInstance(instance_, nullptr);
 }
 
@@ -403,23 +388,14 @@ void Context::createInstance(const ContextOptions& options) {
   debugUtils_ = hasInstanceExtension(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   if (debugUtils_) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   if (options.validation) {
-    if (!hasLayer(kValidationLayer))
-      fail("validation requested but {} is not installed (apt-get install vulkan-validationlayers)",
-           kValidationLayer);
+    requireValidationLayer();
     if (!debugUtils_) fail("validation requested but VK_EXT_debug_utils is missing");
     layers.push_back(kValidationLayer);
     validationEnabled_ = true;
   }
 
-  VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
-      VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-  messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                                  VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                              VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                              VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-  messengerInfo.pfnUserCallback = &Context::onValidationMessage;
-  messengerInfo.pUserData = this;
+  VkDebugUtilsMessengerCreateInfoEXT messengerInfo =
+      validationMessengerInfo(&Context::onValidationMessage, this);
 
   VkValidationFeatureEnableEXT syncValidation =
       VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
@@ -442,21 +418,14 @@ void Context::createInstance(const ContextOptions& options) {
     endLabel_ = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
         vkGetInstanceProcAddr(instance_, "vkCmdEndDebugUtilsLabelEXT"));
   }
-  if (validationEnabled_) {
-    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-    VK_CHECK(create(instance_, &messengerInfo, nullptr, &messenger_));
-  }
+  if (validationEnabled_) messenger_ = createDebugMessenger(instance_, messengerInfo);
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::onValidationMessage(
     VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
     const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
-  auto* context = static_cast<Context*>(self);
-  bool error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  if (error) ++context->validationErrors_;
-  std::fprintf(stderr, "bounce: validation %s: %s\n", error ? "error" : "warning",
-               data->pMessage ? data->pMessage : "");
+  if (printValidationMessage("bounce", severity, data))
+    ++static_cast<Context*>(self)->validationErrors_;
   return VK_FALSE;
 }
 

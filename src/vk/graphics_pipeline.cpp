@@ -5,44 +5,15 @@
 #include "core/error.h"
 #include "vk/check.h"
 #include "vk/pipeline_log.h"
-#include "vk/shader_registry.h"
 
 namespace bounce::vk {
 
-namespace {
-
-VkShaderModule createModule(Context& context, const std::string& shader) {
-  std::span<const uint32_t> spirv = embeddedShader(shader);
-  VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  mi.codeSize = spirv.size_bytes();
-  mi.pCode = spirv.data();
-  VkShaderModule module;
-  VK_CHECK(vkCreateShaderModule(context.device(), &mi, nullptr, &module));
-  return module;
-}
-
-VkPipelineLayout createLayout(Context& context, const GraphicsPipelineDesc& desc) {
-  std::vector<VkDescriptorSetLayout> layouts;
-  for (const DescriptorSetLayout* l : desc.setLayouts) layouts.push_back(l->handle());
-  VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                            desc.pushConstantBytes};
-  VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  li.setLayoutCount = uint32_t(layouts.size());
-  li.pSetLayouts = layouts.data();
-  li.pushConstantRangeCount = desc.pushConstantBytes ? 1 : 0;
-  li.pPushConstantRanges = &range;
-  VkPipelineLayout layout;
-  VK_CHECK(vkCreatePipelineLayout(context.device(), &li, nullptr, &layout));
-  return layout;
-}
-
-}  // namespace
-
 GraphicsPipeline::GraphicsPipeline(Context& context, const GraphicsPipelineDesc& desc)
     : context_(&context) {
-  layout_ = createLayout(context, desc);
-  VkShaderModule vertex = createModule(context, desc.vertexShader);
-  VkShaderModule fragment = createModule(context, desc.fragmentShader);
+  layout_ = createPipelineLayout(context, desc.setLayouts, desc.pushConstantBytes,
+                                 VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
+  VkShaderModule vertex = createShaderModule(context, desc.vertexShader);
+  VkShaderModule fragment = createShaderModule(context, desc.fragmentShader);
   VkPipelineShaderStageCreateInfo stages[2] = {
       {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT,
        vertex, "main", nullptr},

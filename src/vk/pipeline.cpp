@@ -64,27 +64,41 @@ VkDescriptorSet DescriptorPool::allocate(const DescriptorSetLayout& layout) {
   return set;
 }
 
-ComputePipeline::ComputePipeline(Context& context, const std::string& shader,
-                                 const std::vector<const DescriptorSetLayout*>& setLayouts,
-                                 uint32_t pushConstantBytes,
-                                 std::span<const uint32_t> specialization)
-    : context_(&context), name_(shader) {
+VkShaderModule createShaderModule(const Context& context, const std::string& shader) {
   std::span<const uint32_t> spirv = embeddedShader(shader);
   VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   mi.codeSize = spirv.size_bytes();
   mi.pCode = spirv.data();
-  VkShaderModule module;
+  VkShaderModule module = VK_NULL_HANDLE;
   VK_CHECK(vkCreateShaderModule(context.device(), &mi, nullptr, &module));
+  return module;
+}
 
+VkPipelineLayout createPipelineLayout(const Context& context,
+                                      const std::vector<const DescriptorSetLayout*>& setLayouts,
+                                      uint32_t pushConstantBytes,
+                                      VkShaderStageFlags pushConstantStages) {
   std::vector<VkDescriptorSetLayout> layouts;
   for (const DescriptorSetLayout* l : setLayouts) layouts.push_back(l->handle());
-  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
+  VkPushConstantRange range{pushConstantStages, 0, pushConstantBytes};
   VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   li.setLayoutCount = uint32_t(layouts.size());
   li.pSetLayouts = layouts.data();
   li.pushConstantRangeCount = pushConstantBytes ? 1 : 0;
   li.pPushConstantRanges = &range;
-  VK_CHECK(vkCreatePipelineLayout(context.device(), &li, nullptr, &layout_));
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  VK_CHECK(vkCreatePipelineLayout(context.device(), &li, nullptr, &layout));
+  return layout;
+}
+
+ComputePipeline::ComputePipeline(Context& context, const std::string& shader,
+                                 const std::vector<const DescriptorSetLayout*>& setLayouts,
+                                 uint32_t pushConstantBytes,
+                                 std::span<const uint32_t> specialization)
+    : context_(&context), name_(shader) {
+  VkShaderModule module = createShaderModule(context, shader);
+  layout_ =
+      createPipelineLayout(context, setLayouts, pushConstantBytes, VK_SHADER_STAGE_COMPUTE_BIT);
 
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};

@@ -49,6 +49,17 @@ class DescriptorPool {
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
 };
 
+// A shader module of the embedded shader `shader` (e.g. "rt/trace_rays"); the caller destroys it
+// once its pipeline is created.
+VkShaderModule createShaderModule(const Context& context, const std::string& shader);
+
+// A pipeline layout of `setLayouts` (set i = setLayouts[i]) and, when pushConstantBytes is not 0,
+// one push-constant range of that many bytes seen by `pushConstantStages`.
+VkPipelineLayout createPipelineLayout(const Context& context,
+                                      const std::vector<const DescriptorSetLayout*>& setLayouts,
+                                      uint32_t pushConstantBytes,
+                                      VkShaderStageFlags pushConstantStages);
+
 class ComputePipeline {
  public:
   ComputePipeline() = default;

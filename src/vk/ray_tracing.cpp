@@ -3,7 +3,6 @@
 #include <cstring>
 
 #include "vk/check.h"
-#include "vk/shader_registry.h"
 
 namespace bounce::vk {
 
@@ -20,16 +19,6 @@ F deviceFunction(const Context& context, const char* name) {
     fail("{}: the driver of {} does not export {}", "hardware ray tracing", context.info().name,
          name);
   return f;
-}
-
-VkShaderModule createModule(const Context& context, const std::string& shader) {
-  std::span<const uint32_t> spirv = embeddedShader(shader);
-  VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  mi.codeSize = spirv.size_bytes();
-  mi.pCode = spirv.data();
-  VkShaderModule module = VK_NULL_HANDLE;
-  VK_CHECK(vkCreateShaderModule(context.device(), &mi, nullptr, &module));
-  return module;
 }
 
 // The spec requires an acceleration structure's offset in its buffer to be a multiple of 256.
@@ -134,7 +123,7 @@ RayTracingPipeline::RayTracingPipeline(Context& context, const std::string& rayg
   std::vector<VkShaderModule> modules;
   std::vector<VkPipelineShaderStageCreateInfo> stages;
   auto addStage = [&](const std::string& shader, VkShaderStageFlagBits stage) {
-    modules.push_back(createModule(context, shader));
+    modules.push_back(createShaderModule(context, shader));
     VkPipelineShaderStageCreateInfo s{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     s.stage = stage;
     s.module = modules.back();
@@ -169,15 +158,7 @@ RayTracingPipeline::RayTracingPipeline(Context& context, const std::string& rayg
     groups.push_back(g);
   }
 
-  std::vector<VkDescriptorSetLayout> layouts;
-  for (const DescriptorSetLayout* l : setLayouts) layouts.push_back(l->handle());
-  VkPushConstantRange range{kStages, 0, pushConstantBytes};
-  VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  li.setLayoutCount = uint32_t(layouts.size());
-  li.pSetLayouts = layouts.data();
-  li.pushConstantRangeCount = pushConstantBytes ? 1 : 0;
-  li.pPushConstantRanges = &range;
-  VK_CHECK(vkCreatePipelineLayout(context.device(), &li, nullptr, &layout_));
+  layout_ = createPipelineLayout(context, setLayouts, pushConstantBytes, kStages);
 
   VkRayTracingPipelineCreateInfoKHR ci{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
   ci.stageCount = uint32_t(stages.size());
