@@ -15,7 +15,8 @@
 // independent values.
 // The history length shrinks with the reservoir validity (gi-resolve-diffuse-rays) and grows
 // where the spatial occlusion validity is low (gi-trace-spatial-validation-rays). Writes
-// gi.diffuse. Nothing non-finite enters history. Outliers are clamped first (withoutFirefly).
+// gi.diffuse. Nothing non-finite enters history. Outliers are clamped first, their excess shared
+// out among their ring (withoutFirefly).
 // While the light settles after a reset or a lighting cut (pc.historyScale < 1) the history
 // keeps its full length, since a shorter one measured far noisier frames, and the anti-lag
 // follows the new light instead: a two-frame fast history and a threshold of the fast
@@ -61,24 +62,75 @@ ivec2 historyPixel(FrameConstants f, ivec2 pixel) {
   return abs(previousDepth - expectedDepth) <= HISTORY_DEPTH_TOLERANCE * expectedDepth ? p : ivec2(-1);
 }
 
-// The resolved value clamped to fireflyRatio x the brightest (luminance) of the 8 values two GI
-// pixels away (RestirGiSettings::fireflyRatio): far enough that one reservoir's sample, which
-// the resolve spreads over a few pixels, is not in its own ring.
-vec3 withoutFirefly(FrameConstants f, RestirGiConstants gi, ivec2 pixel, vec3 value) {
-  if (!(gi.fireflyRatio > 1.0)) return value;
+// The anti-firefly clamp (RestirGiSettings::fireflyRatio): a pixel whose luminance exceeds
+// fireflyRatio x the brightest of its ring (the 8 values two GI pixels away: far enough that
+// one reservoir's sample, which the resolve spreads over a few pixels, is not in its own ring)
+// is clamped to that limit, and what the clamp cuts is shared out among that ring's pixels,
+// so that the clamp moves energy instead of removing it. The samples it cuts (reconnection
+// shifts with a large Jacobian along concave edges) are a real part of the mean: cutting them
+// darkened the white furnace by 2-4 % (docs/gi/restir-gi.md, "Energy").
+// Ring members are the pixels inside the image with a positive value (surfaces: the resolve
+// writes 0 elsewhere); a pixel p receives from each ring pixel q that was clamped (q's ring
+// holds p, so only q brighter than fireflyRatio x p can be; only those rings are read) an equal
+// share of q's excess.
+const int RING = 8;
+
+ivec2 ringOffset(int k) {
+  int i = k < 4 ? k : k + 1;  // the 3x3 block without its centre
+  return ivec2(i % 3 - 1, i / 3 - 1);
+}
+
+bool insideImage(FrameConstants f, ivec2 q) {
+  return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(f.resolution)));
+}
+
+vec3 inputAt(FrameConstants f, ivec2 q) {
+  return insideImage(f, q) ? finiteOrZero(imageLoad(inputImage, q)).rgb : vec3(0.0);
+}
+
+// q's clamp: its excess colour over fireflyRatio x the brightest of its ring, and the number
+// of members of that ring.
+vec3 excessOf(FrameConstants f, RestirGiConstants gi, ivec2 q, vec3 value, int stride,
+              out float members) {
   float brightest = 0.0;
-  int stride = 2 * int(gi.divisor);
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      ivec2 q = pixel + stride * ivec2(dx, dy);
-      if ((dx == 0 && dy == 0) || any(lessThan(q, ivec2(0))) ||
-          any(greaterThanEqual(q, ivec2(f.resolution))))
-        continue;
-      brightest = max(brightest, brdfLuminance(finiteOrZero(imageLoad(inputImage, q)).rgb));
-    }
+  members = 0.0;
+  for (int k = 0; k < RING; ++k) {
+    ivec2 r = q + stride * ringOffset(k);
+    if (!insideImage(f, r)) continue;
+    float l = brdfLuminance(inputAt(f, r));
+    brightest = max(brightest, l);
+    members += l > 0.0 ? 1.0 : 0.0;
+  }
   float luminance = brdfLuminance(value);
   float limit = gi.fireflyRatio * brightest;
-  return luminance > limit && brightest > 0.0 ? value * (limit / luminance) : value;
+  return luminance > limit && brightest > 0.0 ? value * (1.0 - limit / luminance) : vec3(0.0);
+}
+
+vec3 withoutFirefly(FrameConstants f, RestirGiConstants gi, ivec2 pixel, vec3 value) {
+  if (!(gi.fireflyRatio > 1.0)) return value;
+  int stride = 2 * int(gi.divisor);
+  // The ring's luminances, read once: this pixel's own clamp and the test of which ring pixels
+  // were clamped (brighter than fireflyRatio x this one) both use them.
+  float ring[RING];
+  float brightest = 0.0;
+  for (int k = 0; k < RING; ++k) {
+    ring[k] = brdfLuminance(inputAt(f, pixel + stride * ringOffset(k)));
+    brightest = max(brightest, ring[k]);
+  }
+  float own = brdfLuminance(value);
+  float limit = gi.fireflyRatio * brightest;
+  vec3 result = own > limit && brightest > 0.0 ? value * (limit / own) : value;
+  if (!(own > 0.0) || !(brightest > gi.fireflyRatio * own)) return result;
+  // Rare: a ring pixel bright enough to have been clamped; its ring is read again. Not unrolled,
+  // so that its eight copies do not cost every pixel registers.
+  [[dont_unroll]] for (int k = 0; k < RING; ++k) {
+    if (!(ring[k] > gi.fireflyRatio * own)) continue;  // q's ring holds this pixel
+    ivec2 q = pixel + stride * ringOffset(k);
+    float members;
+    vec3 excess = excessOf(f, gi, q, inputAt(f, q), stride, members);
+    if (members > 0.0) result += excess / members;
+  }
+  return result;
 }
 
 struct ClipBox {

@@ -45,6 +45,8 @@ BOUNCE_CONST uint RESTIR_GI_FLAG_VALIDATION = 64u;  // validation traces every v
 BOUNCE_CONST uint RESTIR_GI_FLAG_SPATIAL_DENOISE = 128u;         // gi-spatial-denoise
 BOUNCE_CONST uint RESTIR_GI_FLAG_OCCLUDER_VISIBILITY = 256u;     // gi-trace-resolve-visibility
 BOUNCE_CONST uint RESTIR_GI_FLAG_PRODUCER_NORMALISATION = 512u;  // 1/Z in spatial reuse
+BOUNCE_CONST uint RESTIR_GI_FLAG_TEMPORAL_PRODUCERS = 2048u;     // 1/Z in temporal reuse
+BOUNCE_CONST uint RESTIR_GI_FLAG_CANONICAL_RESOLVE = 1024u;      // resolve: home as canonical
 
 // Constants of the whole chain, uploaded once (RestirGi's constructor).
 struct RestirGiConstants {

@@ -37,6 +37,8 @@ void validate(const LuxSettings& s) {
 
 RestirGiSettings LuxGi::reuseSettings(RestirGiSettings s, const LuxSettings& lux) {
   s.maxJacobian = lux.maxJacobian;
+  s.temporalProducerNormalisation = lux.unbiasedReuse;
+  s.canonicalResolve = lux.unbiasedReuse;
   s.secondVertex = RestirGiSecondVertex::Cache;  // the probe field at the hit
   s.validationPeriod = 0;                        // lux-candidates traces no validation rays
   s.denoiser = GiDenoiser::None;                 // LuxSettings::svgf instead

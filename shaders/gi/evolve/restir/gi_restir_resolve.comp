@@ -18,6 +18,15 @@
 // that lies on this one (homeGiPixel), so that edges are not left to the fallback.
 // At pixels beside an occluder, samples that gi-trace-resolve-visibility found hidden from this
 // pixel's vertex count with zero (see that pass: light leaking into gaps).
+// With RESTIR_GI_FLAG_CANONICAL_RESOLVE the home reservoir is the canonical one of a
+// combination whose weights sum to one over the reservoirs that can produce each sample
+// (Wyman et al. 2023, §5.3, the canonical reservoir taking the remainder): it reaches this
+// pixel by a direction shift (homeSample), never refused; a neighbour's accepted sample
+// weighs 1/n (n: the reservoirs on this surface) and the home's sample 1 - k/n, k the
+// neighbours whose shift of it would be accepted (couldProduce, one Jacobian each: no target
+// is evaluated). Without it the plain mean of the n, a refused shift counting as zero, which
+// darkened by the share of refused shifts (Lux's cap of 2: 17 %; docs/gi/restir-gi.md,
+// "Energy").
 #version 460
 #include "gi/evolve/restir/restir_gi_common.glsl"
 #include "common/random.glsl"
@@ -69,12 +78,26 @@ float normalVariation(ShL1 sh, PrimaryVertex x) {
 
 // The reservoir r shifted to x (reconnection; its W carries the Jacobian), as radiance x W and
 // its direction; false when it does not reach x's hemisphere or the Jacobian is rejected.
-bool shiftedSample(RestirGiConstants gi, PrimaryVertex x, Reservoir r, out vec3 direction,
+bool shiftedSample(PrimaryVertex x, Reservoir r, float maxJacobian, out vec3 direction,
                    out vec3 radianceTimesW) {
   float jacobian = reconnectionJacobian(r.origin, x.position, r);
   float c = sampleCosine(x, r.samplePosition, direction);
   radianceTimesW = r.radiance * (r.W * jacobian);
-  return c > 0.0 && jacobian > 0.0 && jacobian <= gi.maxJacobian && r.W > 0.0;
+  return c > 0.0 && jacobian > 0.0 && jacobian <= maxJacobian;
+}
+
+// The home reservoir's sample at x by a direction shift (the direction from its own vertex
+// replayed at x, Jacobian 1; Lin et al. 2022's random replay for one vertex): x lies within
+// the GI pixel whose vertex traced it, so the radiance along that direction is the same except
+// where the hit is about as close as x is to that vertex. The reconnection shift there has a
+// Jacobian that grows without bound ((distance from the home vertex / distance from x)^2 near
+// contact, the other wall of a corner): refused above maxJacobian, those samples were lost to
+// every pixel but the GI pixel's own; accepted, they are fireflies whose mean a finite number
+// of frames undershoots and that the anti-firefly clamp cut (docs/gi/restir-gi.md, "Energy").
+bool homeSample(PrimaryVertex x, Reservoir r, out vec3 direction, out vec3 radianceTimesW) {
+  direction = normalize(r.samplePosition - r.origin);
+  radianceTimesW = r.radiance * r.W;
+  return dot(direction, x.geometricNormal) > 0.0 && dot(direction, x.shadingNormal) > 0.0;
 }
 
 void main() {
@@ -87,29 +110,45 @@ void main() {
     return;
   }
   PrimaryVertex x = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
-  ivec2 home = homeGiPixel(f, gi, pixel, x);
+  ivec2 homePixel = homeGiPixel(f, gi, pixel, x);
   bool reuse = (gi.flags & RESTIR_GI_FLAG_RESOLVE_REUSE) != 0u;
   uint samples = resolveSampleCount(gi);
   float rotation = resolveRotation(f, pixel);
   bool occlusionKnown = (gi.flags & RESTIR_GI_FLAG_OCCLUDER_VISIBILITY) != 0u;
   uint hidden = occlusionKnown ? imageLoad(resolveOcclusion, pixel).x : 0u;
+  bool canonical = (gi.flags & RESTIR_GI_FLAG_CANONICAL_RESOLVE) != 0u;
   ShL1 sh = ShL1(vec4(0.0), vec4(0.0), vec4(0.0));
   vec3 exact = vec3(0.0);           // the direct estimate L cos / pi W at the shading normal
   vec3 exactGeometric = vec3(0.0);  // ... and at the geometric normal
-  float count = 0.0;
+  float count = 0.0;                // reservoirs on this surface
+  // The home reservoir as the canonical one: its sample (added last, weighted) and the number
+  // of neighbours that could produce it.
+  Reservoir home = emptyReservoir();
+  vec3 homeDirection = vec3(0.0), homeLw = vec3(0.0);
+  bool homeContributes = false;
+  float homeProducers = 0.0;
   ShL1 fallback = sh;
   float fallbackDistance = 3.0e38;
   for (uint i = 0u; i < samples; ++i) {
-    ivec2 q = resolveSampleGiPixel(gi, home, i, samples, rotation);
+    ivec2 q = resolveSampleGiPixel(gi, homePixel, i, samples, rotation);
     Reservoir r = unpackReservoir(imageLoad(reservoirSample, q), imageLoad(reservoirRadiance, q),
                                   imageLoad(reservoirOrigin, q), imageLoad(reservoirNormals, q));
     if (r.M <= 0.0) continue;
+    bool same = sameSurface(gi, x, r.origin, r.originNormal);
     vec3 direction, lw;
-    bool valid = shiftedSample(gi, x, r, direction, lw);
-    float planeDistance = abs(dot(x.geometricNormal, r.origin - x.position)) / max(x.depth, 1e-6);
-    if (sameSurface(gi, x, r.origin, r.originNormal)) {
+    if (i == 0u && same && canonical) {
+      home = r;
       count += 1.0;
-      if (!valid || (hidden & (1u << i)) != 0u) continue;
+      homeContributes = homeSample(x, r, homeDirection, homeLw) && r.W > 0.0 && (hidden & 1u) == 0u;
+      continue;
+    }
+    bool valid = shiftedSample(x, r, gi.maxJacobian, direction, lw);
+    float planeDistance = abs(dot(x.geometricNormal, r.origin - x.position)) / max(x.depth, 1e-6);
+    if (same) {
+      count += 1.0;
+      if (home.M > 0.0 && couldProduce(r.origin, r.originNormal, x, home, gi.maxJacobian))
+        homeProducers += 1.0;
+      if (!valid || !(r.W > 0.0) || (hidden & (1u << i)) != 0u) continue;
       shAdd(sh, direction, lw);
       exact += lw * (max(dot(direction, x.shadingNormal), 0.0) / PI);
       exactGeometric += lw * (max(dot(direction, x.geometricNormal), 0.0) / PI);
@@ -120,12 +159,16 @@ void main() {
       if (valid) shAdd(fallback, direction, lw);
     }
   }
-  vec3 result;
-  if (!reuse) result = count > 0.0 ? exact / count : shIrradianceOverPiAt(fallback, x.shadingNormal);
-  else if (count > 0.0) {
-    result = (exactGeometric / count) * normalVariation(sh, x);
-  } else {
-    result = shIrradianceOverPiAt(fallback, x.shadingNormal);
+  if (homeContributes) {
+    // The neighbours enter with 1/count each (the division below), the home with 1 - k/count.
+    vec3 lw = homeLw * (count - homeProducers);
+    shAdd(sh, homeDirection, lw);
+    exact += lw * (max(dot(homeDirection, x.shadingNormal), 0.0) / PI);
+    exactGeometric += lw * (max(dot(homeDirection, x.geometricNormal), 0.0) / PI);
   }
+  vec3 result;
+  if (!(count > 0.0)) result = shIrradianceOverPiAt(fallback, x.shadingNormal);
+  else if (!reuse) result = exact / count;
+  else result = (exactGeometric / count) * normalVariation(sh, x);
   imageStore(outputImage, pixel, finiteOrZero(vec4(result, 1.0)));
 }

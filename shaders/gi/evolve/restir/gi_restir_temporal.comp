@@ -5,7 +5,12 @@
 // History M is capped at temporalMaxM (the cap bounds how long stale samples persist). The
 // history sample is shifted to this frame's primary vertex by reconnection, so its weight
 // carries the Jacobian (restir_gi_common.glsl); shifts with a Jacobian above maxJacobian are
-// rejected (they come from grazing or near-contact geometry and would be fireflies).
+// rejected (they come from grazing or near-contact geometry and would be fireflies). The merged
+// reservoir is normalised by the confidence of the reservoirs that could have produced its
+// sample (1/Z, Bitterli et al. 2020, Alg. 6, as the spatial passes do: couldProduce), not by
+// all of theirs (ReSTIR GI's 1/M): a reservoir whose shift of that sample would be refused
+// adds nothing to the weights for it, so counting its M darkened wherever shifts are refused
+// (docs/gi/restir-gi.md, "Energy").
 // The merged reservoir is this frame's history (the only reservoir fed back). Where the
 // candidate is a validated history reservoir (gi-resolve-diffuse-rays), it replaces history
 // without a merge (merging would count that history twice).
@@ -107,10 +112,12 @@ ivec2 canonicalHistoryPixel(FrameConstants f, RestirGiConstants gi, ivec2 pixel,
 // every history pixel is used once per frame), accepted when it lies on x1's surface and last
 // frame's spatial occlusion validity there says that spatial reuse holds (>= 0.5): under
 // occluders, neighbours' samples would blur indirect shadows.
-Reservoir permutedHistory(FrameConstants f, RestirGiConstants gi, ivec2 q, uint k, PrimaryVertex x1) {
+// p: the pixel it was read from.
+Reservoir permutedHistory(FrameConstants f, RestirGiConstants gi, ivec2 q, uint k, PrimaryVertex x1,
+                          out ivec2 p) {
   uvec3 h = pcg3d(uvec3(f.frameIndex, k, RANDOM_GI_PERMUTATION));
   ivec2 mask = ivec2(1 + h.x % 3u, 1 + h.y % 3u);  // 1..3: neighbours up to 3 GI pixels away
-  ivec2 p = q ^ mask;
+  p = q ^ mask;
   if (!insideGi(gi, p)) return emptyReservoir();
   if ((gi.flags & RESTIR_GI_FLAG_SPATIAL_VALIDATION) != 0u && imageLoad(occlusionValidity, p).x < 0.5)
     return emptyReservoir();
@@ -182,6 +189,37 @@ float brighteningScale(RestirGiConstants gi, ivec2 g, ivec2 pixel, bool validate
   return s * s;
 }
 
+// The history reservoirs a stream merged: last frame's GI pixel and the confidence each
+// entered with, for the 1/Z normalisation (their vertices are read again there, as
+// gi-restir-spatial does, rather than held).
+const uint MAX_HISTORY_SAMPLES = 5u;  // RestirGiSettings::temporalHistorySamples
+struct MergedHistory {
+  ivec2 pixel[MAX_HISTORY_SAMPLES];
+  float M[MAX_HISTORY_SAMPLES];
+  uint count;
+};
+
+void addMerged(inout MergedHistory h, ivec2 q, float M) {
+  if (h.count >= MAX_HISTORY_SAMPLES) return;
+  h.pixel[h.count] = q;
+  h.M[h.count] = M;
+  ++h.count;
+}
+
+// Z of 1/Z: the candidate's confidence (its domain is x1's hemisphere, which holds every
+// sample with a positive target at x1) plus that of every merged history reservoir that could
+// have produced the chosen sample (couldProduce: above its surface, its shift to x1 accepted).
+float confidenceOfProducers(RestirGiConstants gi, PrimaryVertex x1, float candidateM,
+                            Reservoir chosen, MergedHistory h) {
+  float z = candidateM;
+  for (uint i = 0u; i < h.count; ++i) {
+    vec3 origin = imageLoad(previousOrigin, h.pixel[i]).xyz;
+    vec3 originNormal = decodeOctahedral(imageLoad(previousNormals, h.pixel[i]).xy);
+    if (couldProduce(origin, originNormal, x1, chosen, gi.maxJacobian)) z += h.M[i];
+  }
+  return z;
+}
+
 // Caps a history reservoir's confidence (temporalMaxM x the candidate's M).
 Reservoir capped(RestirGiConstants gi, Reservoir r, float candidateM) {
   r.M = min(r.M, gi.temporalMaxM * max(candidateM, 1.0));
@@ -206,6 +244,8 @@ void main() {
     // Candidate first (canonical), then the canonical history, then permuted ones until the
     // confidence threshold (temporalMaxM) is reached or temporalHistorySamples were tried.
     ReservoirStream s = beginStream(x1, candidate);
+    MergedHistory merged;
+    merged.count = 0u;
     Reservoir history;
     ivec2 q = canonicalHistoryPixel(f, gi, pixel, g, x1, history);
     if (q.x >= 0) {
@@ -216,19 +256,24 @@ void main() {
       Reservoir h = capped(gi, history, candidate.M);
       float confidence = candidate.M + h.M;
       h.M *= scale;
+      addMerged(merged, q, h.M);
       streamReservoir(s, x1, h, reconnectionJacobian(h.origin, x1.position, h), gi.maxJacobian, u);
       for (uint k = 1u; k < gi.temporalHistorySamples && confidence < gi.temporalMaxM; ++k) {
-        Reservoir r = permutedHistory(f, gi, q, k, x1);
+        ivec2 p;
+        Reservoir r = permutedHistory(f, gi, q, k, x1, p);
         if (r.M <= 0.0) continue;
         r = capped(gi, r, candidate.M);
         r.M = min(r.M, gi.temporalMaxM - confidence);
         confidence += r.M;
         r.M *= scale;
+        addMerged(merged, p, r.M);
         float uk = random2(uvec2(g), f.frameIndex * 8u + k, RANDOM_GI_TEMPORAL + 2u).x;
         streamReservoir(s, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, uk);
       }
     }
-    result = endStream(s, x1);
+    bool normalise = (gi.flags & RESTIR_GI_FLAG_TEMPORAL_PRODUCERS) != 0u;
+    result = normalise ? endStreamNormalised(s, x1, confidenceOfProducers(gi, x1, candidate.M, s.chosen, merged))
+                       : endStream(s, x1);
   }
   if (validated) {
     // Where the neighbourhood's light changed (a real change, not noise): less confidence, so

@@ -130,6 +130,8 @@ gpu::RestirGiConstants restirGiConstants(const RestirGiSettings& s, VkExtent2D g
   c.flags |= s.validationPeriod > 0 ? gpu::RESTIR_GI_FLAG_VALIDATION : 0u;
   c.flags |= s.occluderVisibility ? gpu::RESTIR_GI_FLAG_OCCLUDER_VISIBILITY : 0u;
   c.flags |= s.producerNormalisation ? gpu::RESTIR_GI_FLAG_PRODUCER_NORMALISATION : 0u;
+  c.flags |= s.canonicalResolve ? gpu::RESTIR_GI_FLAG_CANONICAL_RESOLVE : 0u;
+  c.flags |= s.temporalProducerNormalisation ? gpu::RESTIR_GI_FLAG_TEMPORAL_PRODUCERS : 0u;
   return c;
 }
 

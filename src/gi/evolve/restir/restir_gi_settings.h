@@ -121,15 +121,25 @@ struct RestirGiSettings {
   // across nearby surfaces. Radii in GI pixels, spiral radii growing exponentially from
   // spatialMinRadius. At most 8 samples per pass (RESTIR_GI_MAX_SPATIAL_SAMPLES).
   bool spatialReuse = true;
-  // How the spatial passes normalise what they combine: by the confidence of
-  // the reservoirs that could have produced each sample (1/Z; Bitterli et al. 2020, Alg. 6,
-  // without visibility), or, when false, by every reservoir's (ReSTIR's biased 1/M), which
-  // darkens wherever some neighbours' shifts are rejected (maxJacobian, surfaces at grazing
-  // angles). The cost: extra reads of the neighbours' primary vertices, and rare samples that
-  // only a few neighbours could produce weigh more. Not in gi-restir-resolve: there it cost
-  // much time (the neighbours' vertices read twice and held in registers) and did not help
-  // (docs/decisions.md).
+  // How the spatial passes normalise what they combine: by the confidence of the reservoirs
+  // that could have produced the chosen sample (1/Z; Bitterli et al. 2020, Alg. 6, without
+  // visibility: one reconnection Jacobian per merged reservoir, no target evaluated), or, when
+  // false, by every reservoir's (ReSTIR's biased 1/M), which darkens wherever some neighbours'
+  // shifts are rejected (maxJacobian, surfaces at grazing angles). The cost: extra reads of the
+  // neighbours' primary vertices, and rare samples that only a few neighbours could produce
+  // weigh more.
   bool producerNormalisation = true;
+  // The same 1/Z in gi-restir-temporal (its merged history reservoirs' vertices read again).
+  // False: 1/M, about 1 % dark in the white furnace (docs/gi/restir-gi.md, "Energy").
+  bool temporalProducerNormalisation = true;
+  // gi-restir-resolve's weights: the pixel's home reservoir as the canonical one (a direction
+  // shift, never refused, weighted 1 - k/n where k of the n reservoirs on the surface could
+  // produce its sample; each neighbour's accepted sample 1/n: unbiased over the refused
+  // shifts), or, when false, the plain mean of the n, a refused shift counting as zero (darker
+  // by the share of refused shifts: Lux 17 %, Evolve 5 % in the white furnace). True costs
+  // variance where the home alone carries the samples its neighbours refuse (with Lux's cap of
+  // 2 most of those near the pixel: LuxSettings::unbiasedReuse).
+  bool canonicalResolve = true;
   uint32_t spatialSamples[2] = {8, 5};
   float spatialRadius[2] = {24.0f, 6.0f};
   float spatialMinRadius = 1.0f;
@@ -172,13 +182,14 @@ struct RestirGiSettings {
   float denoiseClipSigma = 2.0f;
   // Anti-firefly (as NRD's denoisers have): before accumulating, gi-temporal-denoise clamps
   // the resolved value to fireflyRatio times the brightest of 8 values two GI pixels away
-  // (outside the few pixels one reservoir's sample reaches in the resolve). Rare samples of
-  // huge weight, reconnection shifts with a large Jacobian along concave edges where a
-  // neighbour's hit point lies next to this pixel, otherwise stay in one reservoir for frames
-  // and show as a dotted line along every wall-ceiling edge. Indirect light is smooth at that
-  // scale, so only outliers are touched: lower removes more energy, higher lets more dots
-  // through; 0 = off. (Rejecting Jacobians above 2 instead of 10 removed the dots too but
-  // darkened the picture: docs/decisions.md.)
+  // (outside the few pixels one reservoir's sample reaches in the resolve) and shares what it
+  // cut out among those 8, so that the clamp keeps the energy. Rare samples of huge weight,
+  // reconnection shifts with a large Jacobian along concave edges where a neighbour's hit
+  // point lies next to this pixel, otherwise stay in one reservoir for frames and show as a
+  // dotted line along every wall-ceiling edge. Indirect light is smooth at that scale, so only
+  // outliers are touched: lower spreads more, higher lets more dots through; 0 = off.
+  // (Rejecting Jacobians above 2 instead of 10 removed the dots too but darkened the picture:
+  // docs/decisions.md.)
   float fireflyRatio = 2.0f;
   // gi-trace-diffuse-rays and the continued path read x2's textures at the mip at most this
   // many texels wide (seed 000: "always sample materials at a coarse mip level, to reduce
