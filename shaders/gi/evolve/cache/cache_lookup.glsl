@@ -125,8 +125,11 @@ void clipmapVote(ClipmapCacheView cache, uint slot, ivec3 coord, uint cascade, v
   uvec4 numbers = uvec4(clipmapVoteQuantize(offset.x), clipmapVoteQuantize(offset.y),
                         clipmapVoteQuantize(offset.z), clipmapVotePackNormal(normal));
   uint key = (closeness << 16u) | clipmapVoteHash(numbers);
-  if (key < cache.votes.v[slot].key) return;  // a closer candidate is in (keys only rise)
-  if (atomicMax(cache.votes.v[slot].key, key) > key) return;
+  // Only a closer candidate stops this one: every candidate of the winning closeness writes its
+  // numbers, whatever its hash and order, so that a mix of equally close ones is the same mix
+  // (and refused the same way) in every schedule.
+  if (closeness < (cache.votes.v[slot].key >> 16u)) return;  // keys only rise
+  if ((atomicMax(cache.votes.v[slot].key, key) >> 16u) > closeness) return;
   for (uint k = 0u; k < 4u; ++k)
     atomicMax(cache.votes.v[slot].data[k], (closeness << 16u) | numbers[k]);
 }
