@@ -17,9 +17,9 @@ layout(push_constant, scalar) uniform Push { ClipmapPassConstants pc; };
 // The origin elected in `slot` last frame, when it is closer to the cell's centre than the
 // cell's: the cell's origin only moves closer, so it settles. Equal-closeness candidates may
 // have mixed their numbers; the key's hash of the winner's refuses such a mix (the cell keeps
-// its origin, or waits a frame for its first). A cell whose normal turns by more than 60
-// degrees (the other face of a corner, the other side of a thin wall) starts its entries
-// afresh: their samples saw another side of the cell.
+// its origin, or waits a frame for its first). The entries stay: their samples keep their own
+// origins, which validation re-traces from, and new candidates replace them (clearing them when
+// the normal turned by more than 60 degrees made sunroom 3 % darker, docs/gi/clipmap-cache.md).
 void adoptElectedOrigin(uint cell, uint cascade, uint key, uvec4 words) {
   ClipmapCellsRef cells = ClipmapCellsRef(pc.buffers.cells);
   uint closeness = key >> 16u;
@@ -32,16 +32,6 @@ void adoptElectedOrigin(uint cell, uint cascade, uint key, uvec4 words) {
   vec3 offset = vec3(clipmapVoteDequantize(numbers.x), clipmapVoteDequantize(numbers.y),
                      clipmapVoteDequantize(numbers.z));
   vec3 normal = clipmapVoteUnpackNormal(numbers.w);
-  if (current != 0u && dot(normal, cells.v[cell].normal) < 0.5) {
-    ClipmapEntriesRef entries = ClipmapEntriesRef(pc.buffers.entries);
-    for (uint e = 0u; e < CLIPMAP_ENTRIES; ++e) {
-      uint i = cell * CLIPMAP_ENTRIES + e;
-      entries.v[i].M = 0.0;
-      entries.v[i].W = 0.0;
-      entries.v[i].weightSum = 0.0;
-    }
-    cells.v[cell].validEntries = 0u;
-  }
   cells.v[cell].origin = (vec3(cells.v[cell].coord.xyz) + 0.5 + offset) * cellSize;
   cells.v[cell].normal = normal;
   cells.v[cell].originCloseness = closeness;

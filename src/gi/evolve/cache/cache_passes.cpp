@@ -110,7 +110,6 @@ void ClipmapCache::declareClipmap(graph::FrameGraph& graph, const gpu::ClipmapPa
       .write(b.grid, Access::StorageReadWrite)
       .write(b.pool, Access::StorageReadWrite)
       .write(b.counters, Access::StorageReadWrite)
-      .write(b.entries, Access::StorageReadWrite)
       .write(b.votes, Access::StorageReadWrite)
       .sideEffects()
       .record([this, push](VkCommandBuffer cmd, const graph::PassResources& r) {
