@@ -83,11 +83,10 @@ BOUNCE_CHECK_SIZE(ClipmapCell, 112);
 
 // A grid slot's votes this frame (cache_lookup.glsl, clipmapVote; cache-update-clipmap counts
 // them and clears them). The election of the cell's origin: each lookup that may allocate the
-// slot's cell is a candidate, with a closeness (65535 minus its unjittered sample point's
-// distance to the cell's centre in 1/26214 cells); the closest wins, whatever the order. Its
-// origin is 4 16-bit numbers, each stored as closeness << 16 | number and raised by atomicMax,
-// so every word ends with the winner's number: no word mixes in another candidate's, except
-// between candidates of equal closeness, which `key`'s hash catches.
+// slot's cell is a candidate with a 16-bit closeness (cache_lookup.glsl, clipmapVote); the
+// highest wins, whatever the order. Its origin is 4 16-bit numbers, each stored as closeness << 16
+// | number and raised by atomicMax, so every word ends with the winner's number: no word mixes in
+// another candidate's, except between candidates of equal closeness, which `key`'s hash catches.
 struct ClipmapSlotVote {
   uint touched;  // CLIPMAP_TOUCH_* bits of this frame's lookups (the cell's, if any)
   uint key;      // closeness << 16 | hash of the winner's 4 numbers; 0: no candidate

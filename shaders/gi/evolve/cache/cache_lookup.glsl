@@ -16,7 +16,7 @@
 // Nothing a lookup leaves depends on the order of the lookups (so a frame's image does not
 // depend on thread scheduling): its touches go to the grid slot, cell or not, and a cell's
 // origin is not the allocating lookup's hit but elected among all the lookups that may allocate
-// it (clipmapVote), the one whose sample point lies closest to the cell's centre.
+// it (clipmapVote).
 #ifndef BOUNCE_GI_EVOLVE_CACHE_LOOKUP_GLSL
 #define BOUNCE_GI_EVOLVE_CACHE_LOOKUP_GLSL
 #include "common/ray_offset.glsl"
@@ -104,26 +104,32 @@ uint clipmapAllocate(ClipmapCacheView cache, uint slot, ivec3 coord, uint cascad
 }
 
 // A lookup's candidacy for the origin of the cell of `slot` (ClipmapSlotVote): its closeness
-// is that of its unjittered sample point to the cell's centre, so that the cell's rays start
-// from the surface point that the centre of the cell stands for, not from one at its edge
-// which the jitter or the wobble carried in. The winner is the same whatever the order of the
+// is a hash of its numbers, or with CLIPMAP_ELECT_CENTRE that of its unjittered sample point to
+// the cell's centre (cache_common.glsl says why not). The winner is the same whatever the order of the
 // lookups: the key and each word of the origin only rise (atomicMax), and each starts with the
-// closeness. A lookup no closer than the cell's current origin does not vote
-// (cache-update-clipmap would not move it), so that in a settled cell most lookups read two
-// words and write none. `value`: the slot's grid value.
+// closeness. A lookup that cannot replace the cell's current origin does not vote
+// (cache-update-clipmap would not move it), so that in a settled cell lookups read one word
+// more and write none. `value`: the slot's grid value.
 void clipmapVote(ClipmapCacheView cache, uint slot, ivec3 coord, uint cascade, vec3 position,
                  vec3 normal, uint value) {
+  uint current = value != 0u && value != CLIPMAP_SLOT_LOCKED
+                     ? cache.cells.v[value - 1u].originCloseness
+                     : 0u;
+  if (!CLIPMAP_ELECT_CENTRE && current != 0u) return;  // elected once
   float cellSize = clipmapCellSize(cache, cascade);
   vec3 centre = vec3(coord) + 0.5;
-  float distance = length(clipmapSamplePoint(position, normal, cellSize, vec2(0.0)) - centre);
-  uint closeness = 65535u - min(uint(round(distance * CLIPMAP_VOTE_STEPS_PER_CELL)), 65534u);
-  if (value != 0u && value != CLIPMAP_SLOT_LOCKED &&
-      closeness <= cache.cells.v[value - 1u].originCloseness)
-    return;
   vec3 origin = offsetRayOrigin(position, normal) + normal * (1e-3 * cellSize);
   vec3 offset = origin / cellSize - centre;
   uvec4 numbers = uvec4(clipmapVoteQuantize(offset.x), clipmapVoteQuantize(offset.y),
                         clipmapVoteQuantize(offset.z), clipmapVotePackNormal(normal));
+  uint closeness;
+  if (CLIPMAP_ELECT_CENTRE) {
+    float distance = length(clipmapSamplePoint(position, normal, cellSize, vec2(0.0)) - centre);
+    closeness = 65535u - min(uint(round(distance * CLIPMAP_VOTE_STEPS_PER_CELL)), 65534u);
+    if (closeness <= current) return;
+  } else {
+    closeness = 1u + clipmapVoteHash(numbers ^ uvec4(0x2C1B3C6Du)) % 65535u;
+  }
   uint key = (closeness << 16u) | clipmapVoteHash(numbers);
   // Only a closer candidate stops this one: every candidate of the winning closeness writes its
   // numbers, whatever its hash and order, so that a mix of equally close ones is the same mix

@@ -14,8 +14,9 @@
 layout(local_size_x = CLIPMAP_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { ClipmapPassConstants pc; };
 
-// The origin elected in `slot` last frame, when it is closer to the cell's centre than the
-// cell's: the cell's origin only moves closer, so it settles. Equal-closeness candidates may
+// The origin elected in `slot` last frame, for a cell without one (with CLIPMAP_ELECT_CENTRE:
+// when it is closer to the cell's centre than the cell's, so the origin only moves closer and
+// settles). Equal-closeness candidates may
 // have mixed their numbers; the key's hash of the winner's refuses such a mix (the cell keeps
 // its origin, or waits a frame for its first). The entries stay: their samples keep their own
 // origins, which validation re-traces from, and new candidates replace them (clearing them when
@@ -24,7 +25,7 @@ void adoptElectedOrigin(uint cell, uint cascade, uint key, uvec4 words) {
   ClipmapCellsRef cells = ClipmapCellsRef(pc.buffers.cells);
   uint closeness = key >> 16u;
   uint current = cells.v[cell].originCloseness;
-  if (closeness <= current) return;
+  if (CLIPMAP_ELECT_CENTRE ? closeness <= current : current != 0u) return;
   uvec4 numbers = words & 0xFFFFu;
   if (clipmapVoteHash(numbers) != (key & 0xFFFFu)) return;
   float cellSize =
