@@ -603,9 +603,10 @@ size_t differences(const std::map<Key, Value>& a, const std::map<Key, Value>& b,
 // the test counts the threads), gives the same live cells and entries (keyed by coordinates:
 // pool indices may differ) and the same composite, bit for bit: nothing in the chain adds
 // floats atomically. 8 frames take in the first frames after the full refresh (validation
-// rays; cells' origins moving closer to their centres), where a tie between equally close
-// candidates once made 87 to 4,821 of 5,441 cells differ (docs/gi/clipmap-cache.md,
-// "Deterministic cells"). On a GPU LP_NUM_THREADS does nothing and the two runs compare two
+// rays; with CLIPMAP_ELECT_CENTRE, origins moving closer to their centres), where a tie between
+// equally close candidates once made 87 to 4,821 of 5,441 cells differ (docs/gi/clipmap-cache.md,
+// "Deterministic cells"). Measured 135-374 s here on a machine loaded by builds, about 60 s of
+// CPU. On a GPU LP_NUM_THREADS does nothing and the two runs compare two
 // schedules of the same device.
 TEST(ClipmapCache, ResultsDoNotDependOnThreadScheduling) {
   HybridSettings settings = presetSettings(Preset::Desktop);
