@@ -605,9 +605,9 @@ size_t differences(const std::map<Key, Value>& a, const std::map<Key, Value>& b,
 // floats atomically. 8 frames take in the first frames after the full refresh (validation
 // rays; with CLIPMAP_ELECT_CENTRE, origins moving closer to their centres), where a tie between
 // equally close candidates once made 87 to 4,821 of 5,441 cells differ (docs/gi/clipmap-cache.md,
-// "Deterministic cells"). Measured 135-374 s here on a machine loaded by builds, about 60 s of
-// CPU. On a GPU LP_NUM_THREADS does nothing and the two runs compare two
-// schedules of the same device.
+// "Deterministic cells"). About 31 s of CPU (user time of both runs); 100-374 s of wall
+// time here on a machine loaded by other builds. On a GPU LP_NUM_THREADS does nothing and the two
+// runs compare two schedules of the same device.
 TEST(ClipmapCache, ResultsDoNotDependOnThreadScheduling) {
   HybridSettings settings = presetSettings(Preset::Desktop);
   settings.width = 32;
