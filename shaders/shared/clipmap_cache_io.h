@@ -20,6 +20,10 @@
 //   frame      ClipmapFrameCounters (reset by cache-update-lifetimes every frame)
 //   liveList   uint[2 * CLIPMAP_MAX_CELLS]: this frame's live cells (cache-update-clipmap),
 //              then from index CLIPMAP_MAX_CELLS those of them never traced (new cells)
+//   votes      ClipmapSlotVote[CLIPMAP_CASCADES * CLIPMAP_GRID^3]: per grid slot, what this
+//              frame's lookups left for cache-update-lifetimes and cache-update-clipmap (the
+//              touches; the election of the cell's origin), whether or not the slot had a cell
+//              when they came, so that nothing depends on the order of the lookups
 #ifndef BOUNCE_SHARED_CLIPMAP_CACHE_IO_H
 #define BOUNCE_SHARED_CLIPMAP_CACHE_IO_H
 #include "shared/compat.h"
@@ -38,11 +42,12 @@ BOUNCE_CONST uint CLIPMAP_CELL_ALIVE = 1u;
 BOUNCE_CONST uint CLIPMAP_CELL_SH_VALID = 2u;  // cache-build-sh has written its SH
 BOUNCE_CONST uint CLIPMAP_CELL_DIRECT = 4u;    // a consumer (not a cache ray) used it last frame
 // Bits 8..11: the cell's touch level last frame (1 = a consumer looked it up, k = a cache ray of
-// a level k-1 cell did; 0 = nobody). Set by cache-update-lifetimes from `touched`.
+// a level k-1 cell did; 0 = nobody). Set by cache-update-lifetimes from its slot's `touched`.
 BOUNCE_CONST uint CLIPMAP_CELL_LEVEL_SHIFT = 8u;
 BOUNCE_CONST uint CLIPMAP_CELL_LEVEL_MASK = 0xF00u;
 
-// ClipmapCell.touched: who looked the cell up this frame, one bit per level (bit k-1 = level k).
+// ClipmapSlotVote.touched: who looked the slot up this frame, one bit per level (bit k-1 =
+// level k).
 BOUNCE_CONST uint CLIPMAP_TOUCH_DIRECT = 1u;    // level 1: a consumer (gi, ReSTIR GI, ...)
 BOUNCE_CONST uint CLIPMAP_TOUCH_INDIRECT = 2u;  // level 2: a cache ray from a level-1 cell
 // Cells of a level below this touch and allocate the cells their rays look up (with level + 1);
@@ -57,12 +62,14 @@ BOUNCE_CONST uint CLIPMAP_TOUCH_LEVELS = 4u;
 BOUNCE_CONST uint CLIPMAP_FLAG_ALPHA_TEST = 1u;
 
 struct ClipmapCell {
-  ivec4 coord;   // xyz: integer cell coordinate in its cascade; w: cascade
-  vec3 origin;   // where its rays start (a surface point of the allocating lookup, offset)
-  uint age;      // frames since a lookup last touched it
-  vec3 normal;   // surface normal of the allocating lookup
-  uint touched;  // CLIPMAP_TOUCH_* bits, this frame
-  vec4 shR;      // L1 SH of incoming radiance, coefficients (Y00, Y1-1 ~ y, Y10 ~ z, Y11 ~ x)
+  ivec4 coord;  // xyz: integer cell coordinate in its cascade; w: cascade
+  vec3 origin;  // where its rays start: the elected lookup's surface point, offset
+  uint age;     // frames since a lookup last touched it
+  vec3 normal;  // the elected lookup's surface normal
+  // Closeness of the elected lookup (ClipmapSlotVote.key >> 16); 0: none yet, and the cell is
+  // neither traced nor listed live until one is (cache-update-clipmap).
+  uint originCloseness;
+  vec4 shR;  // L1 SH of incoming radiance, coefficients (Y00, Y1-1 ~ y, Y10 ~ z, Y11 ~ x)
   vec4 shG;
   vec4 shB;
   uint flags;  // CLIPMAP_CELL_*
@@ -73,6 +80,21 @@ struct ClipmapCell {
   uint pad1;
 };
 BOUNCE_CHECK_SIZE(ClipmapCell, 112);
+
+// A grid slot's votes this frame (cache_lookup.glsl, clipmapVote; cache-update-clipmap counts
+// them and clears them). The election of the cell's origin: each lookup that may allocate the
+// slot's cell is a candidate with a 16-bit closeness (cache_lookup.glsl, clipmapVote); the
+// highest wins, whatever the order. Its origin is 4 16-bit numbers, each stored as closeness << 16
+// | number and raised by atomicMax, so every word ends with the winner's number: no word mixes in
+// another candidate's, except between candidates of equal closeness, which `key`'s hash catches.
+struct ClipmapSlotVote {
+  uint touched;  // CLIPMAP_TOUCH_* bits of this frame's lookups (the cell's, if any)
+  uint key;      // closeness << 16 | hash of the winner's 4 numbers; 0: no candidate
+  // closeness << 16 | x, y, z of the origin (cell units from the centre in 16-bit fixed point,
+  // cache_lookup.glsl) and the normal (octahedral, 8 + 8 bits)
+  uint data[4];
+};
+BOUNCE_CHECK_SIZE(ClipmapSlotVote, 24);
 
 // One direction bin's reservoir (ReSTIR GI, Ouyang et al. 2021): the chosen sample (direction,
 // the radiance it brought, where it was traced from and how far it went), the number of
@@ -122,8 +144,9 @@ struct ClipmapCacheAddresses {
   DeviceAddress counters;
   DeviceAddress frame;
   DeviceAddress liveList;
+  DeviceAddress votes;
 };
-BOUNCE_CHECK_SIZE(ClipmapCacheAddresses, 56);
+BOUNCE_CHECK_SIZE(ClipmapCacheAddresses, 64);
 
 // Written each frame by cache-update-lifetimes; every consumer reads the cache through it
 // (shaders/gi/evolve/cache/cache_lookup.glsl, clipmapCacheView()).
@@ -147,7 +170,7 @@ struct ClipmapCacheConstants {
   float fullRefreshHistoryCap;
   uint pad0, pad1;
 };
-BOUNCE_CHECK_SIZE(ClipmapCacheConstants, 56 + 8 + 192 + 48 + 16);
+BOUNCE_CHECK_SIZE(ClipmapCacheConstants, 64 + 8 + 192 + 48 + 16);
 
 // Push constants of the cache passes.
 struct ClipmapPassConstants {
@@ -160,7 +183,7 @@ struct ClipmapPassConstants {
   // touch cells (the frame's trace did) and whose candidates draw other directions.
   uint bounce;
 };
-BOUNCE_CHECK_SIZE(ClipmapPassConstants, 80);
+BOUNCE_CHECK_SIZE(ClipmapPassConstants, 88);
 
 BOUNCE_CONST uint CLIPMAP_GROUP_SIZE = 64u;
 

@@ -31,6 +31,9 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) coherent buffer Cli
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer ClipmapLiveListRef {
   uint v[];
 };
+layout(buffer_reference, scalar, buffer_reference_align = 4) coherent buffer ClipmapVotesRef {
+  ClipmapSlotVote v[];
+};
 
 // The cache as a consumer sees it: its constants and its buffers.
 struct ClipmapCacheView {
@@ -40,6 +43,7 @@ struct ClipmapCacheView {
   ClipmapEntriesRef entries;
   ClipmapPoolRef pool;
   ClipmapCountersRef counters;
+  ClipmapVotesRef votes;
   vec3 cameraPosition;
   float finestCellSize;
   uint frameIndex;
@@ -56,6 +60,7 @@ ClipmapCacheView clipmapCacheView(DeviceAddress cacheConstants) {
   view.entries = ClipmapEntriesRef(b.entries);
   view.pool = ClipmapPoolRef(b.pool);
   view.counters = ClipmapCountersRef(b.counters);
+  view.votes = ClipmapVotesRef(b.votes);
   view.cameraPosition = c.v.cameraPosition;
   view.finestCellSize = c.v.finestCellSize;
   view.frameIndex = c.v.frameIndex;
@@ -73,6 +78,11 @@ uint clipmapSlot(uint cascade, ivec3 coord) {
   return cascade * CLIPMAP_SLOTS_PER_CASCADE +
          uint(t.x) + CLIPMAP_GRID * (uint(t.y) + CLIPMAP_GRID * uint(t.z));
 }
+
+// A number of the cell's own, whichever pool cell holds it: the seed of its rays' random
+// numbers and its refresh round (cache-trace-diffuse-rays), so that neither depends on the
+// order in which the lookups allocated cells.
+uint clipmapCellKey(ivec4 coord) { return pcg4d(uvec4(coord) ^ uvec4(0x9E3779B9u)).x; }
 
 bool clipmapInWindow(ivec3 origin, ivec3 coord) {
   return all(greaterThanEqual(coord, origin)) &&
@@ -129,6 +139,47 @@ uint clipmapValidationRays(ClipmapCacheConstants k) {
 uint clipmapTraceLanes(ClipmapCacheConstants k) {
   return clipmapValidationRays(k) > 0u ? 2u * k.raysPerCell : k.raysPerCell;
 }
+
+// The numbers of a candidate origin in the election of a cell's origin (ClipmapSlotVote in
+// shared/clipmap_cache_io.h; cache_lookup.glsl votes, cache-update-clipmap counts). An
+// origin's offset from the cell's centre lies within 2 cells on each axis (the surface point
+// is half a cell behind its sample point, which the wobble and the jitter move by at most a
+// quarter and 0.71 of a cell): 16-bit fixed point over [-2.5, 2.5] keeps it to 4e-5 cells,
+// well inside the 1e-3 cells that the origin sits in front of its surface.
+const float CLIPMAP_VOTE_RANGE = 2.5;
+// Which candidate wins: false, a pseudo-random one (a hash of its numbers), once, as
+// unbiased as the first-come lookup that allocated the cell used to be but free of the order;
+// true, the one whose unjittered sample point lies closest to the cell's centre, re-elected
+// whenever a closer one comes. The closest lost 27 % in a furnace pixel (1.46 for 2, bound
+// 1.8): where a cell's centre lies beyond a wall the closest surface point is on the edge
+// where two faces meet, and rays from there leak (docs/gi/clipmap-cache.md).
+const bool CLIPMAP_ELECT_CENTRE = false;
+// Closeness steps per cell of distance: 65535 steps over 2.5 cells.
+const float CLIPMAP_VOTE_STEPS_PER_CELL = 26214.0;
+
+uint clipmapVoteQuantize(float x) {
+  return uint(round(clamp(x / (2.0 * CLIPMAP_VOTE_RANGE) + 0.5, 0.0, 1.0) * 65535.0));
+}
+float clipmapVoteDequantize(uint q) {
+  return (float(q) / 65535.0 - 0.5) * (2.0 * CLIPMAP_VOTE_RANGE);
+}
+vec2 clipmapSignNotZero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
+// Octahedral normal (Cigolle et al. 2014) in 8 + 8 bits: within a degree, which is all the
+// cell's normal needs (cache-build-sh's normalisation, the lookups' agreement weight).
+uint clipmapVotePackNormal(vec3 n) {
+  vec2 p = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+  if (n.z < 0.0) p = (1.0 - abs(p.yx)) * clipmapSignNotZero(p);
+  uvec2 q = uvec2(round(clamp(p * 0.5 + 0.5, 0.0, 1.0) * 255.0));
+  return q.x | (q.y << 8u);
+}
+vec3 clipmapVoteUnpackNormal(uint q) {
+  vec2 e = vec2(float(q & 255u), float((q >> 8u) & 255u)) * (2.0 / 255.0) - 1.0;
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * clipmapSignNotZero(n.xy);
+  return normalize(n);
+}
+// The 16-bit hash of a candidate's numbers (x, y, z, normal) kept in its key.
+uint clipmapVoteHash(uvec4 numbers) { return pcg4d(numbers ^ uvec4(0x51ED270Bu)).x & 0xFFFFu; }
 
 float clipmapLuminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 

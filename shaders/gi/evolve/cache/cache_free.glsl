@@ -7,7 +7,9 @@
 void clipmapFreeCell(ClipmapCacheAddresses b, uint cell, uint slot) {
   ClipmapGridRef(b.grid).v[slot] = 0u;
   ClipmapCellsRef(b.cells).v[cell].flags = 0u;
-  ClipmapCellsRef(b.cells).v[cell].touched = 0u;
+  // A lookup that finds the cell reallocated in a later pass reads 0 here whatever the order
+  // of the writes (clipmapVote).
+  ClipmapCellsRef(b.cells).v[cell].originCloseness = 0u;
   ClipmapCountersRef counters = ClipmapCountersRef(b.counters);
   uint top = atomicAdd(counters.v.allocated, 0xFFFFFFFFu) - 1u;
   ClipmapPoolRef(b.pool).v[top] = cell + 1u;

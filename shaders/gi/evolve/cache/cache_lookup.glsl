@@ -12,6 +12,11 @@
 // boundaries, and a random jitter of up to half a cell in the tangent plane, which averages to
 // a smooth interpolation over frames and pixels. A new cell has no SH until its first
 // cache-build-sh; until then the lookup falls back to the coarser cascades.
+//
+// Nothing a lookup leaves depends on the order of the lookups (so a frame's image does not
+// depend on thread scheduling): its touches go to the grid slot, cell or not, and a cell's
+// origin is not the allocating lookup's hit but elected among all the lookups that may allocate
+// it (clipmapVote).
 #ifndef BOUNCE_GI_EVOLVE_CACHE_LOOKUP_GLSL
 #define BOUNCE_GI_EVOLVE_CACHE_LOOKUP_GLSL
 #include "common/ray_offset.glsl"
@@ -52,9 +57,10 @@ vec3 clipmapSamplePoint(vec3 position, vec3 normal, float cellSize, vec2 jitter)
 }
 
 // Takes a cell from the pool for `slot`, which was found empty. Returns the grid value
-// (cell + 1), or 0 when another lookup is allocating it or the pool is exhausted.
-uint clipmapAllocate(ClipmapCacheView cache, uint slot, ivec3 coord, uint cascade,
-                     vec3 position, vec3 normal, uint touch) {
+// (cell + 1), or 0 when another lookup is allocating it or the pool is exhausted. The cell has
+// no origin until cache-update-clipmap counts the election (clipmapVote); its touch level comes
+// from the slot's touches (cache-update-lifetimes).
+uint clipmapAllocate(ClipmapCacheView cache, uint slot, ivec3 coord, uint cascade) {
   if (atomicCompSwap(cache.grid.v[slot], 0u, CLIPMAP_SLOT_LOCKED) != 0u) return 0u;
   uint top = atomicAdd(cache.counters.v.allocated, 1u);
   if (top >= cache.poolCapacity) {
@@ -66,19 +72,15 @@ uint clipmapAllocate(ClipmapCacheView cache, uint slot, ivec3 coord, uint cascad
   }
   uint stored = cache.pool.v[top];
   uint cell = stored == 0u ? top : stored - 1u;
-  float cellSize = clipmapCellSize(cache, cascade);
-  uint level = touch == 0u ? 0u : uint(findLSB(touch)) + 1u;
-  vec3 origin = offsetRayOrigin(position, normal) + normal * (1e-3 * cellSize);
   cache.cells.v[cell].coord = ivec4(coord, int(cascade));
-  cache.cells.v[cell].origin = origin;
+  cache.cells.v[cell].origin = vec3(0.0);
   cache.cells.v[cell].age = 0u;
-  cache.cells.v[cell].normal = normal;
-  cache.cells.v[cell].touched = touch;
+  cache.cells.v[cell].normal = vec3(0.0, 0.0, 1.0);
+  cache.cells.v[cell].originCloseness = 0u;
   cache.cells.v[cell].shR = vec4(0.0);
   cache.cells.v[cell].shG = vec4(0.0);
   cache.cells.v[cell].shB = vec4(0.0);
-  cache.cells.v[cell].flags = CLIPMAP_CELL_ALIVE | (level << CLIPMAP_CELL_LEVEL_SHIFT) |
-                              (level == 1u ? CLIPMAP_CELL_DIRECT : 0u);
+  cache.cells.v[cell].flags = CLIPMAP_CELL_ALIVE;
   cache.cells.v[cell].validEntries = 0u;
   cache.cells.v[cell].irradianceScale = 1.0;
   for (uint e = 0u; e < CLIPMAP_ENTRIES; ++e) {
@@ -87,7 +89,7 @@ uint clipmapAllocate(ClipmapCacheView cache, uint slot, ivec3 coord, uint cascad
     cache.entries.v[i].M = 0.0;
     cache.entries.v[i].direction = vec3(0.0, 0.0, 1.0);
     cache.entries.v[i].W = 0.0;
-    cache.entries.v[i].origin = origin;
+    cache.entries.v[i].origin = vec3(0.0);
     cache.entries.v[i].weightSum = 0.0;
     cache.entries.v[i].hitDistance = 0.0;
   }
@@ -95,9 +97,47 @@ uint clipmapAllocate(ClipmapCacheView cache, uint slot, ivec3 coord, uint cascad
   // Publish. No memoryBarrierBuffer() here: on lavapipe 22.3 a memory barrier in divergent
   // control flow ends the invocation early (the pass's later image stores were lost). None is
   // needed: a lookup that finds the cell in this pass reads only its flags (SH_VALID is set by
-  // the next frame's cache-build-sh, after the graph's barriers) and ORs its touch bit.
+  // the next frame's cache-build-sh, after the graph's barriers) and its originCloseness, 0
+  // both here and where the cell was last freed (clipmapFreeCell).
   atomicExchange(cache.grid.v[slot], cell + 1u);
   return cell + 1u;
+}
+
+// A lookup's candidacy for the origin of the cell of `slot` (ClipmapSlotVote): its closeness
+// is a hash of its numbers, or with CLIPMAP_ELECT_CENTRE that of its unjittered sample point to
+// the cell's centre (cache_common.glsl says why not). The winner is the same whatever the order of the
+// lookups: the key and each word of the origin only rise (atomicMax), and each starts with the
+// closeness. A lookup that cannot replace the cell's current origin does not vote
+// (cache-update-clipmap would not move it), so that in a settled cell lookups read one word
+// more and write none. `value`: the slot's grid value.
+void clipmapVote(ClipmapCacheView cache, uint slot, ivec3 coord, uint cascade, vec3 position,
+                 vec3 normal, uint value) {
+  uint current = value != 0u && value != CLIPMAP_SLOT_LOCKED
+                     ? cache.cells.v[value - 1u].originCloseness
+                     : 0u;
+  if (!CLIPMAP_ELECT_CENTRE && current != 0u) return;  // elected once
+  float cellSize = clipmapCellSize(cache, cascade);
+  vec3 centre = vec3(coord) + 0.5;
+  vec3 origin = offsetRayOrigin(position, normal) + normal * (1e-3 * cellSize);
+  vec3 offset = origin / cellSize - centre;
+  uvec4 numbers = uvec4(clipmapVoteQuantize(offset.x), clipmapVoteQuantize(offset.y),
+                        clipmapVoteQuantize(offset.z), clipmapVotePackNormal(normal));
+  uint closeness;
+  if (CLIPMAP_ELECT_CENTRE) {
+    float distance = length(clipmapSamplePoint(position, normal, cellSize, vec2(0.0)) - centre);
+    closeness = 65535u - min(uint(round(distance * CLIPMAP_VOTE_STEPS_PER_CELL)), 65534u);
+    if (closeness <= current) return;
+  } else {
+    closeness = 1u + clipmapVoteHash(numbers ^ uvec4(0x2C1B3C6Du)) % 65535u;
+  }
+  uint key = (closeness << 16u) | clipmapVoteHash(numbers);
+  // Only a closer candidate stops this one: every candidate of the winning closeness writes its
+  // numbers, whatever its hash and order, so that a mix of equally close ones is the same mix
+  // (and refused the same way) in every schedule.
+  if (closeness < (cache.votes.v[slot].key >> 16u)) return;  // keys only rise
+  if ((atomicMax(cache.votes.v[slot].key, key) >> 16u) > closeness) return;
+  for (uint k = 0u; k < 4u; ++k)
+    atomicMax(cache.votes.v[slot].data[k], (closeness << 16u) | numbers[k]);
 }
 
 // Finds the cell serving `position`: the chosen cascade's, else the first coarser one holding a
@@ -114,13 +154,17 @@ uint clipmapFindCell(ClipmapCacheView cache, vec3 position, vec3 normal, vec2 ji
     ivec3 coord = ivec3(floor(clipmapSamplePoint(position, normal, cellSize, jitter)));
     if (!clipmapInWindow(cache.constants.v.cascadeOrigin[cascade].xyz, coord)) continue;
     uint slot = clipmapSlot(cascade, coord);
+    // The touch goes to the slot, so that it counts whether the cell was there yet or being
+    // allocated by another lookup.
+    if (touch != 0u && (cache.votes.v[slot].touched & touch) != touch)
+      atomicOr(cache.votes.v[slot].touched, touch);
     uint value = cache.grid.v[slot];
-    if (value == 0u && allocate && cascade == first)
-      value = clipmapAllocate(cache, slot, coord, cascade, position, normal, touch);
+    if (allocate && cascade == first) {
+      if (value == 0u) value = clipmapAllocate(cache, slot, coord, cascade);
+      clipmapVote(cache, slot, coord, cascade, position, normal, value);
+    }
     if (value == 0u || value == CLIPMAP_SLOT_LOCKED) continue;
     uint cell = value - 1u;
-    if (touch != 0u && (cache.cells.v[cell].touched & touch) != touch)
-      atomicOr(cache.cells.v[cell].touched, touch);
     if ((cache.cells.v[cell].flags & CLIPMAP_CELL_SH_VALID) == 0u) continue;
     cascadeUsed = cascade;
     return value;

@@ -9,6 +9,8 @@
 // its entries' history capped at fullRefreshHistoryCap, and the pass runs fullRefreshBounces
 // times (each followed by cache-build-sh): light then crosses that many bounces per frame
 // instead of one per refresh round.
+// A cell's random numbers and its refresh round follow clipmapCellKey (its coordinates), not
+// its pool index, which depends on the order of the allocating lookups.
 // Cells touched last frame at a level below CLIPMAP_TOUCH_LEVELS allocate and keep alive the
 // cells their rays look up (shared/clipmap_cache_io.h); the others only read, so that cells
 // cannot keep each other alive for ever.
@@ -32,6 +34,7 @@ uint rayTouch(uint cellFlags) {
 void traceEntry(FrameConstants f, ClipmapCacheView cache, uint cell, ClipmapCell c, uint e,
                 bool validation, bool alphaTest, uint touch, float historyCap) {
   ClipmapEntry entry;
+  uint key = clipmapCellKey(c.coord);
   vec3 origin = c.origin;
   vec3 dir;
   vec4 u;
@@ -41,9 +44,9 @@ void traceEntry(FrameConstants f, ClipmapCacheView cache, uint cell, ClipmapCell
     if (!(entry.M > 0.0)) return;
     origin = entry.origin;
     dir = entry.direction;
-    seed = uvec4(cell, f.frameIndex, e, 0x7A11DA7Eu);
+    seed = uvec4(key, f.frameIndex, e, 0x7A11DA7Eu);
   } else {
-    uvec4 candidateSeed = uvec4(cell, f.frameIndex, e, 0x0CAC4E01u + pc.bounce);
+    uvec4 candidateSeed = uvec4(key, f.frameIndex, e, 0x0CAC4E01u + pc.bounce);
     u = uniformFromHash(pcg4d(candidateSeed));
     dir = clipmapEntryDirection(e, u.xy);
     seed = candidateSeed ^ uvec4(0u, 0u, 0u, 0x5BD1E995u);
@@ -107,7 +110,7 @@ void main() {
     if (c.validEntries == 0u || fullRefresh) return;  // traced in the second range
     uint rays = k.raysPerCell;
     uint rounds = clipmapTraceRounds(k);  // raysPerCell divides 16 (checked on the CPU)
-    uint round = (f.frameIndex + cell) % rounds;
+    uint round = (f.frameIndex + clipmapCellKey(c.coord)) % rounds;
     if (lane < rays) {
       entry = round * rays + lane;
     } else if (lane < rays + clipmapValidationRays(k)) {

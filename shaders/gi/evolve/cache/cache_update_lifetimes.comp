@@ -1,7 +1,9 @@
 // cache-update-lifetimes (seed 000): a cell that no lookup touched last frame ages by one; at
 // maxStaleFrames (4) it goes back to the pool. A touched cell records its touch level (the
 // lowest level that touched it, CLIPMAP_TOUCH_LEVELS in shared/clipmap_cache_io.h), which
-// decides whether its cache rays may keep other cells alive this frame. One thread per pool cell.
+// decides whether its cache rays may keep other cells alive this frame. The touches are the
+// grid slot's (ClipmapSlotVote; cache-update-clipmap clears them next). One thread per pool
+// cell.
 #version 460
 #include "gi/evolve/cache/cache_free.glsl"
 
@@ -17,10 +19,11 @@ void main() {
   ClipmapCellsRef cells = ClipmapCellsRef(pc.buffers.cells);
   ClipmapCell c = cells.v[cell];
   if ((c.flags & CLIPMAP_CELL_ALIVE) == 0u) return;
-  uint level = touchLevel(c.touched);
+  uint slot = clipmapSlot(uint(c.coord.w), c.coord.xyz);
+  uint level = touchLevel(ClipmapVotesRef(pc.buffers.votes).v[slot].touched);
   uint age = level > 0u ? 0u : c.age + 1u;
   if (age >= pc.maxStaleFrames) {
-    clipmapFreeCell(pc.buffers, cell, clipmapSlot(uint(c.coord.w), c.coord.xyz));
+    clipmapFreeCell(pc.buffers, cell, slot);
     return;
   }
   uint flags = c.flags & ~(CLIPMAP_CELL_DIRECT | CLIPMAP_CELL_LEVEL_MASK);
@@ -28,5 +31,4 @@ void main() {
   if (level == 1u) flags |= CLIPMAP_CELL_DIRECT;
   cells.v[cell].age = age;
   cells.v[cell].flags = flags;
-  cells.v[cell].touched = 0u;
 }

@@ -55,9 +55,10 @@ void ClipmapCache::importBuffers(graph::FrameGraph& graph) {
   b.counters = graph.importBuffer("cache.counters", ImportedBuffer::from(counters_));
   b.frame = graph.importBuffer("cache.frame-counters", ImportedBuffer::from(frame_));
   b.liveList = graph.importBuffer("cache.live-list", ImportedBuffer::from(liveList_));
+  b.votes = graph.importBuffer("cache.votes", ImportedBuffer::from(votes_));
 }
 
-// An empty cache: no cell in the grid, every cell dead, the pool the identity list.
+// An empty cache: no cell in the grid, every cell dead, the pool the identity list, no votes.
 void ClipmapCache::declareReset(graph::FrameGraph& graph) {
   const CacheBuffers b = handles_;
   graph.addPass("cache-reset", QueueKind::Compute)
@@ -65,9 +66,10 @@ void ClipmapCache::declareReset(graph::FrameGraph& graph) {
       .write(b.cells, Access::TransferDst)
       .write(b.pool, Access::TransferDst)
       .write(b.counters, Access::TransferDst)
+      .write(b.votes, Access::TransferDst)
       .sideEffects()
       .record([b](VkCommandBuffer cmd, const graph::PassResources& r) {
-        for (graph::BufferHandle h : {b.grid, b.cells, b.pool, b.counters})
+        for (graph::BufferHandle h : {b.grid, b.cells, b.pool, b.counters, b.votes})
           vkCmdFillBuffer(cmd, r.buffer(h).buffer, 0, VK_WHOLE_SIZE, 0u);
       });
 }
@@ -87,6 +89,7 @@ void ClipmapCache::declareLifetimes(graph::FrameGraph& graph,
       .write(b.grid, Access::StorageReadWrite)
       .write(b.pool, Access::StorageReadWrite)
       .write(b.counters, Access::StorageReadWrite)
+      .read(b.votes, Access::StorageRead)
       .sideEffects()
       .record([this, b, push, frameStart, constants](VkCommandBuffer cmd,
                                                      const graph::PassResources& r) {
@@ -107,6 +110,7 @@ void ClipmapCache::declareClipmap(graph::FrameGraph& graph, const gpu::ClipmapPa
       .write(b.grid, Access::StorageReadWrite)
       .write(b.pool, Access::StorageReadWrite)
       .write(b.counters, Access::StorageReadWrite)
+      .write(b.votes, Access::StorageReadWrite)
       .sideEffects()
       .record([this, push](VkCommandBuffer cmd, const graph::PassResources& r) {
         clipmap_.bind(cmd, push, r);
@@ -152,7 +156,8 @@ graph::PassBuilder ClipmapCache::declareLookup(graph::PassBuilder pass) const {
       .write(handles_.cells, Access::StorageReadWrite)
       .write(handles_.entries, Access::StorageReadWrite)
       .write(handles_.pool, Access::StorageReadWrite)
-      .write(handles_.counters, Access::StorageReadWrite);
+      .write(handles_.counters, Access::StorageReadWrite)
+      .write(handles_.votes, Access::StorageReadWrite);
 }
 
 // `cache` (cells shaded with their irradiance) and `cache.live-cells`; culled unless requested.

@@ -65,6 +65,7 @@ ClipmapCache::ClipmapCache(vk::Context& context, const GpuScene& gpuScene,
                           VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT)),
       liveList_(
           deviceBuffer(context, 2 * gpu::CLIPMAP_MAX_CELLS * sizeof(uint32_t), "cache.live-list")),
+      votes_(deviceBuffer(context, kTotalSlots * sizeof(gpu::ClipmapSlotVote), "cache.votes")),
       readback_(context, sizeof(gpu::ClipmapCounters) + sizeof(gpu::ClipmapFrameCounters),
                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::MemoryUse::Readback, "cache.statistics"),
       lifetimes_(context, gpuScene, "gi/evolve/cache/cache_update_lifetimes", 0,
@@ -84,8 +85,8 @@ ClipmapCache::ClipmapCache(vk::Context& context, const GpuScene& gpuScene,
 }
 
 gpu::ClipmapCacheAddresses ClipmapCache::addresses() const {
-  return {grid_.address(),     cells_.address(), entries_.address(), pool_.address(),
-          counters_.address(), frame_.address(), liveList_.address()};
+  return {grid_.address(),     cells_.address(), entries_.address(),  pool_.address(),
+          counters_.address(), frame_.address(), liveList_.address(), votes_.address()};
 }
 
 // Cascade c's window is the 32^3 cells of side finestCellSize * 2^c centred on the cell that

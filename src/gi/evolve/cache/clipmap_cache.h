@@ -43,6 +43,7 @@ struct CacheBuffers {
   graph::BufferHandle counters;
   graph::BufferHandle frame;  // ClipmapFrameCounters
   graph::BufferHandle liveList;
+  graph::BufferHandle votes;  // ClipmapSlotVote per grid slot
 };
 
 class ClipmapCache {
@@ -97,7 +98,7 @@ class ClipmapCache {
   vk::Context& context_;
   const GpuLightTables& lights_;
   ClipmapCacheSettings settings_;
-  vk::Buffer constants_, grid_, cells_, entries_, pool_, counters_, frame_, liveList_;
+  vk::Buffer constants_, grid_, cells_, entries_, pool_, counters_, frame_, liveList_, votes_;
   vk::Buffer readback_;  // ClipmapCounters then ClipmapFrameCounters, host-visible
   ComputePass lifetimes_, clipmap_, trace_, buildSh_, debugView_, liveCellsView_;
   CacheBuffers handles_;
