@@ -679,6 +679,66 @@ TEST(CpuTrace, TlasRebuildFollowsMovedInstances) {
   EXPECT_FLOAT_EQ(hit.t, 3.0f);
 }
 
+// The refit plan visits every interior node once, each after its interior children.
+void expectPlanCoversTheTree(std::span<const gpu::GpuBvhNode> tlas, const TlasRefitPlan& plan) {
+  std::vector<int> levelOf(tlas.size(), -1);
+  for (uint32_t l = 0; l < plan.levels(); ++l)
+    for (uint32_t k = plan.levelStart[l]; k < plan.levelStart[l + 1]; ++k) {
+      ASSERT_EQ(levelOf[plan.nodes[k]], -1) << "node " << plan.nodes[k] << " planned twice";
+      levelOf[plan.nodes[k]] = int(l);
+    }
+  for (uint32_t node = 0; node < tlas.size(); ++node) {
+    ASSERT_GE(levelOf[node], 0) << "node " << node << " not planned";
+    for (auto [index, count] : {std::pair{tlas[node].leftIndex, tlas[node].leftCount},
+                                std::pair{tlas[node].rightIndex, tlas[node].rightCount}})
+      if (count == 0 && index != gpu::BVH_INVALID) EXPECT_LT(levelOf[index], levelOf[node]);
+  }
+}
+
+// A TLAS built once and refitted (refitTlas, the GPU refit's reference) after every instance
+// moved, one hidden at the build shows and others hide: traversal gives the brute force's
+// answer on the moved scene.
+TEST(CpuTrace, TlasRefitFollowsMovedShownAndHiddenInstances) {
+  std::mt19937 rng(2024);
+  Scene scene = randomScene(7);
+  const uint32_t meshesWithTriangles = 3;  // randomScene's soup, sphere and grid
+  for (uint32_t i = 0; i < 40; ++i)
+    scene.instances.push_back({i % meshesWithTriangles, randomTransform(rng, i % 7 == 0), ""});
+  scene.instances[0].transform = glm::scale(scene.instances[0].transform, glm::vec3(0.0f));
+  SceneBvh bvh = buildSceneBvh(scene);
+  ASSERT_TRUE(bvh.instances[0].flags & gpu::GPU_INSTANCE_HIDDEN);
+  std::vector<gpu::GpuBvhNode> tlas = buildRefittableTlas(bvh.instances, bvh.meshBounds);
+  const TlasRefitPlan plan = planTlasRefit(tlas);
+  expectPlanCoversTheTree(tlas, plan);
+  EXPECT_GT(plan.levels(), 3u);
+
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    glm::mat4 moved = randomTransform(rng, i % 5 == 0);
+    if (i % 9 == 4) moved = glm::scale(moved, glm::vec3(0.0f));  // hidden from now on
+    scene.instances[i].transform = moved;
+    setInstanceTransform(bvh.instances[i], moved);
+  }
+  refitTlas(tlas, plan, bvh.instances, bvh.meshBounds);
+  bvh.tlasNodes = tlas;
+
+  const CpuTracer tracer(bvh);
+  const BruteForceTracer bruteForce(scene);
+  Agreement agreement;
+  int hitsOnTheShownInstance = 0;
+  const std::vector<RayQuery> rays = randomRays(scene, 3000, 99);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const TraceHit hit = tracer.closestHit(rays[i].ray, rays[i].tMax);
+    expectSameClosestHit(hit, bruteForce.closestHit(rays[i].ray, rays[i].tMax), i, agreement);
+    EXPECT_EQ(tracer.anyHit(rays[i].ray, rays[i].tMax),
+              bruteForce.anyHit(rays[i].ray, rays[i].tMax))
+        << "ray " << i;
+    hitsOnTheShownInstance += hit.hit && hit.instance == 0;
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(agreement.hits, int(rays.size()) / 3);
+  EXPECT_GT(hitsOnTheShownInstance, 0) << "the instance hidden at the build is never hit";
+}
+
 // ---- scene arrays -----------------------------------------------------------------------------
 
 TEST(SceneBvh, ArraysDescribeTheScene) {

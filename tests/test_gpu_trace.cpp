@@ -10,6 +10,7 @@
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "harness.h"
 #include "passes/trace_rays.h"
@@ -178,6 +179,59 @@ TEST(GpuTraceShared, GlassVaseFlowersWithAlphaTestedLeaves) {
 
 TEST(GpuTraceShared, SheenChair) {
   compareScene(test::sharedDir() + "/scenes/sheen_chair/glTF/SheenChair.gltf");
+}
+
+// Moving instances with the TLAS refitted on the GPU (TlasUpdate::GpuRefit, scene-refit-tlas):
+// every foliage instance moved, turned and some hidden, then the refitted boxes equal the CPU
+// refit's (rt::refitTlas, the same arithmetic) and the GPU's answers on the moved scene equal
+// the CPU traversal's of the refitted arrays and the brute force's.
+TEST(GpuTraceMoving, RefittedTlasMatchesTheCpuRefitAndBruteForce) {
+  Scene scene = loadScene("foliage");
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  ASSERT_EQ(gpuScene.tlasUpdate(), TlasUpdate::GpuRefit);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<glm::mat4> moved;
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), 3.0f * glm::vec3(u(rng), 0.2f * u(rng), u(rng)));
+    m = glm::rotate(m, u(rng), glm::vec3(0, 1, 0)) * scene.instances[i].transform;
+    if (i % 11 == 5) m = glm::scale(m, glm::vec3(0.0f));  // hidden
+    moved.push_back(m);
+    scene.instances[i].transform = m;
+  }
+  gpuScene.setInstanceTransforms(moved);
+  context.submitAndWait([&](VkCommandBuffer cmd) { gpuScene.recordInstanceUpload(cmd); });
+
+  gpuScene.refitCpuTlas();
+  const std::vector<gpu::GpuBvhNode>& cpu = gpuScene.bvh().tlasNodes;
+  std::vector<gpu::GpuBvhNode> gpu(cpu.size());
+  vk::downloadBuffer(context, gpuScene.tlasBuffer(), std::as_writable_bytes(std::span(gpu)));
+  int boxesDiffer = 0;
+  for (size_t n = 0; n < cpu.size(); ++n)
+    boxesDiffer += cpu[n].leftMin != gpu[n].leftMin || cpu[n].leftMax != gpu[n].leftMax ||
+                   cpu[n].rightMin != gpu[n].rightMin || cpu[n].rightMax != gpu[n].rightMax;
+  EXPECT_EQ(boxesDiffer, 0) << "of " << cpu.size() << " TLAS nodes";
+
+  TraceRaysPass pass(context, gpuScene);
+  std::vector<gpu::GpuRay> rays = makeRays(scene, 4321);
+  std::vector<gpu::GpuHit> gpuHits = pass.trace(rays, true);
+  rt::AlphaTest alpha = [&](uint32_t, uint32_t geometry, uint32_t primitive, float b1, float b2) {
+    return gpuScene.alphaAccepts(geometry, primitive, b1, b2);
+  };
+  compareWithMirror(gpuScene, rays, gpuHits, alpha);
+  rt::BruteForceTracer bruteForce(scene);
+  int differ = 0, hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    rt::Ray ray{rays[i].origin, rays[i].direction, rays[i].tMin};
+    const rt::TraceHit b = bruteForce.closestHit(ray, rays[i].tMax, alpha);
+    const bool gpuHit = gpuHits[i].instance != gpu::HIT_NONE;
+    hits += gpuHit;
+    differ += gpuHit != b.hit || (b.hit && std::abs(gpuHits[i].t - b.t) > 1e-4f * b.t);
+  }
+  EXPECT_EQ(differ, 0) << "of " << rays.size() << " rays";
+  EXPECT_GT(hits, int(rays.size()) / 10);
+  EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
 // The alpha test must matter: on the foliage scene some rays pass through the cut-out parts of

@@ -8,6 +8,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "core/error.h"
+#include "shared/tlas_refit_io.h"
 
 #include "vk/check.h"
 #include "vk/memory_barrier.h"
@@ -37,11 +38,14 @@ uint32_t textureSlot(uint32_t sizeClass, bool srgb) {
 }  // namespace
 
 GpuScene::GpuScene(vk::Context& context, const Scene& scene, const GpuSceneOptions& options)
-    : context_(context) {
+    : context_(context), tlasUpdate_(options.tlasUpdate) {
   auto start = Clock::now();
   rt::SceneBvhOptions bvhOptions;
   bvhOptions.layout = options.bvhLayout;
   bvh_ = rt::buildSceneBvh(scene, bvhOptions);
+  // A refitted tree needs a leaf for every instance that may ever show (scene_bvh.h).
+  if (tlasUpdate_ == TlasUpdate::GpuRefit)
+    bvh_.tlasNodes = rt::buildRefittableTlas(bvh_.instances, bvh_.meshBounds);
   stats_.bvhBuildSeconds = secondsSince(start);
   textures_ = packSceneTextures(scene);
   bounds_ = scene.bounds();
@@ -52,6 +56,7 @@ GpuScene::GpuScene(vk::Context& context, const Scene& scene, const GpuSceneOptio
   uploadArrays();
   uploadTextures();
   writeDescriptors();
+  if (tlasUpdate_ == TlasUpdate::GpuRefit) prepareTlasRefit();
   stats_.uploadSeconds = secondsSince(uploadStart);
   stats_.totalBytes = context.liveAllocationBytes();
 }
@@ -208,6 +213,28 @@ void GpuScene::writeDescriptors() {
   vkUpdateDescriptorSets(context_.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 
+void GpuScene::prepareTlasRefit() {
+  refitPlan_ = rt::planTlasRefit(bvh_.tlasNodes);
+  std::vector<uint32_t> plan = refitPlan_.nodes;
+  plan.insert(plan.end(), refitPlan_.levelStart.begin(), refitPlan_.levelStart.end());
+  if (plan.empty()) plan.push_back(0u);
+  refitPlanBuffer_ = vk::uploadVector(context_, std::span<const uint32_t>(plan),
+                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene.tlas-refit-plan");
+  std::vector<glm::vec4> bounds;
+  for (const Aabb& b : bvh_.meshBounds) {
+    bounds.emplace_back(b.min, 0.0f);
+    bounds.emplace_back(b.max, 0.0f);
+  }
+  if (bounds.empty()) bounds.resize(2);
+  meshBoundsBuffer_ = vk::uploadVector(context_, std::span<const glm::vec4>(bounds),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene.mesh-bounds");
+}
+
+void GpuScene::refitCpuTlas() {
+  if (tlasUpdate_ == TlasUpdate::GpuRefit)
+    rt::refitTlas(bvh_.tlasNodes, refitPlan_, bvh_.instances, bvh_.meshBounds);
+}
+
 void GpuScene::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
   if (objectToWorld.size() != bvh_.instances.size())
     fail("setInstanceTransforms: {} transforms for {} instances", objectToWorld.size(),
@@ -218,13 +245,34 @@ void GpuScene::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
   std::memcpy(staging + instanceBytes, bvh_.instances.data(), instanceBytes);  // previous
   for (size_t i = 0; i < objectToWorld.size(); ++i)
     rt::setInstanceTransform(bvh_.instances[i], objectToWorld[i]);
+  std::memcpy(staging, bvh_.instances.data(), instanceBytes);
+  uploadPending_ = true;
+  if (tlasUpdate_ == TlasUpdate::GpuRefit) return;  // recordInstanceUpload refits
   bvh_.tlasNodes = rt::buildTlas(bvh_.instances, bvh_.meshBounds);
   if (bvh_.tlasNodes.size() > tlasCapacity_)
     fail("setInstanceTransforms: TLAS of {} nodes exceeds the {} allocated", bvh_.tlasNodes.size(),
          tlasCapacity_);
-  std::memcpy(staging, bvh_.instances.data(), instanceBytes);
   std::memcpy(staging + 2 * instanceBytes, bvh_.tlasNodes.data(), bytesOf(bvh_.tlasNodes));
-  uploadPending_ = true;
+}
+
+void GpuScene::recordTlasRefit(VkCommandBuffer cmd) {
+  // Made at the first move: a scene that never moves never compiles it.
+  if (!refitPipeline_.handle())
+    refitPipeline_ =
+        vk::ComputePipeline(context_, "rt/scene_refit_tlas", {}, sizeof(gpu::TlasRefitConstants));
+  // The instance copy above is read by the refit.
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+  gpu::TlasRefitConstants pc{};
+  pc.tlasNodes = tlasBuffer().address();
+  pc.instances = instanceBuffer().address();
+  pc.meshBounds = meshBoundsBuffer_.address();
+  pc.plan = refitPlanBuffer_.address();
+  pc.levels = refitPlan_.levels();
+  pc.levelStartOffset = uint32_t(refitPlan_.nodes.size());
+  refitPipeline_.bind(cmd, {});
+  refitPipeline_.push(cmd, pc);
+  vkCmdDispatch(cmd, 1, 1, 1);
 }
 
 void GpuScene::recordInstanceUpload(VkCommandBuffer cmd) {
@@ -241,10 +289,14 @@ void GpuScene::recordInstanceUpload(VkCommandBuffer cmd) {
   }
   VkBufferCopy current{0, 0, instanceBytes};
   VkBufferCopy previous{instanceBytes, 0, instanceBytes};
-  VkBufferCopy tlas{2 * instanceBytes, 0, bytesOf(bvh_.tlasNodes)};
   vkCmdCopyBuffer(cmd, instanceStaging_.handle(), instanceBuffer().handle(), 1, &current);
   vkCmdCopyBuffer(cmd, instanceStaging_.handle(), previousInstances_.handle(), 1, &previous);
-  vkCmdCopyBuffer(cmd, instanceStaging_.handle(), tlasBuffer().handle(), 1, &tlas);
+  if (tlasUpdate_ == TlasUpdate::GpuRefit) {
+    recordTlasRefit(cmd);
+  } else {
+    VkBufferCopy tlas{2 * instanceBytes, 0, bytesOf(bvh_.tlasNodes)};
+    vkCmdCopyBuffer(cmd, instanceStaging_.handle(), tlasBuffer().handle(), 1, &tlas);
+  }
   uploadPending_ = false;
   previousDiffers_ = true;
 }

@@ -16,9 +16,21 @@
 
 namespace bounce {
 
+// How the TLAS follows moving instances (docs/ray-tracing.md, "Moving instances").
+enum class TlasUpdate {
+  // The tree built at load is kept and its boxes are refitted on the GPU by scene-refit-tlas
+  // (shaders/rt/scene_refit_tlas.comp) in the frame's scene-update pass: no CPU work per frame
+  // beyond the instances' matrices. Traversal slows where instances moved far from where the
+  // tree put them.
+  GpuRefit,
+  // The TLAS is rebuilt on the CPU (binned SAH) at every setInstanceTransforms and uploaded.
+  CpuRebuild,
+};
+
 struct GpuSceneOptions {
   // Node layout of the BLAS (`--bvh binary|wide`); the shaders read it from GpuSceneRefs.
   rt::BvhLayout bvhLayout = rt::BvhLayout::Binary;
+  TlasUpdate tlasUpdate = TlasUpdate::GpuRefit;
 };
 
 struct GpuSceneStats {
@@ -45,7 +57,14 @@ class GpuScene {
   // its BLAS layout), for vk::ComputePipeline.
   std::span<const uint32_t> specialization() const { return specialization_; }
   VkDescriptorSet descriptorSet() const { return set_; }
+  // The CPU copies of the arrays. With TlasUpdate::GpuRefit the TLAS nodes here keep the boxes
+  // of the last refitCpuTlas() (or of the load) while the GPU's follow every move.
   const rt::SceneBvh& bvh() const { return bvh_; }
+  // GpuRefit: refits the CPU copy of the TLAS to the instances' current placement, the same
+  // arithmetic as the GPU's (rt::refitTlas), so that a CPU traversal of bvh() answers as the
+  // GPU's does. O(instances); nothing to do for CpuRebuild.
+  void refitCpuTlas();
+  TlasUpdate tlasUpdate() const { return tlasUpdate_; }
   const Aabb& bounds() const { return bounds_; }
   const PackedTextures& textures() const { return textures_; }
   // The image bound at texture slot `slot` (0 .. 2 * TEXTURE_SIZE_CLASSES - 1, as in
@@ -85,9 +104,16 @@ class GpuScene {
   void uploadArrays();
   void uploadTextures();
   void writeDescriptors();
+  void prepareTlasRefit();
+  void recordTlasRefit(VkCommandBuffer cmd);
 
   vk::Context& context_;
+  TlasUpdate tlasUpdate_ = TlasUpdate::GpuRefit;
   rt::SceneBvh bvh_;
+  rt::TlasRefitPlan refitPlan_;
+  vk::Buffer refitPlanBuffer_;   // the plan's nodes, then its level starts
+  vk::Buffer meshBoundsBuffer_;  // vec4 min, max per mesh
+  vk::ComputePipeline refitPipeline_;  // made at the first refit
   Aabb bounds_;
   PackedTextures textures_;
   GpuSceneStats stats_;

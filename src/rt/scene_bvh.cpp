@@ -369,7 +369,8 @@ Aabb instanceWorldBounds(const gpu::GpuInstance& instance, const Aabb& meshBound
 
 std::vector<gpu::GpuBvhNode> buildTlas(std::span<const gpu::GpuInstance> instances,
                                        std::span<const Aabb> meshBounds,
-                                       const BvhBuildOptions& options, BvhBuildStats* stats) {
+                                       const BvhBuildOptions& options, BvhBuildStats* stats,
+                                       bool keepHidden) {
   if (options.maxLeafSize != 1) fail("TLAS build: maxLeafSize must be 1 (one instance per leaf)");
   std::vector<Aabb> boxes;
   std::vector<glm::vec3> centroids;
@@ -383,7 +384,8 @@ std::vector<gpu::GpuBvhNode> buildTlas(std::span<const gpu::GpuInstance> instanc
       fail("TLAS build: instance {} refers to mesh {} ({} meshes)", i, instance.mesh,
            meshBounds.size());
     const Aabb& bounds = meshBounds[instance.mesh];
-    if (bounds.empty() || (instance.flags & gpu::GPU_INSTANCE_HIDDEN)) continue;  // nothing to hit
+    const bool hidden = instance.flags & gpu::GPU_INSTANCE_HIDDEN;
+    if (bounds.empty() || (hidden && !keepHidden)) continue;  // nothing to hit
     boxes.push_back(instanceWorldBounds(instance, bounds));
     centroids.push_back(boxes.back().center());
     instanceOfPrimitive.push_back(uint32_t(i));
@@ -399,6 +401,64 @@ std::vector<gpu::GpuBvhNode> buildTlas(std::span<const gpu::GpuInstance> instanc
   }
   if (stats) *stats = bvh.stats;
   return std::move(bvh.nodes);
+}
+
+std::vector<gpu::GpuBvhNode> buildRefittableTlas(std::span<const gpu::GpuInstance> instances,
+                                                 std::span<const Aabb> meshBounds) {
+  return buildTlas(instances, meshBounds, tlasBuildOptions(), nullptr, true);
+}
+
+TlasRefitPlan planTlasRefit(std::span<const gpu::GpuBvhNode> tlas) {
+  TlasRefitPlan plan;
+  if (tlas.empty()) return plan;
+  // Breadth first from the root: levels in order of depth.
+  std::vector<std::vector<uint32_t>> levels{{0u}};
+  while (true) {
+    std::vector<uint32_t> next;
+    for (uint32_t node : levels.back())
+      for (auto [index, count] : {std::pair{tlas[node].leftIndex, tlas[node].leftCount},
+                                  std::pair{tlas[node].rightIndex, tlas[node].rightCount}})
+        if (count == 0 && index != gpu::BVH_INVALID) next.push_back(index);
+    if (next.empty()) break;
+    levels.push_back(std::move(next));
+  }
+  for (auto level = levels.rbegin(); level != levels.rend(); ++level) {
+    plan.levelStart.push_back(uint32_t(plan.nodes.size()));
+    plan.nodes.insert(plan.nodes.end(), level->begin(), level->end());
+  }
+  plan.levelStart.push_back(uint32_t(plan.nodes.size()));
+  return plan;
+}
+
+namespace {
+
+Aabb refittedChild(std::span<const gpu::GpuBvhNode> tlas, uint32_t index, uint32_t count,
+                   std::span<const gpu::GpuInstance> instances, std::span<const Aabb> meshBounds) {
+  if (count > 0) {
+    const gpu::GpuInstance& instance = instances[index];
+    if (instance.flags & gpu::GPU_INSTANCE_HIDDEN) return Aabb{};
+    return instanceWorldBounds(instance, meshBounds[instance.mesh]);
+  }
+  Aabb box;
+  if (index == gpu::BVH_INVALID) return box;  // an empty root slot stays empty
+  box.extend(Aabb{tlas[index].leftMin, tlas[index].leftMax});
+  box.extend(Aabb{tlas[index].rightMin, tlas[index].rightMax});
+  return box;
+}
+
+}  // namespace
+
+void refitTlas(std::span<gpu::GpuBvhNode> tlas, const TlasRefitPlan& plan,
+               std::span<const gpu::GpuInstance> instances, std::span<const Aabb> meshBounds) {
+  for (uint32_t node : plan.nodes) {
+    gpu::GpuBvhNode& n = tlas[node];
+    const Aabb left = refittedChild(tlas, n.leftIndex, n.leftCount, instances, meshBounds);
+    const Aabb right = refittedChild(tlas, n.rightIndex, n.rightCount, instances, meshBounds);
+    n.leftMin = left.min;
+    n.leftMax = left.max;
+    n.rightMin = right.min;
+    n.rightMax = right.max;
+  }
 }
 
 // ---- the whole scene --------------------------------------------------------------------------

@@ -193,10 +193,35 @@ void setInstanceTransform(gpu::GpuInstance& instance, const glm::mat4& objectToW
 std::vector<gpu::GpuBvhNode> buildTlas(std::span<const gpu::GpuInstance> instances,
                                        std::span<const Aabb> meshBounds,
                                        const BvhBuildOptions& options = tlasBuildOptions(),
-                                       BvhBuildStats* stats = nullptr);
+                                       BvhBuildStats* stats = nullptr, bool keepHidden = false);
 
 // World-space bounds of a mesh's object-space box under the instance's objectToWorld,
 // slightly enlarged to cover the rounding of the object-space ray transform.
 Aabb instanceWorldBounds(const gpu::GpuInstance& instance, const Aabb& meshBounds);
+
+// ---- refitting the TLAS for moved instances (docs/ray-tracing.md, "Moving instances") -------
+// A refit keeps a TLAS's tree and rewrites its boxes for the instances' current placement: no
+// rebuild, and the same work on the GPU (shaders/rt/scene_refit_tlas.comp) as here. The tree
+// must have a leaf for every instance that may ever show, so it is built with hidden instances
+// kept (buildRefittableTlas); a hidden instance's leaf box is empty, so no ray enters it.
+
+// The TLAS of buildTlas, with hidden instances kept (placed at the origin for the build).
+std::vector<gpu::GpuBvhNode> buildRefittableTlas(std::span<const gpu::GpuInstance> instances,
+                                                 std::span<const Aabb> meshBounds);
+
+// The order of a refit: the interior nodes by depth, deepest level first, so that each level
+// reads only boxes the levels before it wrote; nodes[levelStart[l] .. levelStart[l + 1]) is
+// level l. A GPU refit runs one level per step with a barrier between steps.
+struct TlasRefitPlan {
+  std::vector<uint32_t> nodes;
+  std::vector<uint32_t> levelStart;  // levels + 1 entries
+  uint32_t levels() const { return levelStart.empty() ? 0u : uint32_t(levelStart.size() - 1); }
+};
+TlasRefitPlan planTlasRefit(std::span<const gpu::GpuBvhNode> tlas);
+
+// Rewrites every child box of `tlas` along `plan`: a leaf's from instanceWorldBounds (empty for
+// a hidden instance), an interior child's as the union of its two child boxes.
+void refitTlas(std::span<gpu::GpuBvhNode> tlas, const TlasRefitPlan& plan,
+               std::span<const gpu::GpuInstance> instances, std::span<const Aabb> meshBounds);
 
 }  // namespace bounce::rt
