@@ -31,7 +31,7 @@ FrameContext SceneUpdatePass::declare(graph::FrameGraph& graph,
       .write(f.previousInstances, Access::TransferDst)
       // Refitted by a compute shader, or copied from the CPU's rebuild (GpuScene::TlasUpdate).
       .write(f.tlas, scene_.tlasUpdate() == TlasUpdate::GpuRefit ? Access::StorageReadWrite
-                                                                  : Access::TransferDst)
+                                                                 : Access::TransferDst)
       .record([this, host, f](VkCommandBuffer cmd, const graph::PassResources& r) {
         vkCmdUpdateBuffer(cmd, r.buffer(f.constants).buffer, 0, sizeof(*host), host);
         scene_.recordInstanceUpload(cmd);  // nothing when no instance moved

@@ -68,7 +68,9 @@ GpuScene::~GpuScene() {
 void GpuScene::uploadArrays() {
   // Storage buffers are limited to 128 MiB per binding on lavapipe (DESIGN.md §1); buffer
   // device addresses have no such per-binding limit but keep each array under it anyway.
-  const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  // Transfer source too: tests read arrays back (the refitted TLAS).
+  const VkBufferUsageFlags usage =
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
   // A scene may have no triangles at all (a file whose only geometry was degenerate renders as
   // sky): an empty array still gets a buffer of one zeroed element, never read since every
   // count in the refs is 0, so that every address is valid.

@@ -111,8 +111,8 @@ class GpuScene {
   TlasUpdate tlasUpdate_ = TlasUpdate::GpuRefit;
   rt::SceneBvh bvh_;
   rt::TlasRefitPlan refitPlan_;
-  vk::Buffer refitPlanBuffer_;   // the plan's nodes, then its level starts
-  vk::Buffer meshBoundsBuffer_;  // vec4 min, max per mesh
+  vk::Buffer refitPlanBuffer_;         // the plan's nodes, then its level starts
+  vk::Buffer meshBoundsBuffer_;        // vec4 min, max per mesh
   vk::ComputePipeline refitPipeline_;  // made at the first refit
   Aabb bounds_;
   PackedTextures textures_;
