@@ -22,8 +22,9 @@ demo: build
 		--timings out/demo-timings.json --out out/demo.png
 	@echo "demo: wrote out/demo.png and the per-pass GPU times out/demo-timings.json"
 
+# A test that crashed (a signal, not a failed check) is rerun once: scripts/run-tests.sh says why.
 test: build
-	ctest --preset $(PRESET) -j $(JOBS)
+	PRESET=$(PRESET) JOBS=$(JOBS) bash scripts/run-tests.sh
 
 sanitize: deps
 	cmake --preset asan >/dev/null
