@@ -8,6 +8,10 @@
 //     sigmaScale (NRD 2) standard deviations; where it had to move, its length is cut by
 //     1 + antilagSensitivity x (the distance moved in those standard deviations), so a lighting
 //     change is followed at the fast history's pace rather than the slow one's.
+//   - Anti-firefly (NRD's REBLUR anti-firefly, radius 4, 2 sigma; before the anti-lag clamp):
+//     the luminance is clamped to its same-surface neighbours' mean +- antiFireflySigma
+//     standard deviations, read in a 9x9 window less the 3x3 centre (a firefly's own blur
+//     footprint would vouch for it).
 // The result (rgb, a the history length) goes to reblur-blur.
 #version 460
 #include "denoise/reblur_common.glsl"
@@ -45,6 +49,31 @@ vec3 fixHistory(ivec2 pixel, vec4 centre, float z, float slope, vec3 n) {
   return sum / weightSum;
 }
 
+const int ANTI_FIREFLY_RADIUS = 4;
+
+vec3 withoutFirefly(ivec2 pixel, vec3 colour, float z, float slope, vec3 n) {
+  if (!(pc.antiFireflySigma > 0.0)) return colour;
+  float m1 = 0.0, m2 = 0.0, count = 0.0;
+  for (int dy = -ANTI_FIREFLY_RADIUS; dy <= ANTI_FIREFLY_RADIUS; ++dy)
+    for (int dx = -ANTI_FIREFLY_RADIUS; dx <= ANTI_FIREFLY_RADIUS; ++dx) {
+      if (abs(dx) <= 1 && abs(dy) <= 1) continue;
+      ivec2 q = pixel + ivec2(dx, dy);
+      if (!inImage(q)) continue;
+      vec4 sq = imageLoad(surfaces, q);
+      if (geometryWeight(z, slope, length(vec2(dx, dy)), n, sq.w, sq.xyz) <= 0.0) continue;
+      float l = reblurLuminance(imageLoad(inputImage, q).rgb);
+      m1 += l;
+      m2 += l * l;
+      count += 1.0;
+    }
+  if (count < 1.0) return colour;
+  m1 /= count;
+  float sigma = sqrt(max(m2 / count - m1 * m1, 0.0)) * pc.antiFireflySigma;
+  float luminance = reblurLuminance(colour);
+  float clamped = clamp(luminance, max(m1 - sigma, 0.0), m1 + sigma);
+  return luminance > 0.0 ? colour * (clamped / luminance) : colour;
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!inImage(pixel)) return;
@@ -57,6 +86,7 @@ void main() {
   float slope = depthSlope(pixel, s.w);
   float frames = centre.a;
   vec3 colour = frames < pc.historyFixFrames ? fixHistory(pixel, centre, s.w, slope, s.xyz) : centre.rgb;
+  colour = withoutFirefly(pixel, colour, s.w, slope, s.xyz);
   vec3 mean, sigma;
   neighbourhood(pixel, s.w, slope, s.xyz, mean, sigma);
   vec3 clamped = clamp(colour, mean - pc.sigmaScale * sigma, mean + pc.sigmaScale * sigma);

@@ -41,7 +41,8 @@ struct ReblurConstants {
   float sigmaScale;          // clamps: mean +- sigmaScale standard deviations of the fast history
   float antilagSensitivity;  // how fast a clamped history is shortened (0: no anti-lag)
   float maxStabilizedFrames;
-  float pad0;
+  float
+      antiFireflySigma;  // reblur-history-fix's anti-firefly clamp in standard deviations (0: off)
 };
 BOUNCE_CHECK_SIZE(ReblurConstants, 72);
 

@@ -47,6 +47,8 @@ void validate(const ReblurSettings& s) {
     fail("ReBLUR: sigma scale {} must be positive", s.sigmaScale);
   if (!finiteAtLeast(s.antilagSensitivity, 0.0f))
     fail("ReBLUR: anti-lag sensitivity {} must be 0 or more", s.antilagSensitivity);
+  if (!finiteAtLeast(s.antiFireflySigma, 0.0f))
+    fail("ReBLUR: anti-firefly sigma {} must be 0 (off) or more", s.antiFireflySigma);
   if (!finiteAtLeast(s.maxStabilizedFrames, 1.0f) || s.maxStabilizedFrames > 1024.0f)
     fail("ReBLUR: stabilised history {} frames must be 1 to 1024", s.maxStabilizedFrames);
   if (!(s.depthTolerance > 0.0f) || !(s.normalTolerance >= -1.0f && s.normalTolerance <= 1.0f) ||
@@ -99,6 +101,7 @@ gpu::ReblurConstants Reblur::constants(VkExtent2D resolution, const DenoiseInput
   c.sigmaScale = s.sigmaScale;
   c.antilagSensitivity = s.antilagSensitivity;
   c.maxStabilizedFrames = s.maxStabilizedFrames;
+  c.antiFireflySigma = s.antiFireflySigma;
   return c;
 }
 
