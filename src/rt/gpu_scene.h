@@ -33,11 +33,11 @@ struct GpuSceneOptions {
   // GpuRefit: when the refitted tree's SAH cost (rt::tlasSahCost, relative to its root's area)
   // exceeds this many times its cost right after its last build, setInstanceTransforms
   // rebuilds it over the current placement (binned SAH on the CPU) and the next
-  // recordInstanceUpload uploads it. A refitted tree only degrades as instances travel from
-  // where the build put them, so the ratio says how much traversal work the refit has added.
-  // Checking costs a CPU refit and a pass over the nodes at every setInstanceTransforms
-  // (docs/ray-tracing.md, "Moving instances", has the timings and why 1.5). 0 = never rebuild
-  // (no CPU work per move).
+  // recordInstanceUpload uploads it. The ratio stands in for the traversal work the refit has
+  // added (a fresh build's cost, the exact reference, would need the build it avoids); it also
+  // follows how costly the placement itself is for any tree. Checking costs a CPU refit and a pass
+  // over the nodes at every setInstanceTransforms (docs/ray-tracing.md, "Moving instances", has the
+  // timings and why 1.5). 0 = never rebuild (no CPU work per move).
   double tlasRebuildRatio = 1.5;
 };
 
