@@ -40,10 +40,16 @@ void CommonOptions::addSceneOptions(CLI::App& cmd, const std::string& defaultSce
                  "BLAS node layout: binary (2-wide) or wide (8-wide compressed, Ylitie et al. "
                  "2017); docs/ray-tracing.md")
       ->capture_default_str();
+  cmd.add_option("--tlas-rebuild-ratio", tlasRebuildRatio,
+                 "Rebuild the GPU-refitted TLAS of moving instances when its SAH cost has grown "
+                 "this many times since its last build; 0 = never (docs/ray-tracing.md)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
 }
 
 GpuSceneOptions CommonOptions::gpuSceneOptions() const {
-  return GpuSceneOptions{.bvhLayout = rt::parseBvhLayout(bvh)};
+  return GpuSceneOptions{.bvhLayout = rt::parseBvhLayout(bvh),
+                         .tlasRebuildRatio = tlasRebuildRatio};
 }
 
 void CommonOptions::addDeviceOptions(CLI::App& cmd) {

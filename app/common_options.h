@@ -35,6 +35,8 @@ struct CommonOptions {
   std::string sun;
   std::string sky;
   std::string bvh = "binary";  // --bvh: the BLAS node layout (rt::BvhLayout)
+  // --tlas-rebuild-ratio: GpuSceneOptions::tlasRebuildRatio (0 = refit only, never rebuild)
+  double tlasRebuildRatio = GpuSceneOptions{}.tlasRebuildRatio;
   std::optional<uint32_t> device;
   bool validate = false;
   uint64_t deviceMemoryLimitMiB = 0;  // --device-memory-limit; 0: none
@@ -49,7 +51,7 @@ struct CommonOptions {
   // suggestion), so that usage errors come before any work.
   void checkArguments() const;
   Scene loadScene() const;                  // --scene plus --camera/--sun/--sky overrides
-  GpuSceneOptions gpuSceneOptions() const;  // --bvh
+  GpuSceneOptions gpuSceneOptions() const;  // --bvh, --tlas-rebuild-ratio
   Resolution resolution() const;
   std::unique_ptr<vk::Context> createContext() const;
 };

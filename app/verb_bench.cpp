@@ -585,6 +585,8 @@ int runBench(const BenchOptions& o) {
   if (isCpuDevice(*context))
     std::printf("note: %s is a CPU device: the GPU times measure its emulation of a GPU\n",
                 context->info().name.c_str());
+  // TLAS rebuilds of the refit's policy (GpuSceneOptions::tlasRebuildRatio), over all runs.
+  report["tlas_rebuilds"] = gpuScene.tlasRebuildCount();
   // Host memory: the peak resident set of the whole process (all runs), for growth checks.
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);

@@ -739,6 +739,122 @@ TEST(CpuTrace, TlasRefitFollowsMovedShownAndHiddenInstances) {
   EXPECT_GT(hitsOnTheShownInstance, 0) << "the instance hidden at the build is never hit";
 }
 
+// Two clusters of 32 small spheres, 24 apart, whose members swap places over `steps` steps:
+// member k of each cluster travels to a random slot of the other, so the refitted tree's
+// subtrees, built over neighbours, end up spanning both clusters and the gap between them.
+struct SwappingClusters {
+  static constexpr uint32_t kPerCluster = 32;
+  Scene scene;
+  std::vector<glm::vec3> start, end;  // per instance
+
+  explicit SwappingClusters(uint32_t seed) {
+    std::mt19937 rng(seed);
+    scene.materials.resize(1);
+    scene.meshes.resize(1);
+    scene.meshes[0].geometries.push_back(geometryOf(bumpySphere(8, 0.5f), 0));
+    std::vector<glm::vec3> slots[2];
+    for (int cluster = 0; cluster < 2; ++cluster)
+      for (uint32_t k = 0; k < kPerCluster; ++k)
+        slots[cluster].push_back(glm::vec3(cluster ? 12.0f : -12.0f, 0.0f, 0.0f) +
+                                 1.5f * glm::vec3(k % 4, (k / 4) % 4, k / 16));
+    for (int cluster = 0; cluster < 2; ++cluster) {
+      std::vector<glm::vec3> targets = slots[1 - cluster];
+      std::shuffle(targets.begin(), targets.end(), rng);
+      for (uint32_t k = 0; k < kPerCluster; ++k) {
+        start.push_back(slots[cluster][k]);
+        end.push_back(targets[k]);
+        scene.instances.push_back({0, glm::translate(glm::mat4(1.0f), start.back()), ""});
+      }
+    }
+  }
+  // Places every instance a fraction t of the way, in the scene and in `bvh`.
+  void place(float t, SceneBvh& bvh) {
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+      scene.instances[i].transform = glm::translate(glm::mat4(1.0f), glm::mix(start[i], end[i], t));
+      setInstanceTransform(bvh.instances[i], scene.instances[i].transform);
+    }
+  }
+};
+
+// The rebuild policy (updateRefittedTlas, what GpuScene runs at every move): while two clusters
+// swap places, a tree only refitted degrades far beyond the default limit of 1.5; with the
+// policy it is rebuilt over the current placement (the cost of a fresh build, ratio 1), ends
+// closer to a fresh build's cost than the refit alone, and traversal still gives the brute
+// force's answers. Small jitter, by less than an instance's size, never triggers a rebuild.
+TEST(CpuTrace, TlasRebuildPolicyRebuildsADegradedRefit) {
+  constexpr double kLimit = 1.5;  // GpuSceneOptions::tlasRebuildRatio's default
+  constexpr int kSteps = 8;
+  SwappingClusters clusters(7);
+  SceneBvh bvh = buildSceneBvh(clusters.scene);
+  std::vector<gpu::GpuBvhNode> refitOnly, rebuilt;
+  TlasRefitState refitOnlyState, rebuiltState;
+  buildRefittedTlas(refitOnly, refitOnlyState, bvh.instances, bvh.meshBounds);
+  buildRefittedTlas(rebuilt, rebuiltState, bvh.instances, bvh.meshBounds);
+  double worstRefitRatio = 0.0, worstPolicyRatio = 0.0, freshCost = 0.0;
+  for (int step = 1; step <= kSteps; ++step) {
+    clusters.place(float(step) / kSteps, bvh);
+    EXPECT_FALSE(updateRefittedTlas(refitOnly, refitOnlyState, bvh.instances, bvh.meshBounds, 0));
+    const bool rebuiltNow =
+        updateRefittedTlas(rebuilt, rebuiltState, bvh.instances, bvh.meshBounds, kLimit);
+    // The true measure, too expensive for every frame: the cost of a fresh build here.
+    std::vector<gpu::GpuBvhNode> fresh;
+    TlasRefitState freshState;
+    buildRefittedTlas(fresh, freshState, bvh.instances, bvh.meshBounds);
+    freshCost = freshState.builtCost;
+    if (rebuiltNow) {
+      EXPECT_EQ(rebuiltState.costRatio, 1.0);
+      EXPECT_EQ(tlasSahCost(rebuilt), freshCost) << "step " << step << ": not rebuilt here";
+      EXPECT_EQ(rebuilt.size(), refitOnly.size());
+    }
+    worstRefitRatio = std::max(worstRefitRatio, refitOnlyState.costRatio);
+    worstPolicyRatio = std::max(worstPolicyRatio, rebuiltState.costRatio);
+    std::printf(
+        "step %d: cost ratio refitted %.2f, with the policy %.2f (%u rebuilds); cost / a fresh "
+        "build's: refitted %.2f, with the policy %.2f\n",
+        step, refitOnlyState.costRatio, rebuiltState.costRatio, rebuiltState.rebuilds,
+        tlasSahCost(refitOnly) / freshCost, tlasSahCost(rebuilt) / freshCost);
+  }
+  EXPECT_GT(worstRefitRatio, 2.0 * kLimit) << "the swapped clusters' refit";
+  EXPECT_GT(refitOnlyState.costRatio, kLimit) << "the swapped clusters' refit at the end";
+  EXPECT_EQ(refitOnlyState.rebuilds, 0u);
+  EXPECT_GE(rebuiltState.rebuilds, 1u);
+  EXPECT_LE(worstPolicyRatio, kLimit) << "a step ended with a degraded tree kept";
+  EXPECT_LT(tlasSahCost(rebuilt), tlasSahCost(refitOnly)) << "fresh build " << freshCost;
+
+  bvh.tlasNodes = rebuilt;
+  const CpuTracer tracer(bvh);
+  const BruteForceTracer bruteForce(clusters.scene);
+  Agreement agreement;
+  const std::vector<RayQuery> rays = randomRays(clusters.scene, 2000, 5);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    expectSameClosestHit(tracer.closestHit(rays[i].ray, rays[i].tMax),
+                         bruteForce.closestHit(rays[i].ray, rays[i].tMax), i, agreement);
+    EXPECT_EQ(tracer.anyHit(rays[i].ray, rays[i].tMax),
+              bruteForce.anyHit(rays[i].ray, rays[i].tMax))
+        << "ray " << i;
+    if (HasFatalFailure()) return;
+  }
+  EXPECT_GT(agreement.hits, int(rays.size()) / 4);
+
+  // Jitter: every sphere (diameter 1) moves up to 0.35 along each axis from its slot.
+  std::mt19937 rng(11);
+  SceneBvh still = buildSceneBvh(SwappingClusters(7).scene);
+  TlasRefitState jitterState;
+  std::vector<gpu::GpuBvhNode> jittered;
+  buildRefittedTlas(jittered, jitterState, still.instances, still.meshBounds);
+  double worstJitterRatio = 0.0;
+  for (int step = 0; step < kSteps; ++step) {
+    for (size_t i = 0; i < still.instances.size(); ++i)
+      setInstanceTransform(
+          still.instances[i],
+          glm::translate(glm::mat4(1.0f), clusters.start[i] + randomPoint(rng, -0.35f, 0.35f)));
+    updateRefittedTlas(jittered, jitterState, still.instances, still.meshBounds, kLimit);
+    worstJitterRatio = std::max(worstJitterRatio, jitterState.costRatio);
+  }
+  std::printf("jitter: worst cost ratio %.2f\n", worstJitterRatio);
+  EXPECT_EQ(jitterState.rebuilds, 0u) << "worst cost ratio " << worstJitterRatio;
+}
+
 // ---- scene arrays -----------------------------------------------------------------------------
 
 TEST(SceneBvh, ArraysDescribeTheScene) {
@@ -1097,6 +1213,60 @@ TEST(CpuTraceWide, MatchesBinaryOnSoupAndTransformedInstances) {
 
 // ---- throughput (printed, never asserted) -----------------------------------------------------
 
+// 10k instances of a few meshes (boxes up to 6 wide) scattered in a city-sized square.
+std::vector<gpu::GpuInstance> scatteredInstances(std::vector<Aabb>& meshBounds) {
+  std::mt19937 rng(4);
+  meshBounds.assign(4, Aabb{});
+  for (Aabb& b : meshBounds) {
+    b.extend(randomPoint(rng, -3.0f, 0.0f));
+    b.extend(randomPoint(rng, 0.0f, 3.0f));
+  }
+  std::vector<gpu::GpuInstance> instances(10000);
+  for (size_t i = 0; i < instances.size(); ++i) {
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), 500.0f * glm::vec3(randomPoint(rng, -1, 1).x, 0,
+                                                                     randomPoint(rng, -1, 1).z));
+    m = glm::rotate(m, float(i), glm::vec3(0, 1, 0));
+    setInstanceTransform(instances[i], m);
+    instances[i].mesh = uint32_t(i % meshBounds.size());
+  }
+  return instances;
+}
+
+// Best of `repeats` wall times of f, in ms (the machine is shared).
+template <typename F>
+double bestMs(int repeats, F&& f) {
+  double best = 1e30;
+  for (int r = 0; r < repeats; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    f();
+    best = std::min(
+        best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                  .count());
+  }
+  return best;
+}
+
+// What GpuScene's rebuild policy costs the CPU per move on 10k instances: the check (a refit
+// and the SAH cost, at every setInstanceTransforms) and a rebuild (when the check says so).
+TEST(BvhBenchmark, PrintsTlasRebuildPolicyCost) {
+  std::vector<Aabb> meshBounds;
+  std::vector<gpu::GpuInstance> instances = scatteredInstances(meshBounds);
+  std::vector<gpu::GpuBvhNode> tlas;
+  TlasRefitState state;
+  const double rebuildMs =
+      bestMs(5, [&] { buildRefittedTlas(tlas, state, instances, meshBounds); });
+  const double refitMs = bestMs(20, [&] { refitTlas(tlas, state.plan, instances, meshBounds); });
+  double cost = 0.0;
+  const double costMs = bestMs(20, [&] { cost = tlasSahCost(tlas); });
+  const double checkMs =
+      bestMs(20, [&] { updateRefittedTlas(tlas, state, instances, meshBounds, 0.0); });
+  EXPECT_EQ(state.costRatio, 1.0);  // nothing moved
+  std::printf(
+      "[ bvh ] TLAS rebuild policy, %zu instances: check %.3f ms (refit %.3f ms, SAH cost %.3f "
+      "ms), rebuild %.2f ms (SAH cost %.2f)\n",
+      instances.size(), checkMs, refitMs, costMs, rebuildMs, cost);
+}
+
 void printBuild(const char* what, const Primitives& input, uint32_t threads) {
   BvhBuildOptions options;
   options.threadCount = threads;
@@ -1130,21 +1300,9 @@ TEST(BvhBenchmark, PrintsBuildThroughput) {
         s.seconds * 1e3, s.blasSeconds * 1e3, s.trianglesPerSecond * 1e-6, s.blasSahCost,
         s.tlasSeconds * 1e3, s.tlasSahCost, double(s.bytes.total()) / (1 << 20));
   }
-  // The per-frame TLAS: 10k instances of a few meshes scattered in a city-sized square.
-  std::mt19937 rng(4);
-  std::vector<Aabb> meshBounds(4);
-  for (Aabb& b : meshBounds) {
-    b.extend(randomPoint(rng, -3.0f, 0.0f));
-    b.extend(randomPoint(rng, 0.0f, 3.0f));
-  }
-  std::vector<gpu::GpuInstance> instances(10000);
-  for (size_t i = 0; i < instances.size(); ++i) {
-    glm::mat4 m = glm::translate(glm::mat4(1.0f), 500.0f * glm::vec3(randomPoint(rng, -1, 1).x, 0,
-                                                                     randomPoint(rng, -1, 1).z));
-    m = glm::rotate(m, float(i), glm::vec3(0, 1, 0));
-    setInstanceTransform(instances[i], m);
-    instances[i].mesh = uint32_t(i % meshBounds.size());
-  }
+  // The per-frame TLAS.
+  std::vector<Aabb> meshBounds;
+  std::vector<gpu::GpuInstance> instances = scatteredInstances(meshBounds);
   double best = 1e9;
   BvhBuildStats stats;
   for (int repeat = 0; repeat < 5; ++repeat) {

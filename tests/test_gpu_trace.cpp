@@ -6,6 +6,7 @@
 // also against its CPU mirror. Validation layers must stay silent.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <thread>
 
@@ -215,6 +216,88 @@ TEST(GpuTraceMoving, RefittedTlasMatchesTheCpuRefitAndBruteForce) {
 
   TraceRaysPass pass(context, gpuScene);
   std::vector<gpu::GpuRay> rays = makeRays(scene, 4321);
+  std::vector<gpu::GpuHit> gpuHits = pass.trace(rays, true);
+  rt::AlphaTest alpha = [&](uint32_t, uint32_t geometry, uint32_t primitive, float b1, float b2) {
+    return gpuScene.alphaAccepts(geometry, primitive, b1, b2);
+  };
+  compareWithMirror(gpuScene, rays, gpuHits, alpha);
+  rt::BruteForceTracer bruteForce(scene);
+  int differ = 0, hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    rt::Ray ray{rays[i].origin, rays[i].direction, rays[i].tMin};
+    const rt::TraceHit b = bruteForce.closestHit(ray, rays[i].tMax, alpha);
+    const bool gpuHit = gpuHits[i].instance != gpu::HIT_NONE;
+    hits += gpuHit;
+    differ += gpuHit != b.hit || (b.hit && std::abs(gpuHits[i].t - b.t) > 1e-4f * b.t);
+  }
+  EXPECT_EQ(differ, 0) << "of " << rays.size() << " rays";
+  EXPECT_GT(hits, int(rays.size()) / 10);
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+}
+
+// Moves every foliage instance but the ground (instance 0) a fraction t of the way from its
+// placement to `partner`'s, keeping its own rotation and scale.
+std::vector<glm::mat4> towardPartners(const Scene& scene, const std::vector<size_t>& partner,
+                                      float t) {
+  std::vector<glm::mat4> moved;
+  for (size_t i = 0; i < scene.instances.size(); ++i) {
+    const glm::mat4& own = scene.instances[i].transform;
+    const glm::vec3 target = glm::vec3(scene.instances[partner[i]].transform[3]);
+    glm::mat4 m = own;
+    m[3] = glm::vec4(glm::mix(glm::vec3(own[3]), target, t), 1.0f);
+    moved.push_back(m);
+  }
+  return moved;
+}
+
+// The rebuild policy on the GPU (GpuSceneOptions::tlasRebuildRatio, default): foliage's trees
+// and bushes swap places with random partners over four frames; the refitted tree degrades, is
+// rebuilt and uploaded, and then the GPU's TLAS equals the CPU copy bit for bit and the GPU's
+// hits equal the CPU traversal's and the brute force's. Jitter smaller than a bush rebuilds
+// nothing.
+TEST(GpuTraceMoving, DegradedTlasIsRebuiltAndTracesAsTheBruteForce) {
+  const Scene loaded = loadScene("foliage");
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  std::mt19937 rng(17);
+  {
+    GpuScene jittered(context, loaded);
+    std::uniform_real_distribution<float> u(-0.2f, 0.2f);
+    for (int frame = 0; frame < 4; ++frame) {
+      std::vector<glm::mat4> moved;
+      for (const Instance& instance : loaded.instances)
+        moved.push_back(glm::translate(glm::mat4(1.0f), glm::vec3(u(rng), 0.0f, u(rng))) *
+                        instance.transform);
+      jittered.setInstanceTransforms(moved);
+      context.submitAndWait([&](VkCommandBuffer cmd) { jittered.recordInstanceUpload(cmd); });
+      std::printf("jitter frame %d: TLAS cost ratio %.2f\n", frame, jittered.tlasCostRatio());
+    }
+    EXPECT_EQ(jittered.tlasRebuildCount(), 0u) << "last cost ratio " << jittered.tlasCostRatio();
+  }
+
+  Scene scene = loaded;
+  GpuScene gpuScene(context, scene);
+  std::vector<size_t> partner(scene.instances.size());
+  for (size_t i = 0; i < partner.size(); ++i) partner[i] = i;
+  std::shuffle(partner.begin() + 1, partner.end(), rng);
+  std::vector<glm::mat4> moved;
+  for (int frame = 1; frame <= 4; ++frame) {
+    moved = towardPartners(loaded, partner, float(frame) / 4.0f);
+    gpuScene.setInstanceTransforms(moved);
+    context.submitAndWait([&](VkCommandBuffer cmd) { gpuScene.recordInstanceUpload(cmd); });
+    std::printf("swap frame %d: TLAS cost ratio %.2f, %u rebuilds\n", frame,
+                gpuScene.tlasCostRatio(), gpuScene.tlasRebuildCount());
+  }
+  EXPECT_GT(gpuScene.tlasRebuildCount(), 0u);
+  for (size_t i = 0; i < scene.instances.size(); ++i) scene.instances[i].transform = moved[i];
+
+  const std::vector<gpu::GpuBvhNode>& cpu = gpuScene.bvh().tlasNodes;
+  std::vector<gpu::GpuBvhNode> gpu(cpu.size());
+  vk::downloadBuffer(context, gpuScene.tlasBuffer(), std::as_writable_bytes(std::span(gpu)));
+  EXPECT_EQ(0, std::memcmp(cpu.data(), gpu.data(), cpu.size() * sizeof(gpu::GpuBvhNode)))
+      << "the GPU's TLAS differs from the CPU's rebuilt and refitted copy";
+
+  TraceRaysPass pass(context, gpuScene);
+  std::vector<gpu::GpuRay> rays = makeRays(scene, 777);
   std::vector<gpu::GpuHit> gpuHits = pass.trace(rays, true);
   rt::AlphaTest alpha = [&](uint32_t, uint32_t geometry, uint32_t primitive, float b1, float b2) {
     return gpuScene.alphaAccepts(geometry, primitive, b1, b2);

@@ -38,14 +38,16 @@ uint32_t textureSlot(uint32_t sizeClass, bool srgb) {
 }  // namespace
 
 GpuScene::GpuScene(vk::Context& context, const Scene& scene, const GpuSceneOptions& options)
-    : context_(context), tlasUpdate_(options.tlasUpdate) {
+    : context_(context),
+      tlasUpdate_(options.tlasUpdate),
+      tlasRebuildRatio_(options.tlasRebuildRatio) {
   auto start = Clock::now();
   rt::SceneBvhOptions bvhOptions;
   bvhOptions.layout = options.bvhLayout;
   bvh_ = rt::buildSceneBvh(scene, bvhOptions);
   // A refitted tree needs a leaf for every instance that may ever show (scene_bvh.h).
   if (tlasUpdate_ == TlasUpdate::GpuRefit)
-    bvh_.tlasNodes = rt::buildRefittableTlas(bvh_.instances, bvh_.meshBounds);
+    rt::buildRefittedTlas(bvh_.tlasNodes, tlasRefit_, bvh_.instances, bvh_.meshBounds);
   stats_.bvhBuildSeconds = secondsSince(start);
   textures_ = packSceneTextures(scene);
   bounds_ = scene.bounds();
@@ -100,9 +102,14 @@ void GpuScene::uploadArrays() {
   if (previous.empty()) previous.emplace_back();
   previousInstances_ = vk::uploadVector(context_, std::span<const gpu::GpuInstance>(previous),
                                         usage, "scene.previous-instances");
-  instanceStaging_ = vk::Buffer(
-      context_, 2 * bytesOf(bvh_.instances) + tlasCapacity_ * sizeof(gpu::GpuBvhNode) + 16,
-      VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::MemoryUse::Upload, "scene.instance-staging");
+  // A refit plan lists the interior nodes (fewer than tlasCapacity_) and the start of each of
+  // at most maxDepth levels, plus the end.
+  planCapacity_ = tlasCapacity_ + gpu::BVH_STACK_SIZE / 2 + 1;
+  const size_t planBytes =
+      tlasUpdate_ == TlasUpdate::GpuRefit ? planCapacity_ * sizeof(uint32_t) : 0;
+  instanceStaging_ =
+      vk::Buffer(context_, planStagingOffset() + planBytes + 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                 vk::MemoryUse::Upload, "scene.instance-staging");
   refs.geometries = upload(bvh_.geometries, "geometries");
   refs.materials = upload(textures_.materials, "materials");
   refs.indices = upload(bvh_.indices, "indices");
@@ -215,11 +222,20 @@ void GpuScene::writeDescriptors() {
   vkUpdateDescriptorSets(context_.device(), uint32_t(writes.size()), writes.data(), 0, nullptr);
 }
 
+size_t GpuScene::tlasStagingOffset() const {
+  return 2 * bytesOf(bvh_.instances);
+}
+
+size_t GpuScene::planStagingOffset() const {
+  return tlasStagingOffset() + tlasCapacity_ * sizeof(gpu::GpuBvhNode);
+}
+
 void GpuScene::prepareTlasRefit() {
-  refitPlan_ = rt::planTlasRefit(bvh_.tlasNodes);
-  std::vector<uint32_t> plan = refitPlan_.nodes;
-  plan.insert(plan.end(), refitPlan_.levelStart.begin(), refitPlan_.levelStart.end());
-  if (plan.empty()) plan.push_back(0u);
+  // Room for any later rebuild's plan, so that a rebuild allocates nothing.
+  const rt::TlasRefitPlan& refitPlan = tlasRefit_.plan;
+  std::vector<uint32_t> plan = refitPlan.nodes;
+  plan.insert(plan.end(), refitPlan.levelStart.begin(), refitPlan.levelStart.end());
+  plan.resize(std::max<size_t>(plan.size(), planCapacity_), 0u);
   refitPlanBuffer_ = vk::uploadVector(context_, std::span<const uint32_t>(plan),
                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "scene.tlas-refit-plan");
   std::vector<glm::vec4> bounds;
@@ -234,7 +250,7 @@ void GpuScene::prepareTlasRefit() {
 
 void GpuScene::refitCpuTlas() {
   if (tlasUpdate_ == TlasUpdate::GpuRefit)
-    rt::refitTlas(bvh_.tlasNodes, refitPlan_, bvh_.instances, bvh_.meshBounds);
+    rt::refitTlas(bvh_.tlasNodes, tlasRefit_.plan, bvh_.instances, bvh_.meshBounds);
 }
 
 void GpuScene::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
@@ -249,7 +265,14 @@ void GpuScene::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
     rt::setInstanceTransform(bvh_.instances[i], objectToWorld[i]);
   std::memcpy(staging, bvh_.instances.data(), instanceBytes);
   uploadPending_ = true;
-  if (tlasUpdate_ == TlasUpdate::GpuRefit) return;  // recordInstanceUpload refits
+  if (tlasUpdate_ == TlasUpdate::GpuRefit) {
+    // The rebuild policy (GpuSceneOptions::tlasRebuildRatio); recordInstanceUpload refits.
+    if (tlasRebuildRatio_ > 0.0 &&
+        rt::updateRefittedTlas(bvh_.tlasNodes, tlasRefit_, bvh_.instances, bvh_.meshBounds,
+                               tlasRebuildRatio_))
+      stageTlasRebuild();
+    return;
+  }
   bvh_.tlasNodes = rt::buildTlas(bvh_.instances, bvh_.meshBounds);
   if (bvh_.tlasNodes.size() > tlasCapacity_)
     fail("setInstanceTransforms: TLAS of {} nodes exceeds the {} allocated", bvh_.tlasNodes.size(),
@@ -257,21 +280,53 @@ void GpuScene::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
   std::memcpy(staging + 2 * instanceBytes, bvh_.tlasNodes.data(), bytesOf(bvh_.tlasNodes));
 }
 
+// Stages a rebuilt tree's nodes and plan behind the instances, for recordInstanceUpload to
+// copy into the buffers made at load.
+void GpuScene::stageTlasRebuild() {
+  const rt::TlasRefitPlan& plan = tlasRefit_.plan;
+  const size_t planSize = plan.nodes.size() + plan.levelStart.size();
+  // The same instances give the same leaf count, so the same node count as at load.
+  if (bvh_.tlasNodes.size() > tlasCapacity_ || planSize > planCapacity_)
+    fail("TLAS rebuild: {} nodes and a plan of {} exceed the {} and {} allocated",
+         bvh_.tlasNodes.size(), planSize, tlasCapacity_, planCapacity_);
+  std::byte* staging = static_cast<std::byte*>(instanceStaging_.mapped());
+  std::memcpy(staging + tlasStagingOffset(), bvh_.tlasNodes.data(), bytesOf(bvh_.tlasNodes));
+  std::byte* planBytes = staging + planStagingOffset();
+  std::memcpy(planBytes, plan.nodes.data(), bytesOf(plan.nodes));
+  std::memcpy(planBytes + bytesOf(plan.nodes), plan.levelStart.data(), bytesOf(plan.levelStart));
+  tlasRebuildPending_ = true;
+}
+
+void GpuScene::recordTlasRebuildUpload(VkCommandBuffer cmd) {
+  // Earlier frames' traversals and refits read the old nodes and plan: the copies wait for
+  // them. Only in a rebuild's frame, so a full barrier costs nothing that matters.
+  vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_NONE,
+                    VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT);
+  VkBufferCopy nodes{tlasStagingOffset(), 0, bytesOf(bvh_.tlasNodes)};
+  vkCmdCopyBuffer(cmd, instanceStaging_.handle(), tlasBuffer().handle(), 1, &nodes);
+  VkBufferCopy plan{planStagingOffset(), 0,
+                    bytesOf(tlasRefit_.plan.nodes) + bytesOf(tlasRefit_.plan.levelStart)};
+  vkCmdCopyBuffer(cmd, instanceStaging_.handle(), refitPlanBuffer_.handle(), 1, &plan);
+  tlasRebuildPending_ = false;
+}
+
 void GpuScene::recordTlasRefit(VkCommandBuffer cmd) {
   // Made at the first move: a scene that never moves never compiles it.
   if (!refitPipeline_.handle())
     refitPipeline_ =
         vk::ComputePipeline(context_, "rt/scene_refit_tlas", {}, sizeof(gpu::TlasRefitConstants));
-  // The instance copy above is read by the refit.
+  // The copies above (instances; a rebuild's nodes and plan) are read by the refit, which
+  // overwrites the copied nodes' boxes.
   vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT);
+                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
   gpu::TlasRefitConstants pc{};
   pc.tlasNodes = tlasBuffer().address();
   pc.instances = instanceBuffer().address();
   pc.meshBounds = meshBoundsBuffer_.address();
   pc.plan = refitPlanBuffer_.address();
-  pc.levels = refitPlan_.levels();
-  pc.levelStartOffset = uint32_t(refitPlan_.nodes.size());
+  pc.levels = tlasRefit_.plan.levels();
+  pc.levelStartOffset = uint32_t(tlasRefit_.plan.nodes.size());
   refitPipeline_.bind(cmd, {});
   refitPipeline_.push(cmd, pc);
   vkCmdDispatch(cmd, 1, 1, 1);
@@ -294,6 +349,7 @@ void GpuScene::recordInstanceUpload(VkCommandBuffer cmd) {
   vkCmdCopyBuffer(cmd, instanceStaging_.handle(), instanceBuffer().handle(), 1, &current);
   vkCmdCopyBuffer(cmd, instanceStaging_.handle(), previousInstances_.handle(), 1, &previous);
   if (tlasUpdate_ == TlasUpdate::GpuRefit) {
+    if (tlasRebuildPending_) recordTlasRebuildUpload(cmd);
     recordTlasRefit(cmd);
   } else {
     VkBufferCopy tlas{2 * instanceBytes, 0, bytesOf(bvh_.tlasNodes)};

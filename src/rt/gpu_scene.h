@@ -20,8 +20,7 @@ namespace bounce {
 enum class TlasUpdate {
   // The tree built at load is kept and its boxes are refitted on the GPU by scene-refit-tlas
   // (shaders/rt/scene_refit_tlas.comp) in the frame's scene-update pass: no CPU work per frame
-  // beyond the instances' matrices. Traversal slows where instances moved far from where the
-  // tree put them.
+  // beyond the instances' matrices, unless the tree has degraded (tlasRebuildRatio below).
   GpuRefit,
   // The TLAS is rebuilt on the CPU (binned SAH) at every setInstanceTransforms and uploaded.
   CpuRebuild,
@@ -31,6 +30,15 @@ struct GpuSceneOptions {
   // Node layout of the BLAS (`--bvh binary|wide`); the shaders read it from GpuSceneRefs.
   rt::BvhLayout bvhLayout = rt::BvhLayout::Binary;
   TlasUpdate tlasUpdate = TlasUpdate::GpuRefit;
+  // GpuRefit: when the refitted tree's SAH cost (rt::tlasSahCost, relative to its root's area)
+  // exceeds this many times its cost right after its last build, setInstanceTransforms
+  // rebuilds it over the current placement (binned SAH on the CPU) and the next
+  // recordInstanceUpload uploads it. The ratio stands in for the traversal work the refit has
+  // added (a fresh build's cost, the exact reference, would need the build it avoids); it also
+  // follows how costly the placement itself is for any tree. Checking costs a CPU refit and a pass
+  // over the nodes at every setInstanceTransforms (docs/ray-tracing.md, "Moving instances", has the
+  // timings and why 1.5). 0 = never rebuild (no CPU work per move).
+  double tlasRebuildRatio = 1.5;
 };
 
 struct GpuSceneStats {
@@ -57,14 +65,19 @@ class GpuScene {
   // its BLAS layout), for vk::ComputePipeline.
   std::span<const uint32_t> specialization() const { return specialization_; }
   VkDescriptorSet descriptorSet() const { return set_; }
-  // The CPU copies of the arrays. With TlasUpdate::GpuRefit the TLAS nodes here keep the boxes
-  // of the last refitCpuTlas() (or of the load) while the GPU's follow every move.
+  // The CPU copies of the arrays. With TlasUpdate::GpuRefit the TLAS nodes here are refitted at
+  // every setInstanceTransforms while tlasRebuildRatio > 0 (the rebuild check); with 0 they keep
+  // the boxes of the last refitCpuTlas() (or of the load) while the GPU's follow every move.
   const rt::SceneBvh& bvh() const { return bvh_; }
   // GpuRefit: refits the CPU copy of the TLAS to the instances' current placement, the same
   // arithmetic as the GPU's (rt::refitTlas), so that a CPU traversal of bvh() answers as the
   // GPU's does. O(instances); nothing to do for CpuRebuild.
   void refitCpuTlas();
   TlasUpdate tlasUpdate() const { return tlasUpdate_; }
+  // GpuRefit: TLAS rebuilds since load, and the cost ratio of the last check (refitted tree /
+  // tree at its last build; 1 right after a build).
+  uint32_t tlasRebuildCount() const { return tlasRefit_.rebuilds; }
+  double tlasCostRatio() const { return tlasRefit_.costRatio; }
   const Aabb& bounds() const { return bounds_; }
   const PackedTextures& textures() const { return textures_; }
   // The image bound at texture slot `slot` (0 .. 2 * TEXTURE_SIZE_CLASSES - 1, as in
@@ -76,10 +89,11 @@ class GpuScene {
 
   // ---- moving instances ----
   // Places every instance (objectToWorld, one per Scene::instances entry), rebuilds the TLAS on
-  // the CPU and stages both, with the placement before this call as the "previous" one, in a
-  // mapped upload buffer made at construction. Nothing reaches the GPU until
-  // recordInstanceUpload(). No Vulkan allocation. The caller must not call it while a
-  // recorded upload is still executing (the hybrid frame submits and waits).
+  // the CPU (CpuRebuild, or GpuRefit when the refitted tree has degraded) and stages both, with the
+  // placement before this call as the "previous" one, in a mapped upload buffer made at
+  // construction. Nothing reaches the GPU until recordInstanceUpload(). No Vulkan allocation. The
+  // caller must not call it while a recorded upload is still executing (the hybrid frame submits
+  // and waits).
   void setInstanceTransforms(std::span<const glm::mat4> objectToWorld);
   // Copies the staged instances, previous instances and TLAS into the device buffers below
   // (transfer writes; the caller declares them, e.g. on the frame graph). Call once per frame:
@@ -105,13 +119,20 @@ class GpuScene {
   void uploadTextures();
   void writeDescriptors();
   void prepareTlasRefit();
+  void stageTlasRebuild();
+  void recordTlasRebuildUpload(VkCommandBuffer cmd);
   void recordTlasRefit(VkCommandBuffer cmd);
+  size_t tlasStagingOffset() const;
+  size_t planStagingOffset() const;
 
   vk::Context& context_;
   TlasUpdate tlasUpdate_ = TlasUpdate::GpuRefit;
   rt::SceneBvh bvh_;
-  rt::TlasRefitPlan refitPlan_;
-  vk::Buffer refitPlanBuffer_;         // the plan's nodes, then its level starts
+  rt::TlasRefitState tlasRefit_;  // plan and rebuild policy of bvh_.tlasNodes (GpuRefit)
+  vk::Buffer refitPlanBuffer_;    // the plan's nodes, then its level starts; planCapacity_ uints
+  uint32_t planCapacity_ = 0;     // room for any rebuild's plan (tlasCapacity_ + levels + 1)
+  double tlasRebuildRatio_ = 0.0;
+  bool tlasRebuildPending_ = false;    // staged nodes and plan wait for recordInstanceUpload
   vk::Buffer meshBoundsBuffer_;        // vec4 min, max per mesh
   vk::ComputePipeline refitPipeline_;  // made at the first refit
   Aabb bounds_;
@@ -121,7 +142,8 @@ class GpuScene {
   size_t instanceBufferIndex_ = 0;  // in buffers_
   size_t tlasBufferIndex_ = 0;      // in buffers_, room for tlasCapacity_ nodes
   vk::Buffer previousInstances_;
-  vk::Buffer instanceStaging_;  // [instances | previous instances | TLAS nodes], mapped
+  // [instances | previous instances | TLAS nodes | refit plan (GpuRefit)], mapped
+  vk::Buffer instanceStaging_;
   uint32_t tlasCapacity_ = 0;
   bool uploadPending_ = false;
   bool previousDiffers_ = false;  // the device's previous instances differ from the current

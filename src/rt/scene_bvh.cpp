@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <thread>
 
 #include <glm/gtc/packing.hpp>
@@ -459,6 +460,34 @@ void refitTlas(std::span<gpu::GpuBvhNode> tlas, const TlasRefitPlan& plan,
     n.rightMin = right.min;
     n.rightMax = right.max;
   }
+}
+
+double tlasSahCost(std::span<const gpu::GpuBvhNode> tlas) {
+  return measureBvh(tlas, 0, tlasBuildOptions().traversalCost).sahCost;
+}
+
+void buildRefittedTlas(std::vector<gpu::GpuBvhNode>& tlas, TlasRefitState& state,
+                       std::span<const gpu::GpuInstance> instances,
+                       std::span<const Aabb> meshBounds) {
+  tlas = buildRefittableTlas(instances, meshBounds);
+  state.plan = planTlasRefit(tlas);
+  refitTlas(tlas, state.plan, instances, meshBounds);
+  state.builtCost = tlasSahCost(tlas);
+  state.costRatio = 1.0;
+}
+
+bool updateRefittedTlas(std::vector<gpu::GpuBvhNode>& tlas, TlasRefitState& state,
+                        std::span<const gpu::GpuInstance> instances,
+                        std::span<const Aabb> meshBounds, double rebuildRatio) {
+  refitTlas(tlas, state.plan, instances, meshBounds);
+  const double cost = tlasSahCost(tlas);
+  state.costRatio = state.builtCost > 0.0 ? cost / state.builtCost
+                    : cost > 0.0          ? std::numeric_limits<double>::infinity()
+                                          : 1.0;
+  if (rebuildRatio <= 0.0 || !(state.costRatio > rebuildRatio)) return false;
+  buildRefittedTlas(tlas, state, instances, meshBounds);
+  ++state.rebuilds;
+  return true;
 }
 
 // ---- the whole scene --------------------------------------------------------------------------

@@ -224,4 +224,39 @@ TlasRefitPlan planTlasRefit(std::span<const gpu::GpuBvhNode> tlas);
 void refitTlas(std::span<gpu::GpuBvhNode> tlas, const TlasRefitPlan& plan,
                std::span<const gpu::GpuInstance> instances, std::span<const Aabb> meshBounds);
 
+// The SAH cost of a TLAS as it stands (measureBvh with the TLAS build's traversal cost): node
+// and leaf areas relative to the root's, so it measures how well the tree fits its boxes
+// whatever the scene's size. A refit that makes boxes overlap and grow raises it; GpuScene
+// rebuilds the tree when it has grown by GpuSceneOptions::tlasRebuildRatio. Empty (hidden)
+// boxes count as area 0. O(nodes).
+double tlasSahCost(std::span<const gpu::GpuBvhNode> tlas);
+
+// ---- rebuilding a refitted TLAS that has degraded ---------------------------------------------
+// A refitted tree is only as good as the placement it was built for: instances that travel far
+// from it make boxes overlap and grow. The policy (GpuScene's, tested on the CPU) refits, then
+// compares the tree's SAH cost with its cost right after its last build (both relative to their
+// own root's area) and rebuilds over the current placement once the ratio exceeds a limit. A
+// fresh build's cost would be the exact reference, but building to find it out is what the
+// refit avoids.
+struct TlasRefitState {
+  TlasRefitPlan plan;
+  double builtCost = 0.0;  // tlasSahCost right after the last build, refitted
+  double costRatio = 1.0;  // of the last update: tlasSahCost(refitted tree) / builtCost
+  uint32_t rebuilds = 0;   // by updateRefittedTlas
+};
+
+// buildRefittableTlas over the instances' current placement into `tlas`, its plan, and a refit
+// at once, so that `tlas` holds what any refit for this placement writes (hidden instances'
+// boxes empty) and state.builtCost is the baseline for this placement.
+void buildRefittedTlas(std::vector<gpu::GpuBvhNode>& tlas, TlasRefitState& state,
+                       std::span<const gpu::GpuInstance> instances,
+                       std::span<const Aabb> meshBounds);
+
+// Refits `tlas` to the instances' placement (O(instances)), measures state.costRatio, and
+// rebuilds (buildRefittedTlas) when it exceeds rebuildRatio > 0. Returns true when it rebuilt.
+// A tree built while every instance was hidden (builtCost 0) is rebuilt as soon as one shows.
+bool updateRefittedTlas(std::vector<gpu::GpuBvhNode>& tlas, TlasRefitState& state,
+                        std::span<const gpu::GpuInstance> instances,
+                        std::span<const Aabb> meshBounds, double rebuildRatio);
+
 }  // namespace bounce::rt
