@@ -182,6 +182,30 @@ TEST(GpuTraceShared, SheenChair) {
   compareScene(test::sharedDir() + "/scenes/sheen_chair/glTF/SheenChair.gltf");
 }
 
+// Traces random rays through `gpuScene` on the GPU (of `scene`, placed as the GPU scene is now)
+// and expects the hits of the CPU mirror and of the brute force, with at least a tenth hitting.
+void expectTracesAsMirrorAndBruteForce(vk::Context& context, const Scene& scene,
+                                       const GpuScene& gpuScene, uint32_t seed) {
+  TraceRaysPass pass(context, gpuScene);
+  std::vector<gpu::GpuRay> rays = makeRays(scene, seed);
+  std::vector<gpu::GpuHit> gpuHits = pass.trace(rays, true);
+  rt::AlphaTest alpha = [&](uint32_t, uint32_t geometry, uint32_t primitive, float b1, float b2) {
+    return gpuScene.alphaAccepts(geometry, primitive, b1, b2);
+  };
+  compareWithMirror(gpuScene, rays, gpuHits, alpha);
+  rt::BruteForceTracer bruteForce(scene);
+  int differ = 0, hits = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    rt::Ray ray{rays[i].origin, rays[i].direction, rays[i].tMin};
+    const rt::TraceHit b = bruteForce.closestHit(ray, rays[i].tMax, alpha);
+    const bool gpuHit = gpuHits[i].instance != gpu::HIT_NONE;
+    hits += gpuHit;
+    differ += gpuHit != b.hit || (b.hit && std::abs(gpuHits[i].t - b.t) > 1e-4f * b.t);
+  }
+  EXPECT_EQ(differ, 0) << "of " << rays.size() << " rays";
+  EXPECT_GT(hits, int(rays.size()) / 10);
+}
+
 // Moving instances with the TLAS refitted on the GPU (TlasUpdate::GpuRefit, scene-refit-tlas):
 // every foliage instance moved, turned and some hidden, then the refitted boxes equal the CPU
 // refit's (rt::refitTlas, the same arithmetic) and the GPU's answers on the moved scene equal
@@ -214,24 +238,7 @@ TEST(GpuTraceMoving, RefittedTlasMatchesTheCpuRefitAndBruteForce) {
                    cpu[n].rightMin != gpu[n].rightMin || cpu[n].rightMax != gpu[n].rightMax;
   EXPECT_EQ(boxesDiffer, 0) << "of " << cpu.size() << " TLAS nodes";
 
-  TraceRaysPass pass(context, gpuScene);
-  std::vector<gpu::GpuRay> rays = makeRays(scene, 4321);
-  std::vector<gpu::GpuHit> gpuHits = pass.trace(rays, true);
-  rt::AlphaTest alpha = [&](uint32_t, uint32_t geometry, uint32_t primitive, float b1, float b2) {
-    return gpuScene.alphaAccepts(geometry, primitive, b1, b2);
-  };
-  compareWithMirror(gpuScene, rays, gpuHits, alpha);
-  rt::BruteForceTracer bruteForce(scene);
-  int differ = 0, hits = 0;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    rt::Ray ray{rays[i].origin, rays[i].direction, rays[i].tMin};
-    const rt::TraceHit b = bruteForce.closestHit(ray, rays[i].tMax, alpha);
-    const bool gpuHit = gpuHits[i].instance != gpu::HIT_NONE;
-    hits += gpuHit;
-    differ += gpuHit != b.hit || (b.hit && std::abs(gpuHits[i].t - b.t) > 1e-4f * b.t);
-  }
-  EXPECT_EQ(differ, 0) << "of " << rays.size() << " rays";
-  EXPECT_GT(hits, int(rays.size()) / 10);
+  expectTracesAsMirrorAndBruteForce(context, scene, gpuScene, 4321);
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
@@ -296,24 +303,7 @@ TEST(GpuTraceMoving, DegradedTlasIsRebuiltAndTracesAsTheBruteForce) {
   EXPECT_EQ(0, std::memcmp(cpu.data(), gpu.data(), cpu.size() * sizeof(gpu::GpuBvhNode)))
       << "the GPU's TLAS differs from the CPU's rebuilt and refitted copy";
 
-  TraceRaysPass pass(context, gpuScene);
-  std::vector<gpu::GpuRay> rays = makeRays(scene, 777);
-  std::vector<gpu::GpuHit> gpuHits = pass.trace(rays, true);
-  rt::AlphaTest alpha = [&](uint32_t, uint32_t geometry, uint32_t primitive, float b1, float b2) {
-    return gpuScene.alphaAccepts(geometry, primitive, b1, b2);
-  };
-  compareWithMirror(gpuScene, rays, gpuHits, alpha);
-  rt::BruteForceTracer bruteForce(scene);
-  int differ = 0, hits = 0;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    rt::Ray ray{rays[i].origin, rays[i].direction, rays[i].tMin};
-    const rt::TraceHit b = bruteForce.closestHit(ray, rays[i].tMax, alpha);
-    const bool gpuHit = gpuHits[i].instance != gpu::HIT_NONE;
-    hits += gpuHit;
-    differ += gpuHit != b.hit || (b.hit && std::abs(gpuHits[i].t - b.t) > 1e-4f * b.t);
-  }
-  EXPECT_EQ(differ, 0) << "of " << rays.size() << " rays";
-  EXPECT_GT(hits, int(rays.size()) / 10);
+  expectTracesAsMirrorAndBruteForce(context, scene, gpuScene, 777);
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
