@@ -63,12 +63,20 @@ float TimeOfDayTrack::hoursAt(float t) const {
   return wrap(h, 24.0f);
 }
 
+static float trsDuration(const TransformTrack& track) {
+  float d = 0.0f;
+  for (const std::vector<float>* times :
+       {&track.translation.times, &track.rotation.times, &track.scale.times})
+    if (!times->empty()) d = std::max(d, times->back());
+  return d;
+}
+
 float SceneAnimation::transformDuration() const {
   float d = 0.0f;
-  for (const TransformTrack& track : transforms)
-    for (const std::vector<float>* times :
-         {&track.translation.times, &track.rotation.times, &track.scale.times})
-      if (!times->empty()) d = std::max(d, times->back());
+  for (const TransformTrack& track : transforms) d = std::max(d, trsDuration(track));
+  for (const JointTrack& track : joints) d = std::max(d, trsDuration(track.trs));
+  for (const MorphWeightTrack& track : morphWeights)
+    if (!track.times.empty()) d = std::max(d, track.times.back());
   return d;
 }
 
@@ -110,6 +118,33 @@ void evaluateTransforms(const SceneAnimation& animation, float t,
   for (const TransformTrack& track : animation.transforms)
     if (track.instance < transforms.size())
       transforms[track.instance] = evaluateTrack(track, local);
+}
+
+void evaluateJoints(const SceneAnimation& animation, float t, std::vector<glm::mat4>& locals) {
+  float local = animation.loop ? wrap(t, animation.transformDuration()) : t;
+  for (const JointTrack& track : animation.joints)
+    if (track.node < locals.size()) locals[track.node] = evaluateTrack(track.trs, local);
+}
+
+void evaluateMorphWeights(const SceneAnimation& animation, float t,
+                          std::vector<std::vector<float>>& weights) {
+  float local = animation.loop ? wrap(t, animation.transformDuration()) : t;
+  for (const MorphWeightTrack& track : animation.morphWeights) {
+    if (track.mesh >= weights.size() || track.times.empty()) continue;
+    std::vector<float>& out = weights[track.mesh];
+    size_t n = track.targets;
+    if (out.size() != n || track.values.size() != track.times.size() * n) continue;
+    KeySpan k = locate(track.times, local);
+    if (track.times.size() == 1 || track.interpolation == Interpolation::Step) {
+      size_t key = track.times.size() == 1 ? 0 : (k.u >= 1.0f ? k.i + 1 : k.i);
+      for (size_t i = 0; i < n; ++i) out[i] = track.values[key * n + i];
+      continue;
+    }
+    for (size_t i = 0; i < n; ++i) {
+      float a = track.values[k.i * n + i], b = track.values[(k.i + 1) * n + i];
+      out[i] = a + (b - a) * k.u;
+    }
+  }
 }
 
 void evaluateLights(const SceneAnimation& animation, float t,

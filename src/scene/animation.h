@@ -45,6 +45,24 @@ struct TransformTrack {
   Channel<glm::vec3> scale;
 };
 
+// An animated node of the skeleton (Scene::skeleton[node]): its local TRS at t replaces the
+// node's rest `local`. `trs.instance` is unused and `trs.parent` stays the identity (the parent
+// is the skeleton's).
+struct JointTrack {
+  uint32_t node = 0;
+  TransformTrack trs;
+};
+
+// glTF `weights` channel of a morphed mesh (Scene::meshes[mesh]): one weight per morph target at
+// each key, key-major (values[key * targets + target]). LINEAR or STEP as transform channels.
+struct MorphWeightTrack {
+  uint32_t mesh = 0;
+  uint32_t targets = 0;
+  std::vector<float> times;  // seconds, strictly increasing
+  std::vector<float> values;
+  Interpolation interpolation = Interpolation::Linear;
+};
+
 // A KHR punctual light's animation (Scene::lights[light]): its position in world space and a
 // factor on its rest intensity (STEP keys of 0 and 1 switch it off and on). A missing channel
 // keeps the rest value. Light tracks loop with the transform tracks (SceneAnimation::loop), at
@@ -84,13 +102,19 @@ struct TimeOfDayTrack {
 
 struct SceneAnimation {
   std::vector<TransformTrack> transforms;
+  // Deformation (scene/deformation.h): they play and loop with the transform tracks.
+  std::vector<JointTrack> joints;
+  std::vector<MorphWeightTrack> morphWeights;
   std::vector<LightTrack> lights;
   std::optional<CameraPath> camera;
   std::optional<TimeOfDayTrack> timeOfDay;
   bool loop = true;  // transform tracks wrap at duration()
 
-  bool empty() const { return transforms.empty() && lights.empty() && !camera && !timeOfDay; }
-  // The end of the last transform key (0 without transform tracks).
+  bool empty() const {
+    return transforms.empty() && joints.empty() && morphWeights.empty() && lights.empty() &&
+           !camera && !timeOfDay;
+  }
+  // The end of the last transform, joint or morph-weight key (0 without such tracks).
   float transformDuration() const;
   // The end of the last light key (0 without light tracks).
   float lightDuration() const;
@@ -106,6 +130,15 @@ glm::mat4 evaluateTrack(const TransformTrack& track, float t);
 // the scene's instance count by the caller; untracked instances keep their value).
 void evaluateTransforms(const SceneAnimation& animation, float t,
                         std::vector<glm::mat4>& transforms);
+
+// Writes the local transform of every animated skeleton node at time t into `locals` (one per
+// Scene::skeleton node, the rest `local`s, made by the caller; unanimated nodes keep theirs).
+void evaluateJoints(const SceneAnimation& animation, float t, std::vector<glm::mat4>& locals);
+// Writes every animated mesh's morph weights at time t into `weights` (one vector per mesh, the
+// rest weights, made by the caller; a track whose target count differs from its mesh's vector
+// is skipped, validateAnimation reports it).
+void evaluateMorphWeights(const SceneAnimation& animation, float t,
+                          std::vector<std::vector<float>>& weights);
 
 // Writes the state of every animated light at time t into `lights` (a copy of Scene::lights,
 // the rest state, made by the caller; untracked lights keep their value). `rest` is

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "scene/deformation.h"
 
 namespace bounce {
 
@@ -36,6 +37,12 @@ uint64_t Scene::uniqueTriangleCount() const {
   for (const Mesh& m : meshes)
     for (const Geometry& g : m.geometries) n += g.triangleCount();
   return n;
+}
+
+bool Scene::deforms() const {
+  for (const Mesh& m : meshes)
+    if (m.deforms()) return true;
+  return false;
 }
 
 Camera defaultCamera(const Scene& scene) {
@@ -112,6 +119,7 @@ void validateScene(const Scene& scene, const std::string& source) {
       fail("{}: image {} ('{}') has inconsistent size {}x{}", source, i, img.name, img.width,
            img.height);
   }
+  validateDeformation(scene, source);
 }
 
 }  // namespace bounce

@@ -30,6 +30,15 @@ struct Aabb {
   glm::vec3 extent() const { return max - min; }
 };
 
+// One morph target of a geometry (glTF 2.0 §3.7.2.2): displacements added to the rest streams,
+// each scaled by the mesh's current weight of this target. Each stream is empty (the target does
+// not move it) or one entry per position.
+struct MorphTarget {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec3> tangents;  // xyz only; the handedness (w) does not morph
+};
+
 // One triangle list with one material (a glTF mesh primitive). After loading, every stream is
 // filled: `normals` and `uvs` have one entry per position (defaults are computed or zero when a
 // file lacks them); `tangents` and `colors` are either empty or one per position.
@@ -43,12 +52,44 @@ struct Geometry {
   std::vector<glm::vec4> colors;
   std::vector<uint32_t> indices;  // three per triangle
   uint32_t material = 0;
+  // Skinning (glTF JOINTS_0, WEIGHTS_0) of a geometry of a skinned mesh: one entry per position,
+  // else both empty. Joint indices index the mesh's skin's `joints`; the four weights sum to 1.
+  std::vector<glm::uvec4> joints;
+  std::vector<glm::vec4> weights;
+  // As many as the mesh's morphWeights (every geometry of a mesh has the same target count).
+  std::vector<MorphTarget> morphTargets;
   uint32_t triangleCount() const { return uint32_t(indices.size() / 3); }
 };
 
+// A mesh's positions may deform over time (scene/deformation.h): morph targets blend with
+// `morphWeights`, then a skin places every vertex by its joints. A deforming mesh is placed by
+// one instance only (the glTF loader gives each skinned or morphed node its own copy), since its
+// posed triangles are its own. The instance of a skinned mesh has the identity transform: the
+// skin's joint matrices place the vertices in the world (glTF 2.0 §3.7.3.1 ignores the skinned
+// node's own transform).
 struct Mesh {
   std::string name;
   std::vector<Geometry> geometries;
+  int skin = -1;                    // Scene::skins index; -1 = not skinned
+  std::vector<float> morphWeights;  // rest weights, one per morph target; empty = no targets
+  bool deforms() const { return skin >= 0 || !morphWeights.empty(); }
+};
+
+// A node of the joint hierarchy that skins hang from (a glTF node that is a joint or an ancestor
+// of one). Parents come before their children. `local` is the rest transform relative to the
+// parent (to the world for a root); SceneAnimation::joints may animate it.
+struct SkeletonNode {
+  std::string name;
+  int parent = -1;  // Scene::skeleton index; -1 = a root
+  glm::mat4 local{1.0f};
+};
+
+// glTF skin (§3.7.3): the vertex influence of joint j is skeletonWorld(joints[j]) x
+// inverseBindMatrices[j] applied to the (morphed) rest position.
+struct Skin {
+  std::string name;
+  std::vector<uint32_t> joints;                // Scene::skeleton indices
+  std::vector<glm::mat4> inverseBindMatrices;  // one per joint
 };
 
 struct Instance {
@@ -144,6 +185,8 @@ struct Scene {
   std::vector<Material> materials;  // never empty after loading: a default grey one if needed
   std::vector<Image> images;
   std::vector<PunctualLight> lights;
+  std::vector<SkeletonNode> skeleton;  // joints of the skins and their ancestors
+  std::vector<Skin> skins;
   std::optional<Camera> camera;  // from the file or the procedural scene; else a default framing
   Sun sun;
   Sky sky;
@@ -154,6 +197,7 @@ struct Scene {
   Aabb bounds() const;
   uint64_t triangleCount() const;        // over instances, i.e. what a ray can hit
   uint64_t uniqueTriangleCount() const;  // over meshes
+  bool deforms() const;                  // some mesh has a skin or morph targets
 };
 
 // A camera that frames the scene's bounds from the front (+Z side), slightly above.
