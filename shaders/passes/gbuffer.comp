@@ -55,12 +55,13 @@ TraceHit hitFromVBuffer(FrameConstants f, uvec4 ids, vec3 dir) {
   return hit;
 }
 
-// Pixel motion since last frame, camera and object: the surface point's object-space position
-// placed by last frame's instance transform, seen by last frame's camera. A point behind last
-// frame's camera gets a huge vector, which every reprojection rejects.
+// Pixel motion since last frame, camera and object: the surface point's last-frame object-space
+// position (a deforming mesh's previous pose, scene-deform) placed by last frame's instance
+// transform, seen by last frame's camera. A point behind last frame's camera gets a huge vector,
+// which every reprojection rejects.
 vec2 pixelVelocity(FrameConstants f, vec2 pixelCentre, TraceHit hit) {
   uvec3 tri = triangleVertices(sceneGeometry(hit.geometry), hit.primitive);
-  Vec3Array positions = Vec3Array(scene.positions);
+  Vec3Array positions = Vec3Array(scene.previousPositions);
   vec3 objectPosition = positions.v[tri.x] * (1.0 - hit.barycentrics.x - hit.barycentrics.y) +
                         positions.v[tri.y] * hit.barycentrics.x +
                         positions.v[tri.z] * hit.barycentrics.y;

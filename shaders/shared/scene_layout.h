@@ -196,8 +196,11 @@ struct GpuSceneRefs {
   // Read once per ray, uniformly (shaders/rt/trace.glsl).
   uint blasLayout;
   DeviceAddress rayCounter;  // uint, zeroed per frame by vk::GpuTimer
+  // vec3[]: last frame's positions, for motion vectors of deforming meshes (scene-deform keeps
+  // them); the same address as `positions` in a scene where nothing deforms.
+  DeviceAddress previousPositions;
 };
-BOUNCE_CHECK_SIZE(GpuSceneRefs, 152);
+BOUNCE_CHECK_SIZE(GpuSceneRefs, 160);
 
 BOUNCE_CONST uint SCENE_SET = 0u;
 BOUNCE_CONST uint SCENE_BINDING_REFS = 0u;

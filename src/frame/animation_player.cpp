@@ -18,6 +18,10 @@ Camera AnimationPlayer::apply(HybridFrame& frame, float t) {
     evaluateTransforms(animation_, t, transforms_);
     frame.setInstanceTransforms(transforms_);
   }
+  if (!animation_.joints.empty() || !animation_.morphWeights.empty()) {
+    evaluatePose(scene_, animation_, t, pose_);
+    frame.setDeformation(pose_);
+  }
   if (!animation_.lights.empty()) {
     evaluateLights(animation_, t, scene_.lights, lights_);
     frame.setLights(lights_);

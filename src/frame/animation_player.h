@@ -1,5 +1,5 @@
 // Plays a SceneAnimation on a HybridFrame: at each frame's time t it evaluates the
-// instance transforms, the time of day and the camera path, hands them to the frame and resets
+// instance transforms, the deforming meshes' pose, the time of day and the camera path, hands them to the frame and resets
 // temporal history at camera cuts, so no stale history shows after a jump.
 //
 //   AnimationPlayer player(scene, scene.animation);
@@ -10,6 +10,7 @@
 
 #include "frame/hybrid_frame.h"
 #include "scene/animation.h"
+#include "scene/deformation.h"
 #include "scene/scene.h"
 
 namespace bounce {
@@ -35,6 +36,7 @@ class AnimationPlayer {
   SceneAnimation animation_;
   std::vector<glm::mat4> transforms_;
   std::vector<PunctualLight> lights_;
+  DeformationPose pose_;
   std::optional<float> lastTime_;
   std::optional<Camera> lastCamera_;
   bool lastWasCut_ = false;

@@ -67,6 +67,11 @@ class HybridFrame {
   // rebuilt TLAS into buffers made at init, keeping this frame's placement as the previous one
   // for object motion vectors. Call it every frame while anything moves. No Vulkan allocation.
   void setInstanceTransforms(std::span<const glm::mat4> objectToWorld);
+  // The pose of the deforming meshes (skins, morph targets) for the next render(); scene-update
+  // poses them on the GPU and refits their BLAS (rt/gpu_deformer.h). Call it every frame while
+  // they move. No Vulkan allocation. Emissive triangles of deforming meshes keep their rest
+  // pose in ReSTIR DI's light tables (docs/di.md).
+  void setDeformation(const DeformationPose& pose) { gpuScene_.setDeformation(pose); }
   // The scene's KHR punctual lights from the next render() on (Scene::lights, the same count
   // and types, with positions, directions, colours and intensities animated; intensity 0 is
   // off). ReSTIR DI's light tables follow in place (RestirDi::setLights), as do its emissive

@@ -8,6 +8,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "core/error.h"
+#include "scene/deformation.h"
 #include "shared/tlas_refit_io.h"
 
 #include "vk/check.h"
@@ -44,7 +45,16 @@ GpuScene::GpuScene(vk::Context& context, const Scene& scene, const GpuSceneOptio
   auto start = Clock::now();
   rt::SceneBvhOptions bvhOptions;
   bvhOptions.layout = options.bvhLayout;
-  bvh_ = rt::buildSceneBvh(scene, bvhOptions);
+  if (scene.deforms()) {
+    // Deforming meshes start in their rest pose (a skinned mesh's bind-pose streams are not
+    // where its skeleton places it), and their boxes move on the GPU.
+    if (tlasUpdate_ != TlasUpdate::GpuRefit)
+      fail("{}: deforming meshes need the TLAS refitted on the GPU (TlasUpdate::GpuRefit)",
+           scene.name.empty() ? std::string("scene") : scene.name);
+    bvh_ = rt::buildSceneBvh(posedScene(scene, restPose(scene)), bvhOptions);
+  } else {
+    bvh_ = rt::buildSceneBvh(scene, bvhOptions);
+  }
   // A refitted tree needs a leaf for every instance that may ever show (scene_bvh.h).
   if (tlasUpdate_ == TlasUpdate::GpuRefit)
     rt::buildRefittedTlas(bvh_.tlasNodes, tlasRefit_, bvh_.instances, bvh_.meshBounds);
@@ -55,10 +65,22 @@ GpuScene::GpuScene(vk::Context& context, const Scene& scene, const GpuSceneOptio
   stats_.uniqueTriangles = scene.uniqueTriangleCount();
 
   auto uploadStart = Clock::now();
-  uploadArrays();
+  uploadArrays(scene);
   uploadTextures();
   writeDescriptors();
   if (tlasUpdate_ == TlasUpdate::GpuRefit) prepareTlasRefit();
+  if (scene.deforms()) {
+    GpuDeformer::SceneArrays arrays{.positions = refsHost_.positions,
+                                    .previousPositions = refsHost_.previousPositions,
+                                    .normals = refsHost_.normals,
+                                    .tangents = refsHost_.tangents,
+                                    .triangles = refsHost_.triangles,
+                                    .blasNodes = refsHost_.blasNodes,
+                                    .geometries = refsHost_.geometries,
+                                    .indices = refsHost_.indices,
+                                    .meshBounds = meshBoundsBuffer_.address()};
+    deformer_ = std::make_unique<GpuDeformer>(context_, scene, bvh_, arrays);
+  }
   stats_.uploadSeconds = secondsSince(uploadStart);
   stats_.totalBytes = context.liveAllocationBytes();
 }
@@ -67,7 +89,7 @@ GpuScene::~GpuScene() {
   if (sampler_) vkDestroySampler(context_.device(), sampler_, nullptr);
 }
 
-void GpuScene::uploadArrays() {
+void GpuScene::uploadArrays(const Scene& scene) {
   // Storage buffers are limited to 128 MiB per binding on lavapipe (DESIGN.md §1); buffer
   // device addresses have no such per-binding limit but keep each array under it anyway.
   // Transfer source too: tests read arrays back (the refitted TLAS).
@@ -114,6 +136,12 @@ void GpuScene::uploadArrays() {
   refs.materials = upload(textures_.materials, "materials");
   refs.indices = upload(bvh_.indices, "indices");
   refs.positions = upload(bvh_.positions, "positions");
+  refs.previousPositions = refs.positions;
+  if (scene.deforms()) {
+    previousPositions_ = vk::uploadVector(context_, std::span<const glm::vec3>(bvh_.positions),
+                                          usage, "scene.previous-positions");
+    refs.previousPositions = previousPositions_.address();
+  }
   refs.normals = upload(bvh_.normals, "normals");
   refs.uvs = upload(bvh_.uvs, "uvs");
   refs.tangents = upload(bvh_.tangents, "tangents");
@@ -332,8 +360,15 @@ void GpuScene::recordTlasRefit(VkCommandBuffer cmd) {
   vkCmdDispatch(cmd, 1, 1, 1);
 }
 
+void GpuScene::setDeformation(const DeformationPose& pose) {
+  if (!deformer_) fail("setDeformation: nothing in the scene deforms");
+  deformer_->setPose(pose);
+}
+
 void GpuScene::recordInstanceUpload(VkCommandBuffer cmd) {
   const VkDeviceSize instanceBytes = bytesOf(bvh_.instances);
+  // Deforming meshes first: their new boxes are what the TLAS refit below reads.
+  const bool meshesMoved = deformer_ && deformer_->record(cmd);
   if (!uploadPending_) {
     // Nothing moved since the last upload: the previous placement becomes the current one
     // (still in the staging buffer), so a stopped object has no motion vectors.
@@ -342,6 +377,7 @@ void GpuScene::recordInstanceUpload(VkCommandBuffer cmd) {
       vkCmdCopyBuffer(cmd, instanceStaging_.handle(), previousInstances_.handle(), 1, &settle);
       previousDiffers_ = false;
     }
+    if (meshesMoved) recordTlasRefit(cmd);
     return;
   }
   VkBufferCopy current{0, 0, instanceBytes};

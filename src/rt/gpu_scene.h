@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "rt/gpu_deformer.h"
 #include "rt/scene_bvh.h"
 #include "scene/scene.h"
 #include "scene/texture_pack.h"
@@ -95,9 +96,15 @@ class GpuScene {
   // caller must not call it while a recorded upload is still executing (the hybrid frame submits
   // and waits).
   void setInstanceTransforms(std::span<const glm::mat4> objectToWorld);
+  // Deforming meshes (rt/gpu_deformer.h): stages their pose for the next recordInstanceUpload.
+  // Throws bounce::Error in a scene where nothing deforms.
+  void setDeformation(const DeformationPose& pose);
+  bool deforms() const { return deformer_ != nullptr; }
   // Copies the staged instances, previous instances and TLAS into the device buffers below
-  // (transfer writes; the caller declares them, e.g. on the frame graph). Call once per frame:
-  // in the first frame without a new placement it sets previous = current, so motion vectors
+  // (transfer writes; the caller declares them, e.g. on the frame graph), after posing the
+  // deforming meshes and refitting their BLAS when a pose was staged (their streams are then
+  // made visible to every later command by a barrier of its own). Call once per frame: in the
+  // first frame without a new placement or pose it sets previous = current, so motion vectors
   // of objects that stopped return to zero.
   void recordInstanceUpload(VkCommandBuffer cmd);
   // GpuInstance[] as the tracer reads them (refs.instances), last placement's GpuInstance[]
@@ -115,7 +122,7 @@ class GpuScene {
   const vk::Buffer& rayCounter() const { return rayCounter_; }
 
  private:
-  void uploadArrays();
+  void uploadArrays(const Scene& scene);
   void uploadTextures();
   void writeDescriptors();
   void prepareTlasRefit();
@@ -142,6 +149,8 @@ class GpuScene {
   size_t instanceBufferIndex_ = 0;  // in buffers_
   size_t tlasBufferIndex_ = 0;      // in buffers_, room for tlasCapacity_ nodes
   vk::Buffer previousInstances_;
+  vk::Buffer previousPositions_;            // only when something deforms
+  std::unique_ptr<GpuDeformer> deformer_;  // only when something deforms
   // [instances | previous instances | TLAS nodes | refit plan (GpuRefit)], mapped
   vk::Buffer instanceStaging_;
   uint32_t tlasCapacity_ = 0;

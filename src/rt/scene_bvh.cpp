@@ -1,6 +1,7 @@
 #include "rt/scene_bvh.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -270,6 +271,7 @@ void concatenateBlas(const Scene& scene, const std::vector<MeshBlas>& blas, uint
     out.blasNodes.resize(nodes);
   out.triangles.resize(triangles);
   out.blasRoot = nodeOffset;
+  out.blasTriangleBase = triangleOffset;
   TaskPool pool(std::min<uint32_t>(threads, uint32_t(blas.size())));
   pool.parallelFor(uint32_t(blas.size()), [&](uint32_t m) {
     appendBlas(scene, m, blas[m], nodeOffset[m], triangleOffset[m], out);
@@ -409,17 +411,17 @@ std::vector<gpu::GpuBvhNode> buildRefittableTlas(std::span<const gpu::GpuInstanc
   return buildTlas(instances, meshBounds, tlasBuildOptions(), nullptr, true);
 }
 
-TlasRefitPlan planTlasRefit(std::span<const gpu::GpuBvhNode> tlas) {
-  TlasRefitPlan plan;
-  if (tlas.empty()) return plan;
-  // Breadth first from the root: levels in order of depth.
-  std::vector<std::vector<uint32_t>> levels{{0u}};
+namespace {
+
+// Breadth first from the root (levels in order of depth), then the levels deepest first.
+// `children(node, out)` appends a node's interior children.
+template <typename Children>
+RefitPlan planLevels(uint32_t root, Children children) {
+  RefitPlan plan;
+  std::vector<std::vector<uint32_t>> levels{{root}};
   while (true) {
     std::vector<uint32_t> next;
-    for (uint32_t node : levels.back())
-      for (auto [index, count] : {std::pair{tlas[node].leftIndex, tlas[node].leftCount},
-                                  std::pair{tlas[node].rightIndex, tlas[node].rightCount}})
-        if (count == 0 && index != gpu::BVH_INVALID) next.push_back(index);
+    for (uint32_t node : levels.back()) children(node, next);
     if (next.empty()) break;
     levels.push_back(std::move(next));
   }
@@ -429,6 +431,30 @@ TlasRefitPlan planTlasRefit(std::span<const gpu::GpuBvhNode> tlas) {
   }
   plan.levelStart.push_back(uint32_t(plan.nodes.size()));
   return plan;
+}
+
+}  // namespace
+
+RefitPlan planBinaryRefit(std::span<const gpu::GpuBvhNode> nodes, uint32_t root) {
+  if (root >= nodes.size()) return {};
+  return planLevels(root, [&](uint32_t node, std::vector<uint32_t>& out) {
+    for (auto [index, count] : {std::pair{nodes[node].leftIndex, nodes[node].leftCount},
+                                std::pair{nodes[node].rightIndex, nodes[node].rightCount}})
+      if (count == 0 && index != gpu::BVH_INVALID) out.push_back(index);
+  });
+}
+
+RefitPlan planWideRefit(std::span<const gpu::GpuWideBvhNode> nodes, uint32_t root) {
+  if (root >= nodes.size()) return {};
+  return planLevels(root, [&](uint32_t node, std::vector<uint32_t>& out) {
+    const uint32_t interior = nodes[node].exponentsAndMask >> 24;
+    for (uint32_t k = 0; k < uint32_t(std::popcount(interior)); ++k)
+      out.push_back(nodes[node].childBase + k);
+  });
+}
+
+TlasRefitPlan planTlasRefit(std::span<const gpu::GpuBvhNode> tlas) {
+  return planBinaryRefit(tlas, 0);
 }
 
 namespace {

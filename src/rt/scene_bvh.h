@@ -148,6 +148,7 @@ struct SceneBvhStats {
 struct SceneBvh {
   // Per mesh, in Scene::meshes order.
   std::vector<uint32_t> blasRoot;      // index of the mesh's BLAS root in blasNodes
+  std::vector<uint32_t> blasTriangleBase;  // index of the mesh's first triangle in triangles
   std::vector<uint32_t> geometryBase;  // index of the mesh's geometry 0 in geometries
   std::vector<Aabb> meshBounds;        // object-space bounds (empty for a mesh without triangles)
 
@@ -212,12 +213,17 @@ std::vector<gpu::GpuBvhNode> buildRefittableTlas(std::span<const gpu::GpuInstanc
 // The order of a refit: the interior nodes by depth, deepest level first, so that each level
 // reads only boxes the levels before it wrote; nodes[levelStart[l] .. levelStart[l + 1]) is
 // level l. A GPU refit runs one level per step with a barrier between steps.
-struct TlasRefitPlan {
+struct RefitPlan {
   std::vector<uint32_t> nodes;
   std::vector<uint32_t> levelStart;  // levels + 1 entries
   uint32_t levels() const { return levelStart.empty() ? 0u : uint32_t(levelStart.size() - 1); }
 };
+using TlasRefitPlan = RefitPlan;
 TlasRefitPlan planTlasRefit(std::span<const gpu::GpuBvhNode> tlas);
+// The plan of the tree rooted at `root` in a BLAS node array of either layout (absolute node
+// indices), for refitting a deforming mesh's BLAS (src/rt/gpu_deformer.h).
+RefitPlan planBinaryRefit(std::span<const gpu::GpuBvhNode> nodes, uint32_t root);
+RefitPlan planWideRefit(std::span<const gpu::GpuWideBvhNode> nodes, uint32_t root);
 
 // Rewrites every child box of `tlas` along `plan`: a leaf's from instanceWorldBounds (empty for
 // a hidden instance), an interior child's as the union of its two child boxes.

@@ -18,7 +18,7 @@ Scene makeDefaultFurnace() {
   return makeFurnaceScene(0.5f, glm::vec3(1.0f));
 }
 
-constexpr std::array<BuiltinScene, 9> kBuiltinScenes = {{
+constexpr std::array<BuiltinScene, 10> kBuiltinScenes = {{
     {"cornell", procedural::makeCornellScene},
     {"sunroom", procedural::makeSunroomScene},
     {"sunroom-glossy", procedural::makeGlossySunroomScene},
@@ -28,6 +28,7 @@ constexpr std::array<BuiltinScene, 9> kBuiltinScenes = {{
     {"city", procedural::makeCityScene},
     {"city-10k", procedural::makeCity10kScene},
     {"spheres", procedural::makeSpheresScene},
+    {"skinned", procedural::makeSkinnedScene},
 }};
 
 }  // namespace

@@ -1,0 +1,225 @@
+// Deforming meshes on the GPU (rt/gpu_deformer.h), on lavapipe, against the CPU pose
+// (scene/deformation.h) of the built-in `skinned` scene (a skinned tube, a morphing blob):
+//   - after scene-deform and scene-refit-blas, rays traced through the GPU's refitted BLAS (both
+//     node layouts) hit what the brute force finds in the CPU-posed scene, pose after pose;
+//   - the G-buffer's motion vectors on the skinned tube are the screen motion of the surface
+//     point between the two poses, and return to zero when the pose stops changing.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/packing.hpp>
+
+#include "frame/hybrid_frame.h"
+#include "passes/primary_view.h"
+#include "passes/trace_rays.h"
+#include "rt/cpu_trace.h"
+#include "rt/gpu_scene.h"
+#include "scene/deformation.h"
+#include "scene/load.h"
+#include "shared/camera.h"
+#include "vk/context.h"
+
+namespace bounce {
+namespace {
+
+uint32_t instanceNamed(const Scene& scene, const std::string& name) {
+  for (uint32_t i = 0; i < scene.instances.size(); ++i)
+    if (scene.instances[i].name == name) return i;
+  ADD_FAILURE() << "no instance " << name;
+  return 0;
+}
+
+Aabb meshBounds(const Scene& scene, uint32_t instance) {
+  Aabb box;
+  for (const Geometry& g : scene.meshes[scene.instances[instance].mesh].geometries)
+    for (const glm::vec3& p : g.positions) box.extend(p);
+  return box;
+}
+
+// Rays from a sphere around the scene, each aimed at a random point of one of `targets`' boxes
+// (most hit them, some graze past), so the deforming meshes get most of the hits.
+std::vector<gpu::GpuRay> raysAt(const std::vector<Aabb>& targets, uint32_t count, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<gpu::GpuRay> rays;
+  for (uint32_t i = 0; i < count; ++i) {
+    const Aabb& box = targets[i % targets.size()];
+    glm::vec3 target = box.min + glm::vec3(u(rng), u(rng), u(rng)) * (box.max - box.min) * 1.2f -
+                       0.1f * (box.max - box.min);
+    float phi = 6.2831853f * u(rng), z = 2.0f * u(rng) - 1.0f;
+    glm::vec3 around(std::sqrt(1.0f - z * z) * std::cos(phi), std::abs(z),
+                     std::sqrt(1.0f - z * z) * std::sin(phi));
+    glm::vec3 origin = box.center() + 4.0f * around;
+    rays.push_back({origin, 0.0f, target - origin, 1e30f});
+  }
+  return rays;
+}
+
+struct TraceComparison {
+  int differ = 0;
+  int deformingHits = 0;
+};
+
+TraceComparison compareWithBruteForce(const Scene& posed, std::span<const gpu::GpuRay> rays,
+                                      std::span<const gpu::GpuHit> gpuHits,
+                                      const std::vector<uint32_t>& deforming) {
+  rt::BruteForceTracer bruteForce(posed);
+  TraceComparison c;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    rt::Ray ray{rays[i].origin, rays[i].direction, rays[i].tMin};
+    const rt::TraceHit b = bruteForce.closestHit(ray, rays[i].tMax);
+    const bool gpuHit = gpuHits[i].instance != gpu::HIT_NONE;
+    bool same = gpuHit == b.hit && (!b.hit || (std::abs(gpuHits[i].t - b.t) <= 1e-4f * b.t &&
+                                               gpuHits[i].instance == b.instance));
+    c.differ += !same;
+    for (uint32_t d : deforming) c.deformingHits += gpuHit && gpuHits[i].instance == d;
+  }
+  return c;
+}
+
+class DeformedTraversal : public ::testing::TestWithParam<rt::BvhLayout> {};
+
+// Three poses in turn (each refit starts from the last one's boxes): the GPU hits equal the brute
+// force's over the scene posed on the CPU, and most rays hit the tube or the blob.
+TEST_P(DeformedTraversal, HitsWhatTheBruteForceHitsInTheCpuPose) {
+  const Scene scene = loadScene("skinned");
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene, {.bvhLayout = GetParam()});
+  ASSERT_TRUE(gpuScene.deforms());
+  TraceRaysPass pass(context, gpuScene);
+  const std::vector<uint32_t> deforming = {instanceNamed(scene, "tube"),
+                                           instanceNamed(scene, "blob")};
+  DeformationPose pose;
+  for (float t : {0.7f, 1.9f, 3.1f}) {
+    evaluatePose(scene, scene.animation, t, pose);
+    gpuScene.setDeformation(pose);
+    context.submitAndWait([&](VkCommandBuffer cmd) { gpuScene.recordInstanceUpload(cmd); });
+    const Scene posed = posedScene(scene, pose);
+    std::vector<Aabb> targets;
+    for (uint32_t d : deforming) targets.push_back(meshBounds(posed, d));
+    std::vector<gpu::GpuRay> rays = raysAt(targets, 3000, uint32_t(1000 * t));
+    std::vector<gpu::GpuHit> hits = pass.trace(rays, true);
+    TraceComparison c = compareWithBruteForce(posed, rays, hits, deforming);
+    std::printf("t = %.1f s: %d of %zu rays differ, %d hit a deforming mesh\n", t, c.differ,
+                rays.size(), c.deformingHits);
+    EXPECT_EQ(c.differ, 0) << "t = " << t;
+    // Not vacuous: the bent tube fills little of its box, so about a third of the rays hit it or
+    // the blob.
+    EXPECT_GT(c.deformingHits, int(rays.size()) / 5) << "t = " << t;
+  }
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Layouts, DeformedTraversal,
+                         ::testing::Values(rt::BvhLayout::Binary, rt::BvhLayout::Wide),
+                         [](const ::testing::TestParamInfo<rt::BvhLayout>& info) {
+                           return std::string(rt::bvhLayoutName(info.param));
+                         });
+
+// ---- motion vectors -----------------------------------------------------------------------------
+
+template <typename T>
+std::vector<T> texels(const HybridFrame& frame, const std::string& view) {
+  const graph::DebugView& v = frame.graph().readDebugView(view);
+  std::vector<T> out(v.bytes.size() / sizeof(T));
+  std::memcpy(out.data(), v.bytes.data(), out.size() * sizeof(T));
+  return out;
+}
+
+glm::vec2 projectToPixel(const gpu::GpuCamera& cam, glm::uvec2 res, const glm::vec3& p) {
+  glm::vec4 clip = viewProjection(cam, 0.01f) * glm::vec4(p, 1.0f);
+  return (glm::vec2(clip) / clip.w * 0.5f + 0.5f) * glm::vec2(res);
+}
+
+// Barycentric weights (of v1, v2) of the point where the ray from `origin` along `dir` crosses
+// the plane of triangle v0 v1 v2.
+glm::vec2 rayBarycentrics(const glm::vec3& origin, const glm::vec3& dir, const glm::vec3& v0,
+                          const glm::vec3& v1, const glm::vec3& v2) {
+  glm::vec3 e1 = v1 - v0, e2 = v2 - v0, p = glm::cross(dir, e2);
+  float inv = 1.0f / glm::dot(e1, p);
+  glm::vec3 s = origin - v0, q = glm::cross(s, e1);
+  return {glm::dot(s, p) * inv, glm::dot(dir, q) * inv};
+}
+
+struct PosedTriangle {
+  glm::vec3 v[3];
+};
+
+PosedTriangle triangleOf(const Scene& posed, uint32_t instance, uint32_t localGeometry,
+                         uint32_t primitive) {
+  const Geometry& g = posed.meshes[posed.instances[instance].mesh].geometries[localGeometry];
+  PosedTriangle t;
+  for (int k = 0; k < 3; ++k) t.v[k] = g.positions[g.indices[3 * primitive + uint32_t(k)]];
+  return t;
+}
+
+// The tube bends between two frames while the camera stands still: each tube pixel's velocity
+// is its surface point's motion on screen (found on the CPU: the pixel ray's barycentrics on the
+// triangle of this pose, carried to the last pose's triangle). The next frame without a new
+// pose has none.
+TEST(DeformedMotion, VelocityIsTheSkinnedSurfacesScreenMotion) {
+  vk::Context context(vk::contextOptionsFromEnvironment({}));
+  const Scene scene = loadScene("skinned");
+  GpuScene gpuScene(context, scene);
+  HybridSettings settings;
+  settings.width = 96;
+  settings.height = 64;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("vbuffer.ids");
+  frame.requestDebugView("gbuffer.velocity");
+  const uint32_t tube = instanceNamed(scene, "tube");
+  DeformationPose before, after;
+  evaluatePose(scene, scene.animation, 0.4f, before);
+  evaluatePose(scene, scene.animation, 0.6f, after);
+  frame.setDeformation(before);
+  frame.render(*scene.camera);
+  frame.setDeformation(after);
+  frame.render(*scene.camera);
+
+  const Scene posedBefore = posedScene(scene, before), posedAfter = posedScene(scene, after);
+  const uint32_t geometryBase = gpuScene.bvh().geometryBase[scene.instances[tube].mesh];
+  std::vector<glm::uvec4> ids = texels<glm::uvec4>(frame, "vbuffer.ids");
+  std::vector<glm::u16vec2> velocity = texels<glm::u16vec2>(frame, "gbuffer.velocity");
+  const glm::uvec2 res(settings.width, settings.height);
+  const gpu::GpuCamera cam = makeGpuCamera(*scene.camera, res.x, res.y, gpuScene.bounds());
+  uint32_t tubePixels = 0;
+  float maxError = 0.0f, meanSpeed = 0.0f;
+  for (uint32_t y = 0; y < res.y; ++y)
+    for (uint32_t x = 0; x < res.x; ++x) {
+      size_t i = size_t(y) * res.x + x;
+      if (ids[i].x != tube) continue;
+      glm::vec2 centre(x + 0.5f, y + 0.5f);
+      glm::vec3 dir = gpu::cameraRayDirection(cam, centre, glm::vec2(res));
+      uint32_t localGeometry = ids[i].y - geometryBase;
+      PosedTriangle now = triangleOf(posedAfter, tube, localGeometry, ids[i].z);
+      PosedTriangle then = triangleOf(posedBefore, tube, localGeometry, ids[i].z);
+      glm::vec2 b = rayBarycentrics(cam.position, dir, now.v[0], now.v[1], now.v[2]);
+      glm::vec3 was = then.v[0] * (1.0f - b.x - b.y) + then.v[1] * b.x + then.v[2] * b.y;
+      glm::vec2 expected = centre - projectToPixel(cam, res, was);
+      glm::vec2 v(glm::unpackHalf1x16(velocity[i].x), glm::unpackHalf1x16(velocity[i].y));
+      maxError = std::max(maxError, glm::length(v - expected));
+      meanSpeed += glm::length(expected);
+      ++tubePixels;
+    }
+  ASSERT_GT(tubePixels, 100u);
+  meanSpeed /= float(tubePixels);
+  std::printf("skinned tube: %u pixels, mean motion %.2f px, max velocity error %.4f px\n",
+              tubePixels, meanSpeed, maxError);
+  EXPECT_GT(meanSpeed, 0.5f);
+  EXPECT_LT(maxError, 0.02f);  // RG16F and float rounding (MovingObjectVelocity's bound)
+
+  frame.render(*scene.camera);  // the same pose again
+  float maxSpeed = 0.0f;
+  for (glm::u16vec2 v : texels<glm::u16vec2>(frame, "gbuffer.velocity"))
+    maxSpeed = std::max(maxSpeed, std::hypot(glm::unpackHalf1x16(v.x), glm::unpackHalf1x16(v.y)));
+  EXPECT_LT(maxSpeed, 1e-3f) << "a mesh that stopped deforming keeps its motion vectors";
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+}
+
+}  // namespace
+}  // namespace bounce
