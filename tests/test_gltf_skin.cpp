@@ -616,6 +616,18 @@ TEST(Deformation, ValidationNamesTheProblem) {
     scene.meshes[0].morphWeights = {1.0f};
     expectInvalid(scene, "0 morph targets, but the mesh has 1 morph weights");
   }
+  {
+    Scene scene = handBuiltSkin();
+    JointTrack track;
+    track.node = 5;
+    scene.animation.joints.push_back(track);
+    expectInvalid(scene, "joint track 0 animates skeleton node 5 (2 nodes)");
+  }
+  {
+    Scene scene = handBuiltSkin();
+    scene.animation.morphWeights.push_back(MorphWeightTrack{0, 2, {0.0f}, {1.0f, 1.0f}});
+    expectInvalid(scene, "morph weight track 0 has 2 targets but mesh 0 has 0 morph weights");
+  }
 }
 
 }  // namespace
