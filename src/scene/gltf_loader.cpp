@@ -451,7 +451,16 @@ class SceneBuilder {
       geometry->material = materials_.sceneIndex(material);
       if (std::optional<glm::mat3> uvTransform = materials_.uvTransform(material))
         gltf::transformUvs(*geometry, *uvTransform);
-      if (deformer) addDeformation(gltfMesh, int(p), *deformer, *geometry);
+      if (deformer) {
+        addDeformation(gltfMesh, int(p), *deformer, *geometry);
+        // Morph targets may share one large accessor, like primitives: they count too.
+        for (const MorphTarget& target : geometry->morphTargets)
+          loadedElements_ +=
+              target.positions.size() + target.normals.size() + target.tangents.size();
+        if (loadedElements_ > kMaxSceneElements)
+          fail("{}: the scene has more than 2^28 vertices, indices and morph deltas in total",
+               src_.path);
+      }
       mesh.geometries.push_back(std::move(*geometry));
     }
     if (mesh.geometries.empty()) {
