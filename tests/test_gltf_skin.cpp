@@ -78,7 +78,7 @@ glm::vec3 posedPosition(const Scene& scene, float t, uint32_t mesh, size_t verte
       << "got (" << (a).x << ", " << (a).y << ", " << (a).z << "), expected (" << (b).x << ", " \
       << (b).y << ", " << (b).z << ")"
 
-// ---- skins -------------------------------------------------------------------------------------
+// ---- skins ----
 
 // A strip along +X from x = 0 to 2 (two rows, y = 0 and 0.2) skinned to two joints: joint 0 at
 // the origin, joint 1 at x = 1 (its child). Column x = 0 follows joint 0, x = 2 joint 1, x = 1
@@ -331,7 +331,7 @@ TEST_F(GltfSkinTest, SkinnedMeshPrimitiveWithoutJointsStaysRigid) {
   EXPECT_VEC3_NEAR(posed.meshes[0].geometries[1].positions[1], glm::vec3(1, 0, 7));
 }
 
-// ---- morph targets -----------------------------------------------------------------------------
+// ---- morph targets ----
 
 // A quad with two targets: target 0 lifts vertex 2 by +Z and tilts its normal, target 1 moves
 // vertex 3 by +X. The weights channel goes from (0, 0) at t = 0 to (1, 0.5) at t = 2 (key-major
@@ -409,8 +409,49 @@ TEST_F(GltfSkinTest, EachMorphedNodeGetsItsOwnMeshAndRestWeights) {
   EXPECT_EQ(scene.instances[2].mesh, scene.instances[3].mesh);
 }
 
-// ---- errors
-// --------------------------------------------------------------------------------------
+// Which channels are dropped, and how: a skinned node's own TRS silently (glTF ignores that
+// node's transform), a `weights` channel of a node without morph targets with a warning; a
+// CUBICSPLINE `weights` sampler is an error like any other.
+TEST_F(GltfSkinTest, ChannelsWithoutEffect) {
+  GltfWriter w;
+  StripFile f = writeStrip(w);
+  int pos = w.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  int plain = w.addNode({{"mesh", w.addMesh({{"attributes", {{"POSITION", pos}}}})}});
+  const float times[] = {0.0f, 1.0f};
+  const float moves[] = {0, 0, 0, 1, 0, 0};
+  int in = w.addAccessor(w.addView(times, sizeof(times)), kFloat, 2, "SCALAR");
+  int out = w.addAccessor(w.addView(moves, sizeof(moves)), kFloat, 2, "VEC3");
+  int weights = w.addAccessor(w.addView(times, sizeof(times)), kFloat, 2, "SCALAR");
+  w.doc["animations"] = json::array(
+      {{{"samplers", {{{"input", in}, {"output", out}}, {{"input", in}, {"output", weights}}}},
+        {"channels",
+         {{{"sampler", 0}, {"target", {{"node", f.skinned}, {"path", "translation"}}}},
+          {{"sampler", 1}, {"target", {{"node", plain}, {"path", "weights"}}}}}}}});
+  LoadWarnings warnings;
+  Scene scene = loadGltf(w.writeGltf(dir, "dropped"), warnings);
+  EXPECT_TRUE(scene.animation.transforms.empty());
+  EXPECT_TRUE(scene.animation.joints.empty());
+  EXPECT_TRUE(scene.animation.morphWeights.empty());
+  ASSERT_EQ(warnings.summary().size(), 1u);
+  EXPECT_NE(warnings.summary()[0].find("weights animations of nodes without a morphed mesh are "
+                                       "ignored"),
+            std::string::npos)
+      << warnings.summary()[0];
+
+  GltfWriter cubic;
+  int p = cubic.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  int mesh = cubic.addMesh({{"attributes", {{"POSITION", p}}}, {"targets", {{{"POSITION", p}}}}});
+  int node = cubic.addNode({{"mesh", mesh}});
+  const float values[6] = {};
+  int cin = cubic.addAccessor(cubic.addView(times, sizeof(times)), kFloat, 2, "SCALAR");
+  int cout = cubic.addAccessor(cubic.addView(values, sizeof(values)), kFloat, 6, "SCALAR");
+  cubic.doc["animations"] = json::array(
+      {{{"samplers", {{{"input", cin}, {"output", cout}, {"interpolation", "CUBICSPLINE"}}}},
+        {"channels", {{{"sampler", 0}, {"target", {{"node", node}, {"path", "weights"}}}}}}}});
+  expectError(cubic.writeGltf(dir, "cubic"), {"animation 0 channel 0", "CUBICSPLINE"});
+}
+
+// ---- errors ----
 
 // A one-triangle skinned mesh with two joints whose parts the tests break.
 struct SkinParts {
@@ -501,7 +542,7 @@ TEST_F(GltfSkinTest, NodeWeightsOfTheWrongCount) {
   expectError(w.writeGltf(dir, "nodeweights"), {"node 0 ('n') has 2 weights for 1 morph targets"});
 }
 
-// ---- deformation.cpp on hand-built scenes ------------------------------------------------------
+// ---- deformation.cpp on hand-built scenes ----
 
 // One triangle skinned to two joints (a root and its child at x = 1), with a tangent stream.
 Scene handBuiltSkin() {
