@@ -125,6 +125,7 @@ void loadMorphTargets(const Source& src, int mesh, int primitiveIndex, Geometry&
   std::string where = describePrimitive(src, mesh, primitiveIndex);
   size_t n = g.positions.size();
   g.morphTargets.clear();
+  bool ignoredAttribute = false;
   for (size_t k = 0; k < primitive.targets.size(); ++k) {
     MorphTarget target;
     for (const auto& [name, accessor] : primitive.targets[k]) {
@@ -136,13 +137,14 @@ void loadMorphTargets(const Source& src, int mesh, int primitiveIndex, Geometry&
       else if (name == "TANGENT")
         target.tangents = readDeltas(src, accessor, stream, n, where);
       else
-        warnIgnored(src,
-                    "morph targets of attributes other than POSITION, NORMAL and TANGENT "
-                    "are ignored",
-                    "primitives", where);
+        ignoredAttribute = true;
     }
     g.morphTargets.push_back(std::move(target));
   }
+  if (ignoredAttribute)
+    warnIgnored(src,
+                "morph targets of attributes other than POSITION, NORMAL and TANGENT are ignored",
+                "primitives", where);
 }
 
 size_t morphTargetCount(const Source& src, int mesh) {
