@@ -451,6 +451,38 @@ TEST_F(GltfSkinTest, ChannelsWithoutEffect) {
   expectError(cubic.writeGltf(dir, "cubic"), {"animation 0 channel 0", "CUBICSPLINE"});
 }
 
+// A mesh both morphed and skinned morphs first, then skins (glTF 2.0 §3.7.2.2): a delta of
+// (1, 0, 0) at weight 1 on a joint turned 90 degrees about +Z lands at R (p + d), not R p + d.
+// Two skinned nodes sharing the skin share the Scene::skins entry and get a mesh each.
+TEST_F(GltfSkinTest, MorphBeforeSkinAndASharedSkin) {
+  GltfWriter w;
+  int pos = w.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  int delta = w.addPositions({{1, 0, 0}, {1, 0, 0}, {1, 0, 0}});
+  std::vector<uint8_t> joints(12, 0);
+  std::vector<float> weights = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  int j = addData(w, joints, kUnsignedByte, "VEC4");
+  int wt = addData(w, weights, kFloat, "VEC4");
+  int morphed = w.addMesh({{"attributes", {{"POSITION", pos}, {"JOINTS_0", j}, {"WEIGHTS_0", wt}}},
+                           {"targets", {{{"POSITION", delta}}}}});
+  w.doc["meshes"][size_t(morphed)]["weights"] = {1.0};
+  int plain = w.addMesh({{"attributes", {{"POSITION", pos}, {"JOINTS_0", j}, {"WEIGHTS_0", wt}}}});
+  const float s = std::sqrt(0.5f);
+  int joint = w.addNode({{"rotation", {0, 0, s, s}}});
+  w.addNode({{"mesh", morphed}, {"skin", 0}});
+  w.addNode({{"mesh", plain}, {"skin", 0}});
+  w.doc["skins"] = json::array({{{"joints", {joint}}}});
+  Scene scene = loadGltf(w.writeGltf(dir, "both"));
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  ASSERT_EQ(scene.skins.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].skin, 0);
+  EXPECT_EQ(scene.meshes[1].skin, 0);
+  Scene posed = posedScene(scene, restPose(scene));
+  // (x, y) turned 90 degrees about +Z is (-y, x).
+  EXPECT_VEC3_NEAR(posed.meshes[0].geometries[0].positions[1], glm::vec3(0, 2, 0));
+  EXPECT_VEC3_NEAR(posed.meshes[0].geometries[0].positions[2], glm::vec3(-1, 1, 0));
+  EXPECT_VEC3_NEAR(posed.meshes[1].geometries[0].positions[1], glm::vec3(0, 1, 0));
+}
+
 // ---- errors ----
 
 // A one-triangle skinned mesh with two joints whose parts the tests break.
