@@ -136,7 +136,7 @@ void evaluateTransforms(const SceneAnimation& animation, float t,
 void evaluateJoints(const SceneAnimation& animation, float t, std::vector<glm::mat4>& locals);
 // Writes every animated mesh's morph weights at time t into `weights` (one vector per mesh, the
 // rest weights, made by the caller; a track whose target count differs from its mesh's vector
-// is skipped, validateAnimation reports it).
+// is skipped; validateDeformation reports it).
 void evaluateMorphWeights(const SceneAnimation& animation, float t,
                           std::vector<std::vector<float>>& weights);
 

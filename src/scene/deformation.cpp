@@ -165,9 +165,33 @@ void validateSkinStreams(const Scene& scene, const Mesh& mesh, const Geometry& g
   }
 }
 
+// Tracks that evaluateJoints and evaluateMorphWeights would skip (a node or mesh that does not
+// exist, a target count unlike the mesh's) are errors here rather than silently still meshes.
+void validateDeformationTracks(const Scene& scene, const std::string& source) {
+  const SceneAnimation& animation = scene.animation;
+  for (size_t i = 0; i < animation.joints.size(); ++i)
+    if (animation.joints[i].node >= scene.skeleton.size())
+      fail("{}: joint track {} animates skeleton node {} ({} nodes)", source, i,
+           animation.joints[i].node, scene.skeleton.size());
+  for (size_t i = 0; i < animation.morphWeights.size(); ++i) {
+    const MorphWeightTrack& track = animation.morphWeights[i];
+    if (track.mesh >= scene.meshes.size())
+      fail("{}: morph weight track {} animates mesh {} ({} meshes)", source, i, track.mesh,
+           scene.meshes.size());
+    size_t targets = scene.meshes[track.mesh].morphWeights.size();
+    if (track.targets != targets)
+      fail("{}: morph weight track {} has {} targets but mesh {} has {} morph weights", source, i,
+           track.targets, track.mesh, targets);
+    if (track.values.size() != track.times.size() * targets)
+      fail("{}: morph weight track {} has {} values for {} keys x {} targets", source, i,
+           track.values.size(), track.times.size(), targets);
+  }
+}
+
 }  // namespace
 
 void validateDeformation(const Scene& scene, const std::string& source) {
+  validateDeformationTracks(scene, source);
   for (size_t n = 0; n < scene.skeleton.size(); ++n)
     if (scene.skeleton[n].parent >= int(n))
       fail("{}: skeleton node {} ('{}') has parent {}, which does not come before it", source, n,

@@ -47,7 +47,8 @@ Scene posedScene(const Scene& scene, const DeformationPose& pose);
 
 // Checks what deformation needs beyond validateScene: joint and weight streams sized together,
 // joint indices inside the skin, finite weights, morph target counts and stream sizes, skin
-// references, skeleton parents before children. Throws bounce::Error naming `source`.
+// references, skeleton parents before children, joint and morph weight tracks that name a
+// skeleton node or mesh that exists with its target count. Throws bounce::Error naming `source`.
 void validateDeformation(const Scene& scene, const std::string& source);
 
 }  // namespace bounce

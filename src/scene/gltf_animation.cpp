@@ -1,10 +1,13 @@
-// glTF animations (glTF 2.0 §3.11) as SceneAnimation transform tracks. Every animation of the
-// file plays at once (they share the timeline), as viewers do when asked to "play all".
-// Supported: translation, rotation and scale channels of nodes that place a mesh, LINEAR and
-// STEP samplers. Not supported, with a warning: morph-target weights, channels on nodes without
-// a mesh (an animated parent would have to be evaluated down the hierarchy every frame, which
-// the flat per-instance tracks do not model). CUBICSPLINE samplers are an error naming the
-// sampler, rather than a silent approximation.
+// glTF animations (glTF 2.0 §3.11) as SceneAnimation tracks. Every animation of the file plays
+// at once (they share the timeline), as viewers do when asked to "play all". Supported, with
+// LINEAR and STEP samplers: translation, rotation and scale channels of nodes that place an
+// unskinned mesh (transform tracks) and of skeleton nodes, the joints of skins and their
+// ancestors (joint tracks; a node that is both gets both), and `weights` channels of nodes with
+// a morphed mesh (morph weight tracks). Not supported, with a warning: channels on other nodes
+// (an animated parent of a mesh would have to be evaluated down the hierarchy every frame, which
+// the flat per-instance tracks do not model). TRS channels of a skinned mesh's own node are
+// dropped silently: glTF ignores that node's transform. CUBICSPLINE samplers are an error naming
+// the sampler, rather than a silent approximation.
 #include <cmath>
 #include <map>
 #include <type_traits>
@@ -40,20 +43,35 @@ TransformTrack restTrack(const Source& src, int node, uint32_t instance, const g
   return track;
 }
 
-template <typename T>
-Channel<T> readChannel(const Source& src, const tinygltf::AnimationSampler& sampler,
-                       const std::string& what, int components) {
-  Channel<T> channel;
-  if (sampler.interpolation == "STEP")
-    channel.interpolation = Interpolation::Step;
-  else if (sampler.interpolation == "CUBICSPLINE")
+Interpolation readInterpolation(const Source& src, const tinygltf::AnimationSampler& sampler,
+                                const std::string& what) {
+  if (sampler.interpolation == "STEP") return Interpolation::Step;
+  if (sampler.interpolation == "CUBICSPLINE")
     fail(
         "{}: {} uses CUBICSPLINE interpolation, which Bounce does not support (re-export with "
         "LINEAR or STEP)",
         src.path, what);
-  else if (!sampler.interpolation.empty() && sampler.interpolation != "LINEAR")
+  if (!sampler.interpolation.empty() && sampler.interpolation != "LINEAR")
     fail("{}: {} has unknown interpolation '{}'", src.path, what, sampler.interpolation);
-  channel.times = readFloatAccessor(src, sampler.input, TINYGLTF_TYPE_SCALAR, "input of " + what);
+  return Interpolation::Linear;
+}
+
+std::vector<float> readTimes(const Source& src, const tinygltf::AnimationSampler& sampler,
+                             const std::string& what) {
+  std::vector<float> times =
+      readFloatAccessor(src, sampler.input, TINYGLTF_TYPE_SCALAR, "input of " + what);
+  for (size_t i = 0; i < times.size(); ++i)
+    if (!std::isfinite(times[i]) || (i > 0 && !(times[i] > times[i - 1])))
+      fail("{}: {} key times must be finite and strictly increasing (key {})", src.path, what, i);
+  return times;
+}
+
+template <typename T>
+Channel<T> readChannel(const Source& src, const tinygltf::AnimationSampler& sampler,
+                       const std::string& what, int components) {
+  Channel<T> channel;
+  channel.interpolation = readInterpolation(src, sampler, what);
+  channel.times = readTimes(src, sampler, what);
   std::vector<float> values = readFloatAccessor(
       src, sampler.output, components == 4 ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
       "output of " + what);
@@ -61,8 +79,6 @@ Channel<T> readChannel(const Source& src, const tinygltf::AnimationSampler& samp
     fail("{}: {} has {} key times but {} values", src.path, what, channel.times.size(),
          values.size() / size_t(components));
   for (size_t i = 0; i < channel.times.size(); ++i) {
-    if (!std::isfinite(channel.times[i]) || (i > 0 && !(channel.times[i] > channel.times[i - 1])))
-      fail("{}: {} key times must be finite and strictly increasing (key {})", src.path, what, i);
     const float* v = values.data() + i * size_t(components);
     for (int c = 0; c < components; ++c)
       if (!std::isfinite(v[c])) fail("{}: {} has a non-finite value at key {}", src.path, what, i);
@@ -74,45 +90,88 @@ Channel<T> readChannel(const Source& src, const tinygltf::AnimationSampler& samp
   return channel;
 }
 
+// A `weights` channel: one weight per morph target of the mesh at each key (glTF 2.0 §3.11:
+// the output holds keys x targets scalars, key-major).
+MorphWeightTrack readWeightChannel(const Source& src, const tinygltf::AnimationSampler& sampler,
+                                   const std::string& what, uint32_t mesh, uint32_t targets) {
+  MorphWeightTrack track;
+  track.mesh = mesh;
+  track.targets = targets;
+  track.interpolation = readInterpolation(src, sampler, what);
+  track.times = readTimes(src, sampler, what);
+  track.values = readFloatAccessor(src, sampler.output, TINYGLTF_TYPE_SCALAR, "output of " + what);
+  if (track.values.size() != track.times.size() * targets)
+    fail(
+        "{}: {} has {} weights in its output; {} keys x {} morph targets need {} (output of the "
+        "weights channel)",
+        src.path, what, track.values.size(), track.times.size(), targets,
+        track.times.size() * targets);
+  for (size_t i = 0; i < track.values.size(); ++i)
+    if (!std::isfinite(track.values[i]))
+      fail("{}: {} has a non-finite weight at key {}", src.path, what, i / targets);
+  return track;
+}
+
+// Sets the channel of `track` that `path` names.
+void assignTransformChannel(const Source& src, const tinygltf::AnimationSampler& sampler,
+                            const std::string& path, const std::string& what,
+                            TransformTrack& track) {
+  if (path == "translation")
+    track.translation = readChannel<glm::vec3>(src, sampler, what, 3);
+  else if (path == "rotation")
+    track.rotation = readChannel<glm::quat>(src, sampler, what, 4);
+  else if (path == "scale")
+    track.scale = readChannel<glm::vec3>(src, sampler, what, 3);
+  else
+    fail("{}: {} has unknown target path '{}'", src.path, what, path);
+}
+
 }  // namespace
 
-void loadAnimations(const Source& src, const std::vector<AnimatedInstance>& instances,
-                    SceneAnimation& out) {
-  std::map<int, size_t> trackOfNode;
+void loadAnimations(const Source& src, const AnimationTargets& targets,
+                    const std::vector<Mesh>& meshes, SceneAnimation& out) {
+  std::map<int, size_t> trackOfNode, jointTrackOfNode;
   for (size_t a = 0; a < src.model.animations.size(); ++a) {
     const tinygltf::Animation& animation = src.model.animations[a];
     for (size_t c = 0; c < animation.channels.size(); ++c) {
       const tinygltf::AnimationChannel& channel = animation.channels[c];
       std::string what = fmt::format("animation {} channel {}", a, c);
-      if (channel.target_path == "weights") {
-        warnIgnored(src, "morph target weight animations are ignored", "animation channels", what);
-        continue;
-      }
       if (channel.sampler < 0 || size_t(channel.sampler) >= animation.samplers.size())
         fail("{}: {} refers to sampler {} ({} samplers)", src.path, what, channel.sampler,
              animation.samplers.size());
-      const AnimatedInstance* target = nullptr;
-      for (const AnimatedInstance& i : instances)
-        if (i.node == channel.target_node) target = &i;
-      if (!target) {
-        warnIgnored(src,
-                    "animations of nodes that place no mesh (skin joints, parents) are ignored",
-                    "animation channels", what);
+      const tinygltf::AnimationSampler& sampler = animation.samplers[size_t(channel.sampler)];
+      int node = channel.target_node;
+      if (channel.target_path == "weights") {
+        auto morphed = targets.morphedMeshes.find(node);
+        if (morphed == targets.morphedMeshes.end()) {
+          warnIgnored(src, "weights animations of nodes without a morphed mesh are ignored",
+                      "animation channels", what);
+          continue;
+        }
+        uint32_t mesh = morphed->second;
+        out.morphWeights.push_back(readWeightChannel(src, sampler, what, mesh,
+                                                     uint32_t(meshes[mesh].morphWeights.size())));
         continue;
       }
-      auto [it, added] = trackOfNode.try_emplace(target->node, out.transforms.size());
-      if (added)
-        out.transforms.push_back(restTrack(src, target->node, target->instance, target->parent));
-      TransformTrack& track = out.transforms[it->second];
-      const tinygltf::AnimationSampler& sampler = animation.samplers[size_t(channel.sampler)];
-      if (channel.target_path == "translation")
-        track.translation = readChannel<glm::vec3>(src, sampler, what, 3);
-      else if (channel.target_path == "rotation")
-        track.rotation = readChannel<glm::quat>(src, sampler, what, 4);
-      else if (channel.target_path == "scale")
-        track.scale = readChannel<glm::vec3>(src, sampler, what, 3);
-      else
-        fail("{}: {} has unknown target path '{}'", src.path, what, channel.target_path);
+      const AnimatedInstance* target = nullptr;
+      for (const AnimatedInstance& i : targets.instances)
+        if (i.node == node) target = &i;
+      auto joint = targets.skeletonNodes.find(node);
+      if (target) {
+        auto [it, added] = trackOfNode.try_emplace(node, out.transforms.size());
+        if (added) out.transforms.push_back(restTrack(src, node, target->instance, target->parent));
+        assignTransformChannel(src, sampler, channel.target_path, what, out.transforms[it->second]);
+      }
+      if (joint != targets.skeletonNodes.end()) {
+        auto [it, added] = jointTrackOfNode.try_emplace(node, out.joints.size());
+        if (added) out.joints.push_back({joint->second, restTrack(src, node, 0, glm::mat4(1.0f))});
+        assignTransformChannel(src, sampler, channel.target_path, what, out.joints[it->second].trs);
+      }
+      if (!target && joint == targets.skeletonNodes.end() && !targets.skinnedNodes.count(node))
+        warnIgnored(src,
+                    "animations of nodes that place no mesh and are no skin joint (parents of "
+                    "meshes) are ignored",
+                    "animation channels", what);
     }
   }
 }

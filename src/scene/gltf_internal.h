@@ -45,6 +45,25 @@ std::string describePrimitive(const Source& src, int mesh, int primitive);
 // primitives we do not render (points, lines, empty). `material` is left for the caller.
 std::optional<Geometry> loadPrimitive(const Source& src, int mesh, int primitive);
 
+// Skins and morph targets of primitives (src/scene/gltf_skin.cpp).
+//
+// JOINTS_0 and WEIGHTS_0 of a primitive of a skinned mesh into g.joints and g.weights, the
+// weights renormalised to sum 1 (JOINTS_1/WEIGHTS_1 are ignored with a warning). False when the
+// primitive has neither. Throws naming the primitive and vertex for joints outside the skin's
+// `jointCount`, negative or all-zero weights, or streams not sized like POSITION.
+bool loadSkinWeights(const Source& src, int mesh, int primitive, size_t jointCount, Geometry& g);
+// The POSITION, NORMAL and TANGENT deltas of the primitive's morph targets into g.morphTargets.
+void loadMorphTargets(const Source& src, int mesh, int primitive, Geometry& g);
+// The morph target count shared by every primitive of the mesh (0 = none); throws naming two
+// primitives whose counts differ.
+size_t morphTargetCount(const Source& src, int mesh);
+// The rest weights of node `node`'s mesh: node.weights, else mesh.weights, else zeros.
+std::vector<float> restMorphWeights(const Source& src, int node, size_t targets);
+// Skin `skin`'s inverseBindMatrices, one per joint (identities when the skin has none).
+std::vector<glm::mat4> loadInverseBindMatrices(const Source& src, int skin);
+// Applies `toWorld` to a geometry's positions, normals, tangents and morph deltas.
+void bakeTransform(Geometry& g, const glm::mat4& toWorld);
+
 // A mesh instance made from a node, for animations: the node, the instance, and the node's
 // parent-to-world transform (static: animated parents are not supported).
 struct AnimatedInstance {
@@ -52,9 +71,19 @@ struct AnimatedInstance {
   uint32_t instance = 0;
   glm::mat4 parent{1.0f};
 };
-// Reads the file's animations into `out` (src/scene/gltf_animation.cpp).
-void loadAnimations(const Source& src, const std::vector<AnimatedInstance>& instances,
-                    SceneAnimation& out);
+// What the file's animation channels can drive: instances of unskinned mesh nodes, skeleton
+// nodes (Scene::skeleton index of a glTF node), the morphed mesh copy of a node (Scene::meshes
+// index), and skinned mesh nodes (whose own transform glTF ignores).
+struct AnimationTargets {
+  std::vector<AnimatedInstance> instances;
+  std::map<int, uint32_t> skeletonNodes;
+  std::map<int, uint32_t> morphedMeshes;
+  std::set<int> skinnedNodes;
+};
+// Reads the file's animations into `out` (src/scene/gltf_animation.cpp). `meshes` are
+// Scene::meshes, for the morph target counts.
+void loadAnimations(const Source& src, const AnimationTargets& targets,
+                    const std::vector<Mesh>& meshes, SceneAnimation& out);
 
 // Applies a 2D affine UV transform (KHR_texture_transform, as a 3x3 matrix) to every UV.
 void transformUvs(Geometry& geometry, const glm::mat3& uvTransform);

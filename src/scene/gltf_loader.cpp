@@ -1,7 +1,10 @@
 // glTF 2.0 loader on Debian's tinygltf 2.7: reads the file (checking the GLB layout itself),
 // lets tinygltf parse the JSON and buffers, then walks the default scene's node trees into
-// instances, the first perspective camera and KHR_lights_punctual lights. Primitives are in
-// gltf_mesh.cpp, materials and images in gltf_material.cpp, accessor reads in gltf_accessor.cpp.
+// instances, the first perspective camera and KHR_lights_punctual lights. A node with a skin or
+// a morphed mesh gets its own copy of the mesh (a deforming mesh has one instance); the joints
+// of the skins and their ancestors become Scene::skeleton. Primitives are in gltf_mesh.cpp, their
+// skin and morph streams in gltf_skin.cpp, materials and images in gltf_material.cpp, accessor
+// reads in gltf_accessor.cpp.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -252,8 +255,9 @@ class SceneBuilder {
 
   Scene build(const std::string& name) {
     nodeState_.assign(src_.model.nodes.size(), NodeState::Unvisited);
+    findParents();
     for (int root : rootNodes()) visitNode(root, glm::mat4(1.0f), 0, "the scene");
-    gltf::loadAnimations(src_, animatedInstances_, scene_.animation);
+    gltf::loadAnimations(src_, animationTargets_, scene_.meshes, scene_.animation);
     materials_.ensureNotEmpty();
     materials_.decodeImages();
     warnUnusedExtensions();
@@ -307,11 +311,13 @@ class SceneBuilder {
     if (!isFinite(toWorld))
       fail("{}: {} has a non-finite world transform", src_.path,
            gltf::describe("node", index, node.name));
-    if (node.mesh >= 0 && placeable(index, toWorld)) {
+    // A skinned node's own transform is ignored (glTF 2.0 §3.7.3.1), singular or not.
+    bool skinned = node.mesh >= 0 && node.skin >= 0;
+    if (node.mesh >= 0 && (skinned || placeable(index, toWorld))) {
       size_t before = scene_.instances.size();
       addInstance(index, toWorld);
-      if (scene_.instances.size() > before)
-        animatedInstances_.push_back({index, uint32_t(before), parentToWorld});
+      if (scene_.instances.size() > before && !skinned)
+        animationTargets_.instances.push_back({index, uint32_t(before), parentToWorld});
     }
     if (node.camera >= 0) addCamera(index, toWorld);
     addLight(index, toWorld);
@@ -381,13 +387,25 @@ class SceneBuilder {
     if (size_t(node.mesh) >= src_.model.meshes.size())
       fail("{}: node {} refers to mesh {} ({} meshes)", src_.path, index, node.mesh,
            src_.model.meshes.size());
-    if (node.skin >= 0)
-      warnIgnored(src_, "skins are ignored: skinned meshes are drawn in their bind pose", "nodes",
-                  gltf::describe("node", index, node.name));
-    std::optional<uint32_t> mesh = sceneMesh(node.mesh);
+    int skin = node.skin >= 0 ? sceneSkin(node.skin, index) : -1;
+    size_t targets = gltf::morphTargetCount(src_, node.mesh);
+    std::optional<uint32_t> mesh;
+    if (skin >= 0 || targets > 0) {
+      Deformer deformer{index, skin, targets, toWorld};
+      std::optional<Mesh> copy = loadMesh(node.mesh, &deformer);
+      if (copy) {
+        mesh = uint32_t(scene_.meshes.size());
+        scene_.meshes.push_back(std::move(*copy));
+        if (targets > 0) animationTargets_.morphedMeshes[index] = *mesh;
+        if (skin >= 0) animationTargets_.skinnedNodes.insert(index);
+      }
+    } else {
+      mesh = sceneMesh(node.mesh);
+    }
     if (!mesh) return;
     std::string name = node.name.empty() ? fmt::format("node {}", index) : node.name;
-    scene_.instances.push_back(Instance{*mesh, toWorld, name});
+    // The joints place a skinned mesh's vertices in the world.
+    scene_.instances.push_back(Instance{*mesh, skin >= 0 ? glm::mat4(1.0f) : toWorld, name});
   }
 
   // Loads a glTF mesh on first use; several nodes sharing it share one scene Mesh (instancing).
@@ -395,6 +413,28 @@ class SceneBuilder {
   std::optional<uint32_t> sceneMesh(int gltfMesh) {
     auto cached = meshes_.find(gltfMesh);
     if (cached != meshes_.end()) return cached->second;
+    std::optional<Mesh> mesh = loadMesh(gltfMesh, nullptr);
+    std::optional<uint32_t> result;
+    if (mesh) {
+      result = uint32_t(scene_.meshes.size());
+      scene_.meshes.push_back(std::move(*mesh));
+    }
+    meshes_.emplace(gltfMesh, result);
+    return result;
+  }
+
+  // What makes a node's copy of a mesh deform: the node (whose weights and world transform the
+  // copy needs), its skin (Scene::skins index, -1 = none) and the mesh's morph target count.
+  struct Deformer {
+    int node = -1;
+    int skin = -1;
+    size_t targets = 0;
+    glm::mat4 toWorld{1.0f};
+  };
+
+  // The triangle primitives of a glTF mesh, with their skin and morph streams when `deformer`
+  // is given; nothing, after a warning, when the mesh has no triangles.
+  std::optional<Mesh> loadMesh(int gltfMesh, const Deformer* deformer) {
     const tinygltf::Mesh& source = src_.model.meshes[size_t(gltfMesh)];
     Mesh mesh;
     mesh.name = source.name.empty() ? fmt::format("mesh {}", gltfMesh) : source.name;
@@ -411,22 +451,106 @@ class SceneBuilder {
       geometry->material = materials_.sceneIndex(material);
       if (std::optional<glm::mat3> uvTransform = materials_.uvTransform(material))
         gltf::transformUvs(*geometry, *uvTransform);
-      if (!source.primitives[p].targets.empty())
-        warnIgnored(src_, "morph targets are ignored", "primitives",
-                    gltf::describePrimitive(src_, gltfMesh, int(p)));
+      if (deformer) {
+        addDeformation(gltfMesh, int(p), *deformer, *geometry);
+        // Morph targets may share one large accessor, like primitives: they count too.
+        for (const MorphTarget& target : geometry->morphTargets)
+          loadedElements_ +=
+              target.positions.size() + target.normals.size() + target.tangents.size();
+        if (loadedElements_ > kMaxSceneElements)
+          fail("{}: the scene has more than 2^28 vertices, indices and morph deltas in total",
+               src_.path);
+      }
       mesh.geometries.push_back(std::move(*geometry));
     }
-    std::optional<uint32_t> result;
     if (mesh.geometries.empty()) {
       warn(src_, {.group = "no triangles to render, nodes using it are skipped",
                   .things = "meshes",
                   .where = gltf::describe("mesh", gltfMesh, source.name)});
-    } else {
-      result = uint32_t(scene_.meshes.size());
-      scene_.meshes.push_back(std::move(mesh));
+      return std::nullopt;
     }
-    meshes_.emplace(gltfMesh, result);
-    return result;
+    if (deformer) {
+      mesh.skin = deformer->skin;
+      if (deformer->targets > 0)
+        mesh.morphWeights = gltf::restMorphWeights(src_, deformer->node, deformer->targets);
+    }
+    return mesh;
+  }
+
+  // The morph targets and joint influences of one primitive of a deforming node's mesh copy. A
+  // primitive of a skinned mesh without JOINTS_0 and WEIGHTS_0 cannot follow the joints; it is
+  // drawn where an unskinned node would draw it, at the node's rest world transform (baked into
+  // its vertices, since the skinned instance has the identity transform), with a warning.
+  void addDeformation(int gltfMesh, int primitive, const Deformer& deformer, Geometry& g) {
+    if (deformer.targets > 0) gltf::loadMorphTargets(src_, gltfMesh, primitive, g);
+    if (deformer.skin < 0) return;
+    size_t jointCount = scene_.skins[size_t(deformer.skin)].joints.size();
+    if (gltf::loadSkinWeights(src_, gltfMesh, primitive, jointCount, g)) return;
+    warn(src_, {.group = "primitives of a skinned mesh without JOINTS_0 and WEIGHTS_0 stay rigid "
+                         "at their node's rest transform",
+                .things = "primitives",
+                .where = gltf::describePrimitive(src_, gltfMesh, primitive)});
+    gltf::bakeTransform(g, deformer.toWorld);
+  }
+
+  // glTF skin `gltfSkin` as a Scene::skins index, converted on first use (by node `node`), its
+  // joints and their ancestors added to the skeleton.
+  int sceneSkin(int gltfSkin, int node) {
+    if (size_t(gltfSkin) >= src_.model.skins.size())
+      fail("{}: node {} refers to skin {} ({} skins)", src_.path, node, gltfSkin,
+           src_.model.skins.size());
+    auto cached = skins_.find(gltfSkin);
+    if (cached != skins_.end()) return cached->second;
+    const tinygltf::Skin& source = src_.model.skins[size_t(gltfSkin)];
+    std::string what = gltf::describe("skin", gltfSkin, source.name);
+    if (source.joints.empty()) fail("{}: {} has no joints", src_.path, what);
+    Skin skin;
+    skin.name = source.name.empty() ? fmt::format("skin {}", gltfSkin) : source.name;
+    for (int joint : source.joints) {
+      if (size_t(joint) >= src_.model.nodes.size())
+        fail("{}: {} has joint node {} ({} nodes)", src_.path, what, joint,
+             src_.model.nodes.size());
+      skin.joints.push_back(skeletonNode(joint));
+    }
+    skin.inverseBindMatrices = gltf::loadInverseBindMatrices(src_, gltfSkin);
+    int index = int(scene_.skins.size());
+    scene_.skins.push_back(std::move(skin));
+    skins_.emplace(gltfSkin, index);
+    return index;
+  }
+
+  // Scene::skeleton index of glTF node `node`, added (after its ancestors, so that parents come
+  // before children) on first use.
+  uint32_t skeletonNode(int node) {
+    std::vector<int> chain;  // node and its ancestors not in the skeleton yet, child first
+    for (int n = node; n >= 0 && !animationTargets_.skeletonNodes.count(n);
+         n = parents_[size_t(n)]) {
+      chain.push_back(n);
+      if (chain.size() > size_t(kMaxNodeDepth))
+        fail("{}: the ancestors of skin joint node {} loop or are deeper than {} levels", src_.path,
+             node, kMaxNodeDepth);
+    }
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+      const tinygltf::Node& n = src_.model.nodes[size_t(*it)];
+      int parent = parents_[size_t(*it)];
+      SkeletonNode skeletonNode;
+      skeletonNode.name = n.name.empty() ? fmt::format("node {}", *it) : n.name;
+      skeletonNode.parent = parent < 0 ? -1 : int(animationTargets_.skeletonNodes.at(parent));
+      skeletonNode.local = localTransform(*it);
+      animationTargets_.skeletonNodes[*it] = uint32_t(scene_.skeleton.size());
+      scene_.skeleton.push_back(skeletonNode);
+    }
+    return animationTargets_.skeletonNodes.at(node);
+  }
+
+  // Every node's parent (-1 = none). A node listed as the child of several is an error met when
+  // the scene is walked (visitNode); here the first parent wins.
+  void findParents() {
+    parents_.assign(src_.model.nodes.size(), -1);
+    for (size_t i = 0; i < src_.model.nodes.size(); ++i)
+      for (int child : src_.model.nodes[i].children)
+        if (size_t(child) < parents_.size() && parents_[size_t(child)] < 0)
+          parents_[size_t(child)] = int(i);
   }
 
   // The first perspective camera met in node order becomes the scene camera: at the node's
@@ -536,8 +660,10 @@ class SceneBuilder {
   gltf::MaterialTable materials_;  // refers to scene_, so declared after it
   std::set<int> animatedNodes_;
   std::vector<NodeState> nodeState_;
-  std::vector<gltf::AnimatedInstance> animatedInstances_;
-  std::map<int, std::optional<uint32_t>> meshes_;
+  gltf::AnimationTargets animationTargets_;
+  std::map<int, std::optional<uint32_t>> meshes_;  // glTF mesh -> shared Mesh (not deforming)
+  std::map<int, int> skins_;                       // glTF skin -> Scene::skins index
+  std::vector<int> parents_;                       // per glTF node
   uint64_t loadedElements_ = 0;
 };
 
