@@ -1,6 +1,6 @@
 // Plays a SceneAnimation on a HybridFrame: at each frame's time t it evaluates the
-// instance transforms, the deforming meshes' pose, the time of day and the camera path, hands them to the frame and resets
-// temporal history at camera cuts, so no stale history shows after a jump.
+// instance transforms, the deforming meshes' pose, the time of day and the camera path, hands them
+// to the frame and resets temporal history at camera cuts, so no stale history shows after a jump.
 //
 //   AnimationPlayer player(scene, scene.animation);
 //   for (uint32_t i = 0; i < frames; ++i) frame.render(player.apply(frame, i / fps));

@@ -68,8 +68,8 @@ GpuDeformer::GpuDeformer(vk::Context& context, const Scene& scene, const rt::Sce
   }
   uploadRest(scene, bvh);
   uploadPlans(scene, bvh);
-  const VkDeviceSize poseBytes = (3 * jointCount_ + 1) * sizeof(glm::vec4) +
-                                 (weightCount_ + 1) * sizeof(float);
+  const VkDeviceSize poseBytes =
+      (3 * jointCount_ + 1) * sizeof(glm::vec4) + (weightCount_ + 1) * sizeof(float);
   pose_ = vk::Buffer(context, poseBytes, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                      vk::MemoryUse::DeviceOnly, "scene.deform-pose");
   poseStaging_ = vk::Buffer(context, poseBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -94,8 +94,8 @@ void GpuDeformer::uploadRest(const Scene& scene, const rt::SceneBvh& bvh) {
       d.firstVertex = bvh.geometries[bvh.geometryBase[m] + gi].vertexOffset;
       d.vertexCount = uint32_t(g.positions.size());
       d.restBase = uint32_t(rest.size());
-      d.jointBase = mesh.skin >= 0 && !g.joints.empty() ? jointBase[size_t(mesh.skin)]
-                                                        : gpu::DEFORM_NO_SKIN;
+      d.jointBase =
+          mesh.skin >= 0 && !g.joints.empty() ? jointBase[size_t(mesh.skin)] : gpu::DEFORM_NO_SKIN;
       d.morphBase = uint32_t(deltas.size());
       d.morphCount = uint32_t(g.morphTargets.size());
       d.weightBase = weightCount_;

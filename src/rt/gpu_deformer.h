@@ -83,7 +83,7 @@ class GpuDeformer {
   vk::ComputePipeline deformPipeline_;
   vk::ComputePipeline refitPipeline_;
   bool posePending_ = false;
-  bool posed_ = false;             // a pose has reached the GPU
+  bool posed_ = false;            // a pose has reached the GPU
   bool previousDiffers_ = false;  // the previous positions hold an older pose than the current
 };
 

@@ -51,16 +51,18 @@ GpuScene::GpuScene(vk::Context& context, const Scene& scene, const GpuSceneOptio
     if (tlasUpdate_ != TlasUpdate::GpuRefit)
       fail("{}: deforming meshes need the TLAS refitted on the GPU (TlasUpdate::GpuRefit)",
            scene.name.empty() ? std::string("scene") : scene.name);
-    bvh_ = rt::buildSceneBvh(posedScene(scene, restPose(scene)), bvhOptions);
+    const Scene rest = posedScene(scene, restPose(scene));
+    bvh_ = rt::buildSceneBvh(rest, bvhOptions);
+    bounds_ = rest.bounds();
   } else {
     bvh_ = rt::buildSceneBvh(scene, bvhOptions);
+    bounds_ = scene.bounds();
   }
   // A refitted tree needs a leaf for every instance that may ever show (scene_bvh.h).
   if (tlasUpdate_ == TlasUpdate::GpuRefit)
     rt::buildRefittedTlas(bvh_.tlasNodes, tlasRefit_, bvh_.instances, bvh_.meshBounds);
   stats_.bvhBuildSeconds = secondsSince(start);
   textures_ = packSceneTextures(scene);
-  bounds_ = scene.bounds();
   stats_.triangles = scene.triangleCount();
   stats_.uniqueTriangles = scene.uniqueTriangleCount();
 

@@ -149,7 +149,7 @@ class GpuScene {
   size_t instanceBufferIndex_ = 0;  // in buffers_
   size_t tlasBufferIndex_ = 0;      // in buffers_, room for tlasCapacity_ nodes
   vk::Buffer previousInstances_;
-  vk::Buffer previousPositions_;            // only when something deforms
+  vk::Buffer previousPositions_;           // only when something deforms
   std::unique_ptr<GpuDeformer> deformer_;  // only when something deforms
   // [instances | previous instances | TLAS nodes | refit plan (GpuRefit)], mapped
   vk::Buffer instanceStaging_;

@@ -147,10 +147,10 @@ struct SceneBvhStats {
 
 struct SceneBvh {
   // Per mesh, in Scene::meshes order.
-  std::vector<uint32_t> blasRoot;      // index of the mesh's BLAS root in blasNodes
+  std::vector<uint32_t> blasRoot;          // index of the mesh's BLAS root in blasNodes
   std::vector<uint32_t> blasTriangleBase;  // index of the mesh's first triangle in triangles
-  std::vector<uint32_t> geometryBase;  // index of the mesh's geometry 0 in geometries
-  std::vector<Aabb> meshBounds;        // object-space bounds (empty for a mesh without triangles)
+  std::vector<uint32_t> geometryBase;      // index of the mesh's geometry 0 in geometries
+  std::vector<Aabb> meshBounds;  // object-space bounds (empty for a mesh without triangles)
 
   BvhLayout layout = BvhLayout::Binary;
   std::vector<gpu::GpuBvhNode> blasNodes;          // BvhLayout::Binary (else empty)

@@ -23,7 +23,8 @@ void composeJoints(const Scene& scene, DeformationPose& pose) {
   for (const Skin& skin : scene.skins) {
     pose.jointBase.push_back(uint32_t(pose.jointMatrices.size()));
     for (size_t j = 0; j < skin.joints.size(); ++j)
-      pose.jointMatrices.push_back(pose.skeletonWorld[skin.joints[j]] * skin.inverseBindMatrices[j]);
+      pose.jointMatrices.push_back(pose.skeletonWorld[skin.joints[j]] *
+                                   skin.inverseBindMatrices[j]);
   }
 }
 
@@ -89,8 +90,9 @@ void poseGeometry(const Scene& scene, const DeformationPose& pose, uint32_t mesh
   std::span<const float> weights = pose.morphWeights.at(mesh);
   std::span<const glm::mat4> joints;
   if (m.skin >= 0)
-    joints = std::span<const glm::mat4>(pose.jointMatrices)
-                 .subspan(pose.jointBase[size_t(m.skin)], scene.skins[size_t(m.skin)].joints.size());
+    joints =
+        std::span<const glm::mat4>(pose.jointMatrices)
+            .subspan(pose.jointBase[size_t(m.skin)], scene.skins[size_t(m.skin)].joints.size());
   bool skinned = !joints.empty() && !rest.joints.empty();
   for (size_t v = 0; v < rest.positions.size(); ++v) {
     glm::vec3 p = rest.positions[v], n = rest.normals[v];

@@ -87,7 +87,8 @@ Skin makeTubeSkin(Scene& scene) {
     node.local = glm::translate(glm::mat4(1.0f), offset);
     skin.joints.push_back(uint32_t(scene.skeleton.size()));
     scene.skeleton.push_back(node);
-    glm::mat4 bindWorld = glm::translate(glm::mat4(1.0f), kTubeBase + glm::vec3(0, jointHeight(j), 0));
+    glm::mat4 bindWorld =
+        glm::translate(glm::mat4(1.0f), kTubeBase + glm::vec3(0, jointHeight(j), 0));
     skin.inverseBindMatrices.push_back(glm::inverse(bindWorld));
   }
   return skin;
@@ -133,7 +134,7 @@ Mesh makeBlob(uint32_t material) {
   Geometry g;
   g.material = material;
   addSphere(g, kBlobBase + glm::vec3(0.0f, kBlobRadius, 0.0f), kBlobRadius, 40, 20);
-  g.morphTargets.push_back(scaledTarget(g, {0.75f, 1.6f, 0.75f}));  // stretched up
+  g.morphTargets.push_back(scaledTarget(g, {0.75f, 1.6f, 0.75f}));   // stretched up
   g.morphTargets.push_back(scaledTarget(g, {1.35f, 0.55f, 1.35f}));  // squashed flat
   Mesh mesh;
   mesh.name = "blob";
@@ -162,8 +163,9 @@ void addRoomCorner(Scene& scene) {
   uint32_t back = addMaterial(scene, lambertMaterial("back_wall", glm::vec3(0.75f)));
   uint32_t side = addMaterial(scene, lambertMaterial("side_wall", {0.15f, 0.3f, 0.7f}));
   MeshBuilder builder;
-  addRect(builder.geometry(floor), Frame{{0, 0, 0}, {1, 0, 0}, {0, 0, -1}}, {-3.0f, -3.0f},
-          {3.0f, 3.0f});
+  // From the back wall to under the camera.
+  addRect(builder.geometry(floor), Frame{{0, 0, 0}, {1, 0, 0}, {0, 0, -1}}, {-3.0f, -5.5f},
+          {3.0f, 2.0f});
   addRect(builder.geometry(back), Frame{{0, 0, -2.0f}, {1, 0, 0}, {0, 1, 0}}, {-3.0f, 0.0f},
           {3.0f, 3.0f});
   addRect(builder.geometry(side), Frame{{-3.0f, 0, 0}, {0, 0, 1}, {0, 1, 0}}, {-2.0f, 0.0f},
