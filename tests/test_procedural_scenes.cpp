@@ -141,13 +141,14 @@ bool contains(const Aabb& box, const glm::vec3& p, float margin = 0.0f) {
 
 // ---- every built-in scene ----------------------------------------------------------------------
 
-TEST(ProceduralScenes, ListsTheTenBuiltins) {
+TEST(ProceduralScenes, ListsTheElevenBuiltins) {
   std::vector<std::string> names = builtinSceneNames();
   std::set<std::string> unique(names.begin(), names.end());
-  EXPECT_EQ(names.size(), 10u);
+  EXPECT_EQ(names.size(), 11u);
   EXPECT_EQ(unique,
             (std::set<std::string>{"cornell", "sunroom", "sunroom-glossy", "foliage", "manylights",
-                                   "furnace", "city", "city-10k", "spheres", "skinned"}));
+                                   "furnace", "city", "city-10k", "spheres", "skinned",
+                                   "skinned-crowd"}));
 }
 
 TEST(ProceduralScenes, UnknownNameGivesNothing) {

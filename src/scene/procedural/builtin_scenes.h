@@ -16,6 +16,7 @@ Scene makeCityScene();           // city.cpp: > 1M triangles of city blocks for 
 Scene makeCity10kScene();        // city.cpp: the city on a larger grid, 10,000 street lights
 Scene makeSpheresScene();  // spheres.cpp: rows of metal and dielectric spheres, rough to smooth
 Scene makeSkinnedScene();  // skinned.cpp: a skinned tube and a morphing blob, animated
+Scene makeSkinnedCrowdScene();  // skinned.cpp: 256 skinned tubes and 64 blobs (deformation cost)
 
 // The spheres scene's grid: rows front to back are white metal, gold (the kSpheresMetalRows
 // metal rows first), white dielectric, red dielectric; column c has roughness

@@ -18,7 +18,7 @@ Scene makeDefaultFurnace() {
   return makeFurnaceScene(0.5f, glm::vec3(1.0f));
 }
 
-constexpr std::array<BuiltinScene, 10> kBuiltinScenes = {{
+constexpr std::array<BuiltinScene, 11> kBuiltinScenes = {{
     {"cornell", procedural::makeCornellScene},
     {"sunroom", procedural::makeSunroomScene},
     {"sunroom-glossy", procedural::makeGlossySunroomScene},
@@ -29,6 +29,7 @@ constexpr std::array<BuiltinScene, 10> kBuiltinScenes = {{
     {"city-10k", procedural::makeCity10kScene},
     {"spheres", procedural::makeSpheresScene},
     {"skinned", procedural::makeSkinnedScene},
+    {"skinned-crowd", procedural::makeSkinnedCrowdScene},
 }};
 
 }  // namespace
