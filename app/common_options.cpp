@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "scene/animation.h"
 #include "scene/default_light.h"
+#include "scene/deformation.h"
 #include "scene/load.h"
 #include "suggest.h"
 
@@ -36,6 +37,11 @@ void CommonOptions::addSceneOptions(CLI::App& cmd, const std::string& defaultSce
   cmd.add_option("--sky", sky,
                  "r,g,b constant sky radiance, or daylight[:T] for the Preetham sky lit by the sun "
                  "(turbidity T in [2, 10], default 3)");
+  cmd.add_option("--pose-time", poseTime,
+                 "Freeze the scene at this animation time in seconds: moving objects, lights, "
+                 "skinned and morphed meshes placed as then and still from there (e.g. a "
+                 "reference of one animated frame); docs/scenes.md")
+      ->check(CLI::Range(0.0f, 1e6f));
   cmd.add_option("--bvh", bvh,
                  "BLAS node layout: binary (2-wide) or wide (8-wide compressed, Ylitie et al. "
                  "2017); docs/ray-tracing.md")
@@ -93,6 +99,7 @@ void CommonOptions::checkArguments() const {
 
 Scene CommonOptions::loadScene() const {
   Scene s = bounce::loadScene(scene);
+  if (poseTime) s = sceneFrozenAt(s, *poseTime);
   const SceneOverrides overrides = parseOverrides(*this);
   applyOverrides(s, overrides);
   // Built-in scenes are lit as designed (the furnace by its walls' radiance 1).

@@ -37,6 +37,7 @@ struct CommonOptions {
   std::string bvh = "binary";  // --bvh: the BLAS node layout (rt::BvhLayout)
   // --tlas-rebuild-ratio: GpuSceneOptions::tlasRebuildRatio (0 = refit only, never rebuild)
   double tlasRebuildRatio = GpuSceneOptions{}.tlasRebuildRatio;
+  std::optional<float> poseTime;  // --pose-time: the scene frozen at this animation time
   std::optional<uint32_t> device;
   bool validate = false;
   uint64_t deviceMemoryLimitMiB = 0;  // --device-memory-limit; 0: none
@@ -50,7 +51,8 @@ struct CommonOptions {
   // Checks the scene options' text without loading anything (a scene name not built in gets a
   // suggestion), so that usage errors come before any work.
   void checkArguments() const;
-  Scene loadScene() const;                  // --scene plus --camera/--sun/--sky overrides
+  // --scene plus --camera/--sun/--sky overrides, frozen at --pose-time
+  Scene loadScene() const;
   GpuSceneOptions gpuSceneOptions() const;  // --bvh, --tlas-rebuild-ratio
   Resolution resolution() const;
   std::unique_ptr<vk::Context> createContext() const;

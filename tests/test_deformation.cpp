@@ -3,7 +3,9 @@
 //   - after scene-deform and scene-refit-blas, rays traced through the GPU's refitted BLAS (both
 //     node layouts) hit what the brute force finds in the CPU-posed scene, pose after pose;
 //   - the G-buffer's motion vectors on the skinned tube are the screen motion of the surface
-//     point between the two poses, and return to zero when the pose stops changing.
+//     point between the two poses, and return to zero when the pose stops changing;
+//   - sceneFrozenAt (`--pose-time`) places instances and poses meshes as the animation does at
+//     that time, and leaves a still scene.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -120,6 +122,40 @@ INSTANTIATE_TEST_SUITE_P(Layouts, DeformedTraversal,
                          [](const ::testing::TestParamInfo<rt::BvhLayout>& info) {
                            return std::string(rt::bvhLayoutName(info.param));
                          });
+
+// sunroom's panel and cube move (instance tracks), skinned's tube and blob deform: frozen at t,
+// each equals the animation's evaluation there, and nothing is left to play but the camera.
+TEST(FrozenScene, IsTheAnimationAtThatTimeAndStill) {
+  for (const char* name : {"sunroom", "skinned"}) {
+    const Scene scene = loadScene(name);
+    const float t = 1.3f;
+    const Scene frozen = sceneFrozenAt(scene, t);
+    validateScene(frozen, name);
+    std::vector<glm::mat4> transforms;
+    for (const Instance& i : scene.instances) transforms.push_back(i.transform);
+    evaluateTransforms(scene.animation, t, transforms);
+    DeformationPose pose;
+    evaluatePose(scene, scene.animation, t, pose);
+    const Scene posed = posedScene(scene, pose);
+    int moved = 0;
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+      EXPECT_EQ(frozen.instances[i].transform, transforms[i]) << name << " instance " << i;
+      moved += transforms[i] != scene.instances[i].transform;
+      for (size_t g = 0; g < scene.meshes[scene.instances[i].mesh].geometries.size(); ++g) {
+        const Geometry& f = frozen.meshes[frozen.instances[i].mesh].geometries[g];
+        const Geometry& p = posed.meshes[posed.instances[i].mesh].geometries[g];
+        const Geometry& r = scene.meshes[scene.instances[i].mesh].geometries[g];
+        EXPECT_EQ(f.positions, p.positions) << name << " instance " << i;
+        moved += f.positions != r.positions;
+      }
+    }
+    EXPECT_GE(moved, 2) << name << ": the animation moved nothing at t";
+    EXPECT_FALSE(frozen.deforms()) << name;
+    EXPECT_TRUE(frozen.animation.transforms.empty() && frozen.animation.joints.empty() &&
+                frozen.animation.morphWeights.empty())
+        << name;
+  }
+}
 
 // ---- motion vectors -----------------------------------------------------------------------------
 

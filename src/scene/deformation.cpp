@@ -128,6 +128,24 @@ Scene posedScene(const Scene& scene, const DeformationPose& pose) {
   return posed;
 }
 
+Scene sceneFrozenAt(const Scene& scene, float t) {
+  std::vector<glm::mat4> transforms;
+  for (const Instance& instance : scene.instances) transforms.push_back(instance.transform);
+  evaluateTransforms(scene.animation, t, transforms);
+  std::vector<PunctualLight> lights = scene.lights;
+  evaluateLights(scene.animation, t, scene.lights, lights);
+  DeformationPose pose;
+  evaluatePose(scene, scene.animation, t, pose);
+  Scene frozen = posedScene(scene, pose);
+  for (size_t i = 0; i < frozen.instances.size(); ++i) frozen.instances[i].transform = transforms[i];
+  frozen.lights = std::move(lights);
+  frozen.animation.transforms.clear();
+  frozen.animation.joints.clear();
+  frozen.animation.morphWeights.clear();
+  frozen.animation.lights.clear();
+  return frozen;
+}
+
 namespace {
 
 void validateMorphTargets(const Mesh& mesh, const Geometry& g, const std::string& where) {

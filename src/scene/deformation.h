@@ -45,6 +45,12 @@ void poseGeometry(const Scene& scene, const DeformationPose& pose, uint32_t mesh
 // removed, so the result is a still scene).
 Scene posedScene(const Scene& scene, const DeformationPose& pose);
 
+// The scene as it stands at animation time t, as a still scene: instances placed and lights set
+// by their tracks, deforming meshes posed (posedScene), and those tracks dropped from its
+// animation (the camera path and time of day stay). For a reference or a fresh BVH of one frame
+// of an animation (`--pose-time`).
+Scene sceneFrozenAt(const Scene& scene, float t);
+
 // Checks what deformation needs beyond validateScene: joint and weight streams sized together,
 // joint indices inside the skin, finite weights, morph target counts and stream sizes, skin
 // references, skeleton parents before children, joint and morph weight tracks that name a
