@@ -145,10 +145,9 @@ TEST(ProceduralScenes, ListsTheElevenBuiltins) {
   std::vector<std::string> names = builtinSceneNames();
   std::set<std::string> unique(names.begin(), names.end());
   EXPECT_EQ(names.size(), 11u);
-  EXPECT_EQ(unique,
-            (std::set<std::string>{"cornell", "sunroom", "sunroom-glossy", "foliage", "manylights",
-                                   "furnace", "city", "city-10k", "spheres", "skinned",
-                                   "skinned-crowd"}));
+  EXPECT_EQ(unique, (std::set<std::string>{"cornell", "sunroom", "sunroom-glossy", "foliage",
+                                           "manylights", "furnace", "city", "city-10k", "spheres",
+                                           "skinned", "skinned-crowd"}));
 }
 
 TEST(ProceduralScenes, UnknownNameGivesNothing) {

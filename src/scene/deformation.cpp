@@ -137,7 +137,8 @@ Scene sceneFrozenAt(const Scene& scene, float t) {
   DeformationPose pose;
   evaluatePose(scene, scene.animation, t, pose);
   Scene frozen = posedScene(scene, pose);
-  for (size_t i = 0; i < frozen.instances.size(); ++i) frozen.instances[i].transform = transforms[i];
+  for (size_t i = 0; i < frozen.instances.size(); ++i)
+    frozen.instances[i].transform = transforms[i];
   frozen.lights = std::move(lights);
   frozen.animation.transforms.clear();
   frozen.animation.joints.clear();
