@@ -5,6 +5,7 @@
 // G-buffer (Renderer::renderGi) needs the host's device and names the host image at fault. CTest
 // runs it with BOUNCE_VALIDATE=1: the Khronos validation layer reports to stderr, which must stay
 // free of validation errors.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -174,6 +175,31 @@ TEST_F(Api, CodeBuiltLitQuadRenders) {
   EXPECT_NEAR(centre[0], centre[2], 1e-3f);  // white light on a white floor
   const float* radiance = renderer.readImage("composite").pixel(32, 24);
   EXPECT_NEAR(radiance[1], 0.8f * 100.0f / 3.14159265f, 0.25f * 0.8f * 100.0f / 3.14159265f);
+}
+
+// The scene's own animation through the API: the skinned tube bends between two times, so the
+// G-buffer's velocity shows motion while the camera stands still; without a new time, none.
+TEST_F(Api, AnimationTimeMovesSkinsAndStops) {
+  bounce::Scene scene = bounce::Scene::load("skinned");
+  bounce::Renderer renderer =
+      bounce::Renderer::create(scene, smallSettings(bounce::Preset::Mobile, bounce::GiMode::None));
+  renderer.requestImage("gbuffer.velocity");
+  auto fastestPixel = [&] {
+    bounce::Image velocity = renderer.readImage("gbuffer.velocity");
+    float fastest = 0.0f;
+    for (uint32_t y = 0; y < velocity.height; ++y)
+      for (uint32_t x = 0; x < velocity.width; ++x)
+        fastest = std::max(fastest, std::hypot(velocity.pixel(x, y)[0], velocity.pixel(x, y)[1]));
+    return fastest;
+  };
+  renderer.setAnimationTime(0.5);
+  renderer.render(scene.camera());
+  renderer.setAnimationTime(0.7);
+  renderer.render(scene.camera());
+  EXPECT_GT(fastestPixel(), 0.3f);
+  renderer.render(scene.camera());
+  EXPECT_LT(fastestPixel(), 1e-3f);
+  EXPECT_THAT(errorOf([&] { renderer.setAnimationTime(-1.0); }), HasSubstr("setAnimationTime"));
 }
 
 // Fixed exposure multiplies radiance by 2^exposureStops before the ACES curve (Narkowicz 2015);

@@ -81,6 +81,13 @@ class Renderer {
   // sun turning by more than 5 degrees, or its or the sky's brightness changing by more than
   // half) makes the GI rebuild its light quickly rather than blend it in over many frames.
   void setSunAndSky(const Sun& sun, const Sky& sky);
+  // Plays the scene's own animation at `seconds` from the next frame on: glTF node animations,
+  // skins and morph targets (posed on the GPU), animated KHR lights, a built-in scene's scripted
+  // motion. Motion vectors follow the objects and the deforming surfaces, so temporal history
+  // carries over. Times should not decrease. The scene's camera path and time of day are not
+  // played: the camera is the one given to render(), the sun setSunAndSky's. Throws
+  // bounce::Error for a negative or non-finite time.
+  void setAnimationTime(double seconds);
   // Forgets temporal history (a camera cut): the next frame starts afresh.
   void resetHistory();
 

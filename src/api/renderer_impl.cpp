@@ -3,11 +3,14 @@
 #include <bounce/external_device.h>
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <vector>
 
 #include "api/convert.h"
 #include "api/scene_impl.h"
 #include "core/error.h"
+#include "frame/animation_player.h"
 #include "frame/hybrid_frame.h"
 #include "rt/gpu_scene.h"
 #include "vk/context.h"
@@ -49,6 +52,7 @@ struct Renderer::Impl {
   std::unique_ptr<HybridFrame> frame;
   uint64_t framesRendered = 0;
   bool externalDevice = false;  // renderGi() is allowed
+  std::optional<AnimationPlayer> player;  // made at the first setAnimationTime
   // Every image requested (the display image first), and whether the frame's debug views are
   // those of a renderGi frame (requests of full-frame images left out).
   std::vector<std::string> requested{kDisplayImage};
@@ -190,6 +194,19 @@ Image Renderer::readImage(const std::string& name) const {
 void Renderer::setSunAndSky(const Sun& sun, const Sky& sky) {
   impl_->frame->setSunAndSky(toInternal(sun, "bounce::Renderer::setSunAndSky"),
                              toInternal(sky, "bounce::Renderer::setSunAndSky"));
+}
+
+void Renderer::setAnimationTime(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0.0)
+    fail("bounce::Renderer::setAnimationTime: time {} s, expected a finite time >= 0", seconds);
+  if (!impl_->player) {
+    // The host's camera and sun rule: only what moves in the scene plays.
+    SceneAnimation animation = impl_->scene.animation;
+    animation.camera.reset();
+    animation.timeOfDay.reset();
+    impl_->player.emplace(impl_->scene, std::move(animation));
+  }
+  impl_->player->apply(*impl_->frame, float(seconds));
 }
 
 void Renderer::resetHistory() {
