@@ -51,7 +51,7 @@ struct Renderer::Impl {
   std::unique_ptr<GpuScene> gpuScene;
   std::unique_ptr<HybridFrame> frame;
   uint64_t framesRendered = 0;
-  bool externalDevice = false;  // renderGi() is allowed
+  bool externalDevice = false;            // renderGi() is allowed
   std::optional<AnimationPlayer> player;  // made at the first setAnimationTime
   // Every image requested (the display image first), and whether the frame's debug views are
   // those of a renderGi frame (requests of full-frame images left out).

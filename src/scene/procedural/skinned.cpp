@@ -226,11 +226,7 @@ Scene makeSkinnedScene() {
   addTube(scene, addMaterial(scene, tubeMaterial()), "tube", {.base = {-0.7f, 0.0f, 0.0f}});
   addBlob(scene, addMaterial(scene, blobMaterial()), "blob", {0.9f, 0.0f, 0.2f}, 0.0f);
   addDaylight(scene);
-  Camera camera;
-  camera.position = {0.6f, 2.2f, 5.2f};
-  camera.target = {0.0f, 0.9f, 0.0f};
-  camera.verticalFovDegrees = 45.0f;
-  scene.camera = camera;
+  scene.camera = Camera{.position = {0.6f, 2.2f, 5.2f}, .target = {0.0f, 0.9f, 0.0f}};
   return scene;
 }
 
@@ -260,11 +256,8 @@ Scene makeSkinnedCrowdScene() {
     addBlob(scene, blob, "blob_" + std::to_string(i), base, 0.61f * float(i));
   }
   addDaylight(scene);
-  Camera camera;
-  camera.position = {0.0f, 3.0f, 13.0f};
-  camera.target = {0.0f, 0.5f, 0.0f};
-  camera.verticalFovDegrees = 50.0f;
-  scene.camera = camera;
+  scene.camera = Camera{
+      .position = {0.0f, 3.0f, 13.0f}, .target = {0.0f, 0.5f, 0.0f}, .verticalFovDegrees = 50.0f};
   return scene;
 }
 
