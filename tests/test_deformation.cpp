@@ -5,7 +5,9 @@
 //   - the G-buffer's motion vectors on the skinned tube are the screen motion of the surface
 //     point between the two poses, and return to zero when the pose stops changing;
 //   - sceneFrozenAt (`--pose-time`) places instances and poses meshes as the animation does at
-//     that time, and leaves a still scene.
+//     that time, and leaves a still scene;
+//   - a skinned glTF file, loaded and posed on the GPU, traces as the brute force of its CPU pose,
+//     its tip turned by the animated joint.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -14,9 +16,12 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
 
 #include "frame/hybrid_frame.h"
+#include "gltf_writer.h"
+#include "harness.h"
 #include "passes/primary_view.h"
 #include "passes/trace_rays.h"
 #include "rt/cpu_trace.h"
@@ -155,6 +160,90 @@ TEST(FrozenScene, IsTheAnimationAtThatTimeAndStill) {
                 frozen.animation.morphWeights.empty())
         << name;
   }
+}
+
+// A double-sided strip 0.2 m wide and 2 m tall up +Y, skinned to joint 0 at the origin (below
+// y = 0.5), joint 1 at y = 1 (above y = 1.5) and both between; an animation turns joint 1 from 0
+// to 90 degrees about +Z over 1 s. Unsigned short joints, float weights, inverse bind matrices.
+std::string writeSkinnedStrip(const std::string& dir) {
+  test::GltfWriter w;
+  std::vector<glm::vec3> positions;
+  std::vector<uint16_t> joints;
+  std::vector<glm::vec4> weights;
+  for (int row = 0; row <= 4; ++row)
+    for (float x : {-0.1f, 0.1f}) {
+      float y = 0.5f * float(row);
+      positions.emplace_back(x, y, 0.0f);
+      float w1 = glm::clamp((y - 0.5f) / 1.0f, 0.0f, 1.0f);
+      joints.insert(joints.end(), {0, 1, 0, 0});
+      weights.emplace_back(1.0f - w1, w1, 0.0f, 0.0f);
+    }
+  std::vector<uint16_t> indices;
+  for (uint16_t row = 0; row < 4; ++row) {
+    uint16_t a = uint16_t(2 * row);
+    indices.insert(indices.end(),
+                   {a, uint16_t(a + 1), uint16_t(a + 3), a, uint16_t(a + 3), uint16_t(a + 2)});
+  }
+  const int jointsAccessor = w.addAccessor(w.addView(joints.data(), joints.size() * 2),
+                                           test::kUnsignedShort, positions.size(), "VEC4");
+  const int weightsAccessor = w.addAccessor(w.addView(weights.data(), weights.size() * 16),
+                                            test::kFloat, weights.size(), "VEC4");
+  const glm::mat4 inverseBind[2] = {glm::mat4(1.0f),
+                                    glm::translate(glm::mat4(1.0f), {0.0f, -1.0f, 0.0f})};
+  const int bindAccessor =
+      w.addAccessor(w.addView(inverseBind, sizeof(inverseBind)), test::kFloat, 2, "MAT4");
+  w.doc["materials"] = {{{"doubleSided", true}}};
+  const int mesh = w.addMesh({{"attributes",
+                               {{"POSITION", w.addPositions(positions)},
+                                {"JOINTS_0", jointsAccessor},
+                                {"WEIGHTS_0", weightsAccessor}}},
+                              {"indices", w.addIndices16(indices)},
+                              {"material", 0}});
+  const int tip = w.addNode({{"name", "tip"}, {"translation", {0.0, 1.0, 0.0}}}, false);
+  const int root = w.addNode({{"name", "root"}, {"children", {tip}}});
+  w.addNode({{"name", "strip"}, {"mesh", mesh}, {"skin", 0}});
+  w.doc["skins"] = {{{"joints", {root, tip}}, {"inverseBindMatrices", bindAccessor}}};
+  // Held at 90 degrees until 2 s, where the loop wraps (so t = 1 is not the wrap point).
+  const std::vector<float> times = {0.0f, 1.0f, 2.0f};
+  const float h = std::sqrt(0.5f);
+  const std::vector<glm::vec4> turns = {{0, 0, 0, 1}, {0, 0, h, h}, {0, 0, h, h}};  // x, y, z, w
+  const int input = w.addAccessor(w.addView(times.data(), 12), test::kFloat, 3, "SCALAR");
+  const int output = w.addAccessor(w.addView(turns.data(), 48), test::kFloat, 3, "VEC4");
+  w.doc["accessors"][size_t(input)]["min"] = {0.0};
+  w.doc["accessors"][size_t(input)]["max"] = {2.0};
+  w.doc["animations"] = {
+      {{"samplers", {{{"input", input}, {"output", output}}}},
+       {"channels", {{{"sampler", 0}, {"target", {{"node", tip}, {"path", "rotation"}}}}}}}};
+  return w.writeGltf(dir, "skinned_strip");
+}
+
+// The loader's skin (joints, weights, inverse bind matrices, the joint's animation) reaches the
+// GPU as the CPU poses it: rays aimed at the strip hit what the brute force finds in the CPU
+// pose at 0, 0.5 and 1 s, and at 1 s the strip's tip lies along -X (turned 90 degrees).
+TEST(DeformedGltf, SkinnedFileTracesAsItsCpuPose) {
+  const Scene scene = loadScene(writeSkinnedStrip(test::tempDir("deformed_gltf")));
+  ASSERT_EQ(scene.skins.size(), 1u);
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  TraceRaysPass pass(context, gpuScene);
+  DeformationPose pose;
+  for (float t : {0.0f, 0.5f, 1.0f}) {
+    evaluatePose(scene, scene.animation, t, pose);
+    gpuScene.setDeformation(pose);
+    context.submitAndWait([&](VkCommandBuffer cmd) { gpuScene.recordInstanceUpload(cmd); });
+    const Scene posed = posedScene(scene, pose);
+    const Aabb box = meshBounds(posed, 0);
+    std::vector<gpu::GpuRay> rays = raysAt({box}, 2000, uint32_t(7 + 100 * t));
+    std::vector<gpu::GpuHit> hits = pass.trace(rays, true);
+    TraceComparison c = compareWithBruteForce(posed, rays, hits, {0u});
+    EXPECT_EQ(c.differ, 0) << "t = " << t;
+    EXPECT_GT(c.deformingHits, 200) << "t = " << t;
+    if (t == 1.0f) {
+      EXPECT_NEAR(box.min.x, -1.0f, 1e-4f);  // the tip, x = -(y - 1) for y = 2
+      EXPECT_NEAR(box.max.y, 1.1f, 1e-4f);   // the turned part's top edge: y = 1 + 0.1
+    }
+  }
+  EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
 // ---- motion vectors -----------------------------------------------------------------------------
