@@ -360,6 +360,25 @@ TEST_F(GltfSkinTest, MeshUnderASkinJointFollowsIt) {
   }
 }
 
+// glTF animations hide objects with scale 0, a parent's included: a box under a turntable that
+// starts at scale 0 and grows to 1 is kept (singular, so hidden, at rest) and appears at
+// (2, 1, 0) when its parent scales up, instead of being skipped as a still scale-0 node is.
+TEST_F(GltfSkinTest, MeshUnderAParentAnimatedFromScaleZeroIsKept) {
+  GltfWriter w;
+  TurntableFile f = writeTurntable(w);
+  w.doc["nodes"][size_t(f.turntable)]["scale"] = {0, 0, 0};
+  addChannel(w, f.turntable, "scale", {0, 0, 0}, {1, 1, 1});
+  LoadWarnings warnings;
+  Scene scene = loadGltf(w.writeGltf(dir, "growing"), warnings);
+  ASSERT_EQ(scene.instances.size(), 1u);
+  EXPECT_EQ(warnings.count("starts with a singular transform (scale 0): hidden until its "
+                           "animation scales it up"),
+            1u);
+  EXPECT_EQ(glm::determinant(glm::mat3(playedTransforms(scene, 0.0f, false)[0])), 0.0f);
+  EXPECT_VEC3_NEAR(place(playedTransforms(scene, 1.0f, false)[0], glm::vec3(0)),
+                   glm::vec3(2, 1, 0));
+}
+
 // Without animations the hierarchy is baked as before: no tracks, no skeleton. A channel on a
 // node with no mesh in or below it (an animated empty beside the box, not above it) still moves
 // nothing, with the warning, and the box gets no track.
