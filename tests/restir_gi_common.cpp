@@ -279,7 +279,7 @@ AnimatedRun runAnimated(const std::string& sceneName, HybridSettings settings, i
   AnimatedRun run;
   for (int i = 0; i < frames; ++i) {
     float t = float(i) / 30.0f;
-    evaluateTransforms(scene.animation, t, transforms);
+    evaluateTransforms(scene.animation, t, {}, transforms);
     frame.setInstanceTransforms(transforms);
     Sun sun = scene.sun;
     float a = 0.5f * t;

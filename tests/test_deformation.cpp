@@ -136,11 +136,11 @@ TEST(FrozenScene, IsTheAnimationAtThatTimeAndStill) {
     const float t = 1.3f;
     const Scene frozen = sceneFrozenAt(scene, t);
     validateScene(frozen, name);
-    std::vector<glm::mat4> transforms;
-    for (const Instance& i : scene.instances) transforms.push_back(i.transform);
-    evaluateTransforms(scene.animation, t, transforms);
     DeformationPose pose;
     evaluatePose(scene, scene.animation, t, pose);
+    std::vector<glm::mat4> transforms;
+    for (const Instance& i : scene.instances) transforms.push_back(i.transform);
+    evaluateTransforms(scene.animation, t, pose.skeletonWorld, transforms);
     const Scene posed = posedScene(scene, pose);
     int moved = 0;
     for (size_t i = 0; i < scene.instances.size(); ++i) {

@@ -202,7 +202,7 @@ TEST(Gi10, AnimatedRunStaysFinite) {
   size_t nonFinite = 0;
   for (int i = 0; i < 300; ++i) {
     float t = float(i) / 30.0f;
-    evaluateTransforms(scene.animation, t, transforms);
+    evaluateTransforms(scene.animation, t, {}, transforms);
     run.frame->setInstanceTransforms(transforms);
     Sun sun = scene.sun;
     float a = 0.5f * t;

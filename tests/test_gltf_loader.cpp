@@ -577,7 +577,7 @@ TEST_F(GltfLoaderTest, AnimatedZeroScaleNodeIsHiddenUntilScaledUp) {
   EXPECT_FALSE(hidden.closestHit(ray, 10.0f).hit);
 
   std::vector<glm::mat4> transforms = {scene.instances[0].transform};
-  evaluateTransforms(scene.animation, 0.999f, transforms);
+  evaluateTransforms(scene.animation, 0.999f, {}, transforms);
   rt::setInstanceTransform(bvh.instances[0], transforms[0]);
   EXPECT_EQ(bvh.instances[0].flags & gpu::GPU_INSTANCE_HIDDEN, 0u);
   bvh.tlasNodes = rt::buildTlas(bvh.instances, bvh.meshBounds);
@@ -1013,17 +1013,17 @@ TEST_F(GltfLoaderTest, NodeAnimationsBecomeTransformTracks) {
   ASSERT_EQ(scene.animation.transforms.size(), 1u);
   EXPECT_FLOAT_EQ(scene.animation.transformDuration(), 2.0f);
   std::vector<glm::mat4> transforms = {scene.instances[0].transform};
-  evaluateTransforms(scene.animation, 0.0f, transforms);
+  evaluateTransforms(scene.animation, 0.0f, {}, transforms);
   EXPECT_LT(glm::length(glm::vec3(transforms[0][3]) - glm::vec3(0, 0, -5)), 1e-5f);
   EXPECT_NEAR(transforms[0][0][0], 2.0f, 1e-5f);  // rest scale kept, no rotation yet
-  evaluateTransforms(scene.animation, 1.0f, transforms);
+  evaluateTransforms(scene.animation, 1.0f, {}, transforms);
   EXPECT_LT(glm::length(glm::vec3(transforms[0][3]) - glm::vec3(2, 0, -5)), 1e-5f);
   EXPECT_NEAR(transforms[0][0][0], 2.0f, 1e-5f);  // STEP: still the first rotation
-  evaluateTransforms(scene.animation, 1.999f, transforms);
+  evaluateTransforms(scene.animation, 1.999f, {}, transforms);
   EXPECT_NEAR(transforms[0][0][2], 0.0f, 1e-5f);
   SceneAnimation held = scene.animation;
   held.loop = false;
-  evaluateTransforms(held, 2.0f, transforms);  // the last key: 90 degrees about +Y
+  evaluateTransforms(held, 2.0f, {}, transforms);  // the last key: 90 degrees about +Y
   EXPECT_NEAR(transforms[0][0][2], -2.0f, 1e-4f);
 }
 

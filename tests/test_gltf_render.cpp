@@ -1,12 +1,15 @@
 // A user's own glTF renders right on the first try (issue 18), checked through the `bounce`
 // program on files written by the test: an unlit file gets the default daylight (and an explicit
 // --sky keeps it dark), vertex colours multiply the base colour in the reference path tracer and
-// in the real-time G-buffer, and a file whose only triangles are degenerate renders as sky.
+// in the real-time G-buffer, a file whose only triangles are degenerate renders as sky, and a mesh
+// under an animated parent moves when the animation plays (issue 22).
 //
 // The expected values are physics, not snapshots: a Lambert surface of albedo rho under a
 // constant sky of radiance L (and nothing else in the scene) reflects exactly rho L; under a sun
 // of irradiance E at elevation h it reflects at least rho E sin(h) / pi.
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <string>
 
@@ -191,6 +194,82 @@ TEST_F(GltfRenderTest, FileWithOnlyDegenerateTrianglesRendersTheSky) {
       run("render --validate --frames 2 --res 16x16 --scene " + path, "frame", nullptr);
   EXPECT_EQ(countNonFinitePixels(frame), 0u);
   EXPECT_GT(meanColor(frame).z, 0.0) << "the default daylight's sky";
+}
+
+// The centroid, in pixels, of the pixels whose base colour is red (the box below), and their
+// count.
+glm::dvec3 redCentroid(const ImageRGBA32F& image) {
+  glm::dvec2 sum(0.0);
+  double count = 0.0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      glm::vec4 c = image.at(x, y);
+      if (c.x > 0.5f && c.y < 0.2f && c.z < 0.2f) {
+        sum += glm::dvec2(x, y);
+        count += 1.0;
+      }
+    }
+  return count > 0.0 ? glm::dvec3(sum / count, count) : glm::dvec3(0.0);
+}
+
+// A red cube 2 m out (+X) on an empty "cart" that slides 4 m along -X over 1 s, over a white
+// floor, seen from above. Played to t = 0.5 (`render --animate`, AnimationPlayer: the cart's
+// joint track, then the box's track under it) the box's G-buffer base colour stands where the
+// pose says (`--pose-time 0.5`, sceneFrozenAt) to within a pixel, 2 m from its rest place.
+TEST_F(GltfRenderTest, MeshUnderAnAnimatedParentMovesWhenPlayed) {
+  GltfWriter w;
+  std::vector<glm::vec3> cube;
+  std::vector<uint16_t> cubeIndices;
+  const glm::vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int a = 0; a < 3; ++a)
+    for (float side : {-1.0f, 1.0f}) {
+      glm::vec3 n = side * axes[a], u = axes[(a + 1) % 3], v = side * axes[(a + 2) % 3];
+      uint16_t base = uint16_t(cube.size());
+      for (glm::vec2 d : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)})
+        cube.push_back(0.5f * (n + d.x * u + d.y * v) + glm::vec3(0, 0.5f, 0));
+      for (uint16_t k : {0, 1, 2, 0, 2, 3}) cubeIndices.push_back(uint16_t(base + k));
+    }
+  int floorPos = w.addPositions({{-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5}});
+  int floorIdx = w.addIndices16({0, 1, 2, 0, 2, 3});
+  w.doc["materials"] =
+      json::array({{{"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 1.0, 1.0, 1.0}}}}},
+                   {{"pbrMetallicRoughness", {{"baseColorFactor", {1.0, 0.0, 0.0, 1.0}}}}}});
+  w.addNode({{"mesh", w.addMesh({{"attributes", {{"POSITION", floorPos}}},
+                                 {"indices", floorIdx},
+                                 {"material", 0}})}});
+  int box = w.addNode({{"mesh", w.addMesh({{"attributes", {{"POSITION", w.addPositions(cube)}}},
+                                           {"indices", w.addIndices16(cubeIndices)},
+                                           {"material", 1}})},
+                       {"translation", {2, 0, 0}}},
+                      false);
+  int cart = w.addNode({{"name", "cart"}, {"children", {box}}});
+  const float times[] = {0.0f, 1.0f};
+  const float moves[] = {0, 0, 0, -4, 0, 0};
+  int in = w.addAccessor(w.addView(times, sizeof(times)), test::kFloat, 2, "SCALAR");
+  int out = w.addAccessor(w.addView(moves, sizeof(moves)), test::kFloat, 2, "VEC3");
+  w.doc["animations"] = json::array(
+      {{{"samplers", {{{"input", in}, {"output", out}}}},
+        {"channels", {{{"sampler", 0}, {"target", {{"node", cart}, {"path", "translation"}}}}}}}});
+  const std::string path = w.writeGltf(dir, "cart");
+  const std::string cameraPath = dir + "/camera.json";
+  std::ofstream(cameraPath) << R"({"keyframes": [{"time": 0, "position": [0, 9, 1], )"
+                               R"("target": [0, 0, 0], "vfov": 50}]})";
+  // Frame 8 of 9 at 16 fps is t = 0.5 s; every run draws 9 frames (the same jitter).
+  const std::string common = "render --validate --gi none --frames 9 --res 64x48 --camera-path " +
+                             cameraPath + " --view gbuffer.base-color --scene " + path;
+  const glm::dvec3 rest = redCentroid(run(common, "rest", nullptr));
+  const glm::dvec3 frozen = redCentroid(run(common + " --pose-time 0.5", "frozen", nullptr));
+  const glm::dvec3 played = redCentroid(run(common + " --animate --fps 16", "played", nullptr));
+  std::printf("red box centroid (px): rest (%.2f, %.2f), posed (%.2f, %.2f), played (%.2f, %.2f)\n",
+              rest.x, rest.y, frozen.x, frozen.y, played.x, played.y);
+  ASSERT_GT(rest.z, 0.0);
+  ASSERT_GT(frozen.z, 0.0);
+  ASSERT_GT(played.z, 0.0);
+  // 2 m at this view is about 10 pixels: the pose moved the box.
+  EXPECT_GT(rest.x - frozen.x, 5.0) << "rest " << rest.x << ", posed " << frozen.x;
+  EXPECT_LT(glm::length(glm::dvec2(played) - glm::dvec2(frozen)), 1.0)
+      << "played (" << played.x << ", " << played.y << "), posed (" << frozen.x << ", " << frozen.y
+      << "), rest (" << rest.x << ", " << rest.y << ")";
 }
 
 }  // namespace

@@ -197,9 +197,218 @@ TEST_F(GltfSkinTest, AMeshNodeThatIsAJointGetsBothTracks) {
   std::vector<glm::mat4> transforms(scene.instances.size());
   SceneAnimation held = scene.animation;
   held.loop = false;
-  evaluateTransforms(held, 1.0f, transforms);
+  evaluateTransforms(held, 1.0f, {}, transforms);
   const glm::mat4& tip = transforms[scene.animation.transforms[0].instance];
   EXPECT_VEC3_NEAR(glm::vec3(tip * glm::vec4(1, 0, 0, 1)), glm::vec3(1, 1, -3));
+}
+
+// ---- meshes under animated parents ----
+
+// The instance transforms at t as AnimationPlayer::apply makes them: the pose first, then the
+// transform tracks under its skeleton.
+std::vector<glm::mat4> playedTransforms(const Scene& scene, float t, bool loop = true) {
+  SceneAnimation animation = scene.animation;
+  animation.loop = loop;
+  DeformationPose pose;
+  evaluatePose(scene, animation, t, pose);
+  std::vector<glm::mat4> transforms;
+  for (const Instance& instance : scene.instances) transforms.push_back(instance.transform);
+  evaluateTransforms(animation, t, pose.skeletonWorld, transforms);
+  return transforms;
+}
+
+glm::vec3 place(const glm::mat4& m, glm::vec3 p) {
+  return glm::vec3(m * glm::vec4(p, 1.0f));
+}
+
+// (x, y, z) turned by `degrees` about +Y: (x c + z s, y, -x s + z c).
+glm::vec3 turnedAboutY(glm::vec3 p, float degrees) {
+  float c = std::cos(glm::radians(degrees)), s = std::sin(glm::radians(degrees));
+  return {p.x * c + p.z * s, p.y, -p.x * s + p.z * c};
+}
+
+// Channels over 1 s (LINEAR) on `node`: `path` from key value `from` to `to` (3 or 4 floats).
+void addChannel(GltfWriter& w, int node, const char* path, std::vector<float> from,
+                std::vector<float> to) {
+  const float times[] = {0.0f, 1.0f};
+  std::vector<float> values = from;
+  values.insert(values.end(), to.begin(), to.end());
+  const char* type = from.size() == 4 ? "VEC4" : "VEC3";
+  int in = w.addAccessor(w.addView(times, sizeof(times)), kFloat, 2, "SCALAR");
+  int out = w.addAccessor(w.addView(values.data(), values.size() * 4), kFloat, 2, type);
+  if (!w.doc.contains("animations"))
+    w.doc["animations"] = json::array({{{"samplers", json::array()}, {"channels", json::array()}}});
+  json& animation = w.doc["animations"][0];
+  animation["channels"].push_back(
+      {{"sampler", animation["samplers"].size()}, {"target", {{"node", node}, {"path", path}}}});
+  animation["samplers"].push_back({{"input", in}, {"output", out}});
+}
+
+// A static root "stage" at (0, 1, 0), under it an empty "turntable", under that a mesh node
+// "box" at (2, 0, 0) (given by TRS or by a matrix). The mesh is a triangle at the node's origin.
+struct TurntableFile {
+  int stage = -1, turntable = -1, box = -1;
+};
+
+TurntableFile writeTurntable(GltfWriter& w, bool matrix = false) {
+  TurntableFile f;
+  int pos = w.addPositions({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  json box = {{"name", "box"}, {"mesh", w.addMesh({{"attributes", {{"POSITION", pos}}}})}};
+  if (matrix)
+    box["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 2, 0, 0, 1};  // column-major
+  else
+    box["translation"] = {2, 0, 0};
+  f.box = w.addNode(box, false);
+  f.turntable = w.addNode({{"name", "turntable"}, {"children", {f.box}}}, false);
+  f.stage = w.addNode({{"name", "stage"}, {"translation", {0, 1, 0}}, {"children", {f.turntable}}});
+  return f;
+}
+
+// The turntable turns 0 to 90 degrees about +Y over 1 s; the box, not animated itself, rides on
+// it: its origin is (0, 1, 0) + R_y(theta) (2, 0, 0), its vertex (1, 0, 0) at R_y (3, 0, 0), as
+// the player and sceneFrozenAt evaluate it; with the box given by a matrix as well.
+TEST_F(GltfSkinTest, MeshUnderAnAnimatedEmptyRidesOnIt) {
+  for (bool matrix : {false, true}) {
+    SCOPED_TRACE(matrix ? "box given by a matrix" : "box given by TRS");
+    GltfWriter w;
+    TurntableFile f = writeTurntable(w, matrix);
+    const float s = std::sqrt(0.5f);
+    addChannel(w, f.turntable, "rotation", {0, 0, 0, 1}, {0, s, 0, s});
+    LoadWarnings warnings;
+    Scene scene = loadGltf(w.writeGltf(dir, "turntable"), warnings);
+    EXPECT_TRUE(warnings.empty()) << (warnings.empty() ? "" : warnings.summary()[0]);
+    ASSERT_EQ(scene.instances.size(), 1u);
+    // The rest placement is unchanged; the turntable and its ancestor join the skeleton.
+    EXPECT_VEC3_NEAR(place(scene.instances[0].transform, glm::vec3(0)), glm::vec3(2, 1, 0));
+    ASSERT_GE(scene.skeleton.size(), 2u);
+    EXPECT_EQ(scene.skeleton[0].name, "stage");
+    EXPECT_EQ(scene.skeleton[1].name, "turntable");
+    EXPECT_EQ(scene.skeleton[1].parent, 0);
+    ASSERT_EQ(scene.animation.joints.size(), 1u);
+    EXPECT_EQ(scene.animation.joints[0].node, 1u);
+    ASSERT_EQ(scene.animation.transforms.size(), 1u);
+    EXPECT_EQ(scene.animation.transforms[0].instance, 0u);
+    EXPECT_GE(scene.animation.transforms[0].parentNode, 1);
+    for (float t : {0.0f, 0.5f, 1.0f}) {
+      SCOPED_TRACE("t = " + std::to_string(t));
+      const float degrees = 90.0f * t;
+      const glm::mat4 box = playedTransforms(scene, t, false)[0];
+      EXPECT_VEC3_NEAR(place(box, glm::vec3(0)),
+                       glm::vec3(0, 1, 0) + turnedAboutY(glm::vec3(2, 0, 0), degrees));
+      EXPECT_VEC3_NEAR(place(box, glm::vec3(1, 0, 0)),
+                       glm::vec3(0, 1, 0) + turnedAboutY(glm::vec3(3, 0, 0), degrees));
+      if (t < 1.0f) {  // sceneFrozenAt loops: t = 1 is t = 0 there
+        const Scene frozen = sceneFrozenAt(scene, t);
+        EXPECT_EQ(frozen.instances[0].transform, playedTransforms(scene, t)[0]);
+        EXPECT_TRUE(frozen.animation.transforms.empty());
+      }
+    }
+  }
+}
+
+// A mesh whose own node is animated and whose parent is animated composes both: the box slides
+// from x = 2 to x = 4 while the turntable turns, so at t the origin is R_y(90 t) (2 + 2t, 0, 0).
+TEST_F(GltfSkinTest, AnimatedMeshUnderAnAnimatedParentComposesBoth) {
+  GltfWriter w;
+  TurntableFile f = writeTurntable(w);
+  const float s = std::sqrt(0.5f);
+  addChannel(w, f.turntable, "rotation", {0, 0, 0, 1}, {0, s, 0, s});
+  addChannel(w, f.box, "translation", {2, 0, 0}, {4, 0, 0});
+  Scene scene = loadGltf(w.writeGltf(dir, "sliding"));
+  ASSERT_EQ(scene.animation.transforms.size(), 1u);
+  for (float t : {0.0f, 0.25f, 0.5f, 1.0f}) {
+    SCOPED_TRACE("t = " + std::to_string(t));
+    const glm::mat4 box = playedTransforms(scene, t, false)[0];
+    EXPECT_VEC3_NEAR(place(box, glm::vec3(0)),
+                     glm::vec3(0, 1, 0) + turnedAboutY(glm::vec3(2 + 2 * t, 0, 0), 90.0f * t));
+  }
+  EXPECT_EQ(sceneFrozenAt(scene, 0.5f).instances[0].transform, playedTransforms(scene, 0.5f)[0]);
+}
+
+// A prop in a hand: a mesh node "sword" under the strip's animated tip joint, 1 along the
+// tip's +X, follows the tip as the strip's vertex (2, 0, 0), bound to the tip alone, does:
+// origin (1 + cos theta, sin theta, -3) with theta = 90 t about +Z. The skin's nodes are shared
+// (no new skeleton node) and the skinned mesh's instance stays the identity.
+TEST_F(GltfSkinTest, MeshUnderASkinJointFollowsIt) {
+  GltfWriter w;
+  StripFile f = writeStrip(w);
+  int pos = w.addPositions({{0, 0, 0}, {0.1f, 0, 0}, {0, 0.1f, 0}});
+  int sword = w.addNode({{"name", "sword"},
+                         {"mesh", w.addMesh({{"attributes", {{"POSITION", pos}}}})},
+                         {"translation", {1, 0, 0}}},
+                        false);
+  w.doc["nodes"][size_t(f.joint1)]["children"] = {sword};
+  animateTip(w, f.joint1);
+  LoadWarnings warnings;
+  Scene scene = loadGltf(w.writeGltf(dir, "sword"), warnings);
+  EXPECT_TRUE(warnings.empty()) << (warnings.empty() ? "" : warnings.summary()[0]);
+  EXPECT_EQ(scene.skeleton.size(), 3u);
+  ASSERT_EQ(scene.instances.size(), 2u);
+  ASSERT_EQ(scene.animation.transforms.size(), 1u);
+  const TransformTrack& track = scene.animation.transforms[0];
+  EXPECT_EQ(scene.instances[track.instance].name, "sword");
+  EXPECT_EQ(track.parentNode, 2);  // the tip
+  const uint32_t strip = 1 - track.instance;
+  for (float t : {0.0f, 0.5f, 1.0f}) {
+    SCOPED_TRACE("t = " + std::to_string(t));
+    const float theta = glm::radians(90.0f * t);
+    const std::vector<glm::mat4> transforms = playedTransforms(scene, t, false);
+    const glm::vec3 hilt = place(transforms[track.instance], glm::vec3(0));
+    EXPECT_VEC3_NEAR(hilt, glm::vec3(1 + std::cos(theta), std::sin(theta), -3));
+    EXPECT_VEC3_NEAR(hilt, posedPosition(scene, t, scene.instances[strip].mesh, 4, false));
+    EXPECT_EQ(transforms[strip], glm::mat4(1.0f));
+  }
+}
+
+// glTF animations hide objects with scale 0, a parent's included: a box under a turntable that
+// starts at scale 0 and grows to 1 is kept (singular, so hidden, at rest) and appears at
+// (2, 1, 0) when its parent scales up, instead of being skipped as a still scale-0 node is.
+TEST_F(GltfSkinTest, MeshUnderAParentAnimatedFromScaleZeroIsKept) {
+  GltfWriter w;
+  TurntableFile f = writeTurntable(w);
+  w.doc["nodes"][size_t(f.turntable)]["scale"] = {0, 0, 0};
+  addChannel(w, f.turntable, "scale", {0, 0, 0}, {1, 1, 1});
+  LoadWarnings warnings;
+  Scene scene = loadGltf(w.writeGltf(dir, "growing"), warnings);
+  ASSERT_EQ(scene.instances.size(), 1u);
+  EXPECT_EQ(warnings.count("starts with a singular transform (scale 0): hidden until its "
+                           "animation scales it up"),
+            1u);
+  EXPECT_EQ(glm::determinant(glm::mat3(playedTransforms(scene, 0.0f, false)[0])), 0.0f);
+  EXPECT_VEC3_NEAR(place(playedTransforms(scene, 1.0f, false)[0], glm::vec3(0)),
+                   glm::vec3(2, 1, 0));
+}
+
+// Without animations the hierarchy is baked as before: no tracks, no skeleton. A channel on a
+// node with no mesh in or below it (an animated empty beside the box, not above it) still moves
+// nothing, with the warning, and the box gets no track.
+TEST_F(GltfSkinTest, StaticHierarchiesAndChannelsWithoutMeshesAreAsBefore) {
+  {
+    GltfWriter w;
+    writeTurntable(w);
+    LoadWarnings warnings;
+    Scene scene = loadGltf(w.writeGltf(dir, "still"), warnings);
+    EXPECT_TRUE(warnings.empty());
+    EXPECT_TRUE(scene.animation.empty());
+    EXPECT_TRUE(scene.skeleton.empty());
+    ASSERT_EQ(scene.instances.size(), 1u);
+    EXPECT_VEC3_NEAR(place(scene.instances[0].transform, glm::vec3(0)), glm::vec3(2, 1, 0));
+  }
+  GltfWriter w;
+  writeTurntable(w);
+  int empty = w.addNode({{"name", "spinner"}});
+  const float s = std::sqrt(0.5f);
+  addChannel(w, empty, "rotation", {0, 0, 0, 1}, {0, s, 0, s});
+  LoadWarnings warnings;
+  Scene scene = loadGltf(w.writeGltf(dir, "beside"), warnings);
+  EXPECT_TRUE(scene.animation.transforms.empty());
+  EXPECT_TRUE(scene.animation.joints.empty());
+  EXPECT_TRUE(scene.skeleton.empty());
+  ASSERT_EQ(warnings.summary().size(), 1u);
+  EXPECT_NE(warnings.summary()[0].find("animations of nodes that place no mesh, have none below "
+                                       "them and are no skin joint are ignored"),
+            std::string::npos)
+      << warnings.summary()[0];
 }
 
 // One joint, no inverseBindMatrices (identities): every vertex moves rigidly with the joint's
@@ -700,6 +909,13 @@ TEST(Deformation, ValidationNamesTheProblem) {
     Scene scene = handBuiltSkin();
     scene.animation.morphWeights.push_back(MorphWeightTrack{0, 2, {0.0f}, {1.0f, 1.0f}});
     expectInvalid(scene, "morph weight track 0 has 2 targets but mesh 0 has 0 morph weights");
+  }
+  {
+    Scene scene = handBuiltSkin();
+    TransformTrack track;
+    track.parentNode = 2;
+    scene.animation.transforms.push_back(track);
+    expectInvalid(scene, "transform track 0 hangs under skeleton node 2 (2 nodes)");
   }
 }
 

@@ -90,7 +90,7 @@ TEST(Animation, ChannelsInterpolateLikeGltf) {
   track.translation = {{0.0f, 2.0f}, {glm::vec3(0.0f), glm::vec3(4.0f, 0.0f, 0.0f)}};
   animation.transforms.push_back(track);
   std::vector<glm::mat4> transforms(1);
-  evaluateTransforms(animation, 2.5f, transforms);  // loops: 2.5 s -> 0.5 s
+  evaluateTransforms(animation, 2.5f, {}, transforms);  // loops: 2.5 s -> 0.5 s
   EXPECT_NEAR(transforms[0][3].x, 1.0f, 1e-6f);
 }
 

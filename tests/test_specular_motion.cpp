@@ -335,7 +335,7 @@ TEST(SpecularMotion, ThousandAnimatedFramesStayFinite) {
   size_t nonFinite = 0;
   for (int i = 0; i < 1000; ++i) {
     const float t = float(i) / 30.0f;
-    evaluateTransforms(scene.animation, t, transforms);
+    evaluateTransforms(scene.animation, t, {}, transforms);
     frame.setInstanceTransforms(transforms);
     Sun sun = scene.sun;
     const float a = 0.5f * t;

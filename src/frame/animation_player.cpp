@@ -14,14 +14,18 @@ AnimationPlayer::AnimationPlayer(const Scene& scene, SceneAnimation animation)
 
 Camera AnimationPlayer::apply(HybridFrame& frame, float t) {
   frame.setTime(t);
+  bool deformationTracks = !animation_.joints.empty() || !animation_.morphWeights.empty();
+  // Instances under animated skeleton nodes need the pose as much as the deforming meshes.
+  bool needsPose = deformationTracks || transformsNeedSkeleton(animation_);
+  if (needsPose) evaluatePose(scene_, animation_, t, pose_);
   if (!animation_.transforms.empty()) {
-    evaluateTransforms(animation_, t, transforms_);
+    // pose_ stays empty (never evaluated) when no track needs it.
+    evaluateTransforms(animation_, t, pose_.skeletonWorld, transforms_);
     frame.setInstanceTransforms(transforms_);
   }
-  if (!animation_.joints.empty() || !animation_.morphWeights.empty()) {
-    evaluatePose(scene_, animation_, t, pose_);
-    frame.setDeformation(pose_);
-  }
+  // Joint tracks of a scene where nothing deforms only move the skeleton that instances hang
+  // under; the GPU has no deformer to hand the pose to then.
+  if (deformationTracks && scene_.deforms()) frame.setDeformation(pose_);
   if (!animation_.lights.empty()) {
     evaluateLights(animation_, t, scene_.lights, lights_);
     frame.setLights(lights_);

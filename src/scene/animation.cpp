@@ -104,20 +104,35 @@ glm::quat sampleChannel(const Channel<glm::quat>& channel, float t, const glm::q
   });
 }
 
-glm::mat4 evaluateTrack(const TransformTrack& track, float t) {
+// T x R x S at t, without the parent.
+static glm::mat4 evaluateTrs(const TransformTrack& track, float t) {
   glm::mat4 m =
       glm::translate(glm::mat4(1.0f), sampleChannel(track.translation, t, track.restTranslation));
   m *= glm::mat4_cast(sampleChannel(track.rotation, t, track.restRotation));
-  m = glm::scale(m, sampleChannel(track.scale, t, track.restScale));
-  return track.parent * m;
+  return glm::scale(m, sampleChannel(track.scale, t, track.restScale));
+}
+
+glm::mat4 evaluateTrack(const TransformTrack& track, float t) {
+  return track.parent * evaluateTrs(track, t);
 }
 
 void evaluateTransforms(const SceneAnimation& animation, float t,
+                        std::span<const glm::mat4> skeletonWorld,
                         std::vector<glm::mat4>& transforms) {
   float local = animation.loop ? wrap(t, animation.transformDuration()) : t;
+  for (const TransformTrack& track : animation.transforms) {
+    if (track.instance >= transforms.size()) continue;
+    bool underSkeleton = track.parentNode >= 0 && size_t(track.parentNode) < skeletonWorld.size();
+    const glm::mat4& parent =
+        underSkeleton ? skeletonWorld[size_t(track.parentNode)] : track.parent;
+    transforms[track.instance] = parent * evaluateTrs(track, local);
+  }
+}
+
+bool transformsNeedSkeleton(const SceneAnimation& animation) {
   for (const TransformTrack& track : animation.transforms)
-    if (track.instance < transforms.size())
-      transforms[track.instance] = evaluateTrack(track, local);
+    if (track.parentNode >= 0) return true;
+  return false;
 }
 
 void evaluateJoints(const SceneAnimation& animation, float t, std::vector<glm::mat4>& locals) {

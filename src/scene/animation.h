@@ -9,6 +9,7 @@
 // the end values hold. Looping wraps t into the animation's [0, duration) instead.
 #pragma once
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -37,8 +38,13 @@ struct TransformTrack {
   glm::vec3 restTranslation{0.0f};
   glm::quat restRotation{1.0f, 0.0f, 0.0f, 0.0f};
   glm::vec3 restScale{1.0f};
-  // Applied after the animated TRS: world = parent x TRS (a glTF node's animated parents are
-  // not tracked; the loader bakes a static parent chain here).
+  // Where the instance hangs: with `parentNode` >= 0 under a node of Scene::skeleton, world =
+  // skeletonWorld[parentNode](t) x TRS(t), so the instance follows its animated ancestors (a
+  // glTF mesh node under an animated empty or a skin joint: the sword in the hand bone). With
+  // -1, world = parent x TRS(t), `parent` a static transform. `parent` also holds the rest
+  // parent-to-world of a tracked node, which stands in when the caller evaluates without the
+  // skeleton's world matrices (evaluateTransforms with an empty span).
+  int parentNode = -1;
   glm::mat4 parent{1.0f};
   Channel<glm::vec3> translation;
   Channel<glm::quat> rotation;
@@ -124,12 +130,19 @@ struct SceneAnimation {
 glm::vec3 sampleChannel(const Channel<glm::vec3>& channel, float t, const glm::vec3& rest);
 glm::quat sampleChannel(const Channel<glm::quat>& channel, float t, const glm::quat& rest);
 float sampleChannel(const Channel<float>& channel, float t, float rest);
-// parent x T x R x S at t.
+// parent x T x R x S at t (`parentNode` is not looked at: the static `parent`).
 glm::mat4 evaluateTrack(const TransformTrack& track, float t);
 // Writes the object-to-world transform of every instance at time t into `transforms` (sized to
 // the scene's instance count by the caller; untracked instances keep their value).
+// `skeletonWorld` is DeformationPose::skeletonWorld at the same t (evaluatePose), for the tracks
+// with a `parentNode`; it may be empty when no track has one (a track whose parentNode is
+// outside it hangs under its static `parent`, the rest pose of its ancestors).
 void evaluateTransforms(const SceneAnimation& animation, float t,
+                        std::span<const glm::mat4> skeletonWorld,
                         std::vector<glm::mat4>& transforms);
+// Whether some transform track hangs under a skeleton node (parentNode >= 0): evaluateTransforms
+// then needs the pose's skeletonWorld.
+bool transformsNeedSkeleton(const SceneAnimation& animation);
 
 // Writes the local transform of every animated skeleton node at time t into `locals` (one per
 // Scene::skeleton node, the rest `local`s, made by the caller; unanimated nodes keep theirs).

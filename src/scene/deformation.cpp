@@ -129,13 +129,13 @@ Scene posedScene(const Scene& scene, const DeformationPose& pose) {
 }
 
 Scene sceneFrozenAt(const Scene& scene, float t) {
-  std::vector<glm::mat4> transforms;
-  for (const Instance& instance : scene.instances) transforms.push_back(instance.transform);
-  evaluateTransforms(scene.animation, t, transforms);
-  std::vector<PunctualLight> lights = scene.lights;
-  evaluateLights(scene.animation, t, scene.lights, lights);
   DeformationPose pose;
   evaluatePose(scene, scene.animation, t, pose);
+  std::vector<glm::mat4> transforms;
+  for (const Instance& instance : scene.instances) transforms.push_back(instance.transform);
+  evaluateTransforms(scene.animation, t, pose.skeletonWorld, transforms);
+  std::vector<PunctualLight> lights = scene.lights;
+  evaluateLights(scene.animation, t, scene.lights, lights);
   Scene frozen = posedScene(scene, pose);
   for (size_t i = 0; i < frozen.instances.size(); ++i)
     frozen.instances[i].transform = transforms[i];
@@ -186,10 +186,16 @@ void validateSkinStreams(const Scene& scene, const Mesh& mesh, const Geometry& g
   }
 }
 
-// Tracks that evaluateJoints and evaluateMorphWeights would skip (a node or mesh that does not
-// exist, a target count unlike the mesh's) are errors here rather than silently still meshes.
+// Tracks that evaluateTransforms, evaluateJoints and evaluateMorphWeights would skip or leave at
+// rest (a skeleton node or mesh that does not exist, a target count unlike the mesh's) are
+// errors here rather than silently still meshes.
 void validateDeformationTracks(const Scene& scene, const std::string& source) {
   const SceneAnimation& animation = scene.animation;
+  for (size_t i = 0; i < animation.transforms.size(); ++i)
+    if (animation.transforms[i].parentNode < -1 ||
+        animation.transforms[i].parentNode >= int(scene.skeleton.size()))
+      fail("{}: transform track {} hangs under skeleton node {} ({} nodes)", source, i,
+           animation.transforms[i].parentNode, scene.skeleton.size());
   for (size_t i = 0; i < animation.joints.size(); ++i)
     if (animation.joints[i].node >= scene.skeleton.size())
       fail("{}: joint track {} animates skeleton node {} ({} nodes)", source, i,

@@ -54,7 +54,8 @@ Scene sceneFrozenAt(const Scene& scene, float t);
 // Checks what deformation needs beyond validateScene: joint and weight streams sized together,
 // joint indices inside the skin, finite weights, morph target counts and stream sizes, skin
 // references, skeleton parents before children, joint and morph weight tracks that name a
-// skeleton node or mesh that exists with its target count. Throws bounce::Error naming `source`.
+// skeleton node or mesh that exists with its target count, transform tracks whose parentNode
+// exists. Throws bounce::Error naming `source`.
 void validateDeformation(const Scene& scene, const std::string& source);
 
 }  // namespace bounce

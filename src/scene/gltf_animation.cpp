@@ -1,13 +1,15 @@
 // glTF animations (glTF 2.0 §3.11) as SceneAnimation tracks. Every animation of the file plays
 // at once (they share the timeline), as viewers do when asked to "play all". Supported, with
 // LINEAR and STEP samplers: translation, rotation and scale channels of nodes that place an
-// unskinned mesh (transform tracks) and of skeleton nodes, the joints of skins and their
-// ancestors (joint tracks; a node that is both gets both), and `weights` channels of nodes with
-// a morphed mesh (morph weight tracks). Not supported, with a warning: channels on other nodes
-// (an animated parent of a mesh would have to be evaluated down the hierarchy every frame, which
-// the flat per-instance tracks do not model). TRS channels of a skinned mesh's own node are
-// dropped silently: glTF ignores that node's transform. CUBICSPLINE samplers are an error naming
-// the sampler, rather than a silent approximation.
+// unskinned mesh (transform tracks) and of skeleton nodes: the joints of skins, the animated
+// ancestors of mesh nodes, and their ancestors (joint tracks; a node that is both gets both).
+// A mesh node below an animated ancestor gets a transform track, animated or at rest, that
+// hangs under its parent's skeleton node, so it follows the ancestors (the sword in the hand
+// bone, the wheel of the moving car). Also `weights` channels of nodes with a morphed mesh
+// (morph weight tracks). Not supported, with a warning: channels on nodes that affect nothing
+// drawn (no mesh in or below them, no joint: an animated camera or light node). TRS channels
+// of a skinned mesh's own node are dropped silently: glTF ignores that node's transform.
+// CUBICSPLINE samplers are an error naming the sampler, rather than a silent approximation.
 #include <cmath>
 #include <map>
 #include <type_traits>
@@ -131,6 +133,17 @@ void assignTransformChannel(const Source& src, const tinygltf::AnimationSampler&
 void loadAnimations(const Source& src, const AnimationTargets& targets,
                     const std::vector<Mesh>& meshes, SceneAnimation& out) {
   std::map<int, size_t> trackOfNode, jointTrackOfNode;
+  // Instances under animated ancestors move even without channels of their own.
+  for (const AnimatedInstance& i : targets.instances) {
+    if (i.parentNode < 0) continue;
+    trackOfNode[i.node] = out.transforms.size();
+    TransformTrack track;  // the node's skeleton node places it: identity TRS
+    if (!i.placedBySkeleton) track = restTrack(src, i.node, i.instance, i.parent);
+    track.instance = i.instance;
+    track.parent = i.parent;
+    track.parentNode = i.parentNode;
+    out.transforms.push_back(std::move(track));
+  }
   for (size_t a = 0; a < src.model.animations.size(); ++a) {
     const tinygltf::Animation& animation = src.model.animations[a];
     for (size_t c = 0; c < animation.channels.size(); ++c) {
@@ -169,8 +182,8 @@ void loadAnimations(const Source& src, const AnimationTargets& targets,
       }
       if (!target && joint == targets.skeletonNodes.end() && !targets.skinnedNodes.count(node))
         warnIgnored(src,
-                    "animations of nodes that place no mesh and are no skin joint (parents of "
-                    "meshes) are ignored",
+                    "animations of nodes that place no mesh, have none below them and are no "
+                    "skin joint are ignored",
                     "animation channels", what);
     }
   }

@@ -64,24 +64,30 @@ std::vector<glm::mat4> loadInverseBindMatrices(const Source& src, int skin);
 // Applies `toWorld` to a geometry's positions, normals, tangents and morph deltas.
 void bakeTransform(Geometry& g, const glm::mat4& toWorld);
 
-// A mesh instance made from a node, for animations: the node, the instance, and the node's
-// parent-to-world transform (static: animated parents are not supported).
+// A mesh instance made from an unskinned node, for animations: the node, the instance, the
+// node's rest parent-to-world transform and, when an ancestor of the node is animated, the
+// Scene::skeleton node it hangs under (TransformTrack::parentNode): its parent's, or its own
+// with `placedBySkeleton` for an unanimated node given by a matrix, which has no TRS to track.
 struct AnimatedInstance {
   int node = -1;
   uint32_t instance = 0;
   glm::mat4 parent{1.0f};
+  int parentNode = -1;
+  bool placedBySkeleton = false;
 };
 // What the file's animation channels can drive: instances of unskinned mesh nodes, skeleton
-// nodes (Scene::skeleton index of a glTF node), the morphed mesh copy of a node (Scene::meshes
-// index), and skinned mesh nodes (whose own transform glTF ignores).
+// nodes (Scene::skeleton index of a glTF node: skin joints, animated ancestors of mesh nodes,
+// and their ancestors), the morphed mesh copy of a node (Scene::meshes index), and skinned mesh
+// nodes (whose own transform glTF ignores).
 struct AnimationTargets {
   std::vector<AnimatedInstance> instances;
   std::map<int, uint32_t> skeletonNodes;
   std::map<int, uint32_t> morphedMeshes;
   std::set<int> skinnedNodes;
 };
-// Reads the file's animations into `out` (src/scene/gltf_animation.cpp). `meshes` are
-// Scene::meshes, for the morph target counts.
+// Reads the file's animations into `out` (src/scene/gltf_animation.cpp): a transform track for
+// every instance that is animated or hangs under a skeleton node, joint tracks for animated
+// skeleton nodes, morph weight tracks. `meshes` are Scene::meshes, for the morph target counts.
 void loadAnimations(const Source& src, const AnimationTargets& targets,
                     const std::vector<Mesh>& meshes, SceneAnimation& out);
 

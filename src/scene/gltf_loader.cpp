@@ -2,7 +2,9 @@
 // lets tinygltf parse the JSON and buffers, then walks the default scene's node trees into
 // instances, the first perspective camera and KHR_lights_punctual lights. A node with a skin or
 // a morphed mesh gets its own copy of the mesh (a deforming mesh has one instance); the joints
-// of the skins and their ancestors become Scene::skeleton. Primitives are in gltf_mesh.cpp, their
+// of the skins, the parents of mesh nodes with an animated ancestor, and their ancestors become
+// Scene::skeleton (gltf_animation.cpp hangs those meshes under it). Primitives are in
+// gltf_mesh.cpp, their
 // skin and morph streams in gltf_skin.cpp, materials and images in gltf_material.cpp, accessor
 // reads in gltf_accessor.cpp.
 #include <algorithm>
@@ -257,6 +259,7 @@ class SceneBuilder {
     nodeState_.assign(src_.model.nodes.size(), NodeState::Unvisited);
     findParents();
     for (int root : rootNodes()) visitNode(root, glm::mat4(1.0f), 0, "the scene");
+    hangUnderAnimatedAncestors();
     gltf::loadAnimations(src_, animationTargets_, scene_.meshes, scene_.animation);
     materials_.ensureNotEmpty();
     materials_.decodeImages();
@@ -369,7 +372,7 @@ class SceneBuilder {
   bool placeable(int index, const glm::mat4& toWorld) {
     if (!isSingular(toWorld)) return true;
     const tinygltf::Node& node = src_.model.nodes[size_t(index)];
-    if (animatedNodes_.count(index)) {
+    if (animatedNodes_.count(index) || hasAnimatedAncestor(index)) {
       warn(src_, {.group = "starts with a singular transform (scale 0): hidden until its "
                            "animation scales it up",
                   .things = "nodes",
@@ -541,6 +544,29 @@ class SceneBuilder {
       scene_.skeleton.push_back(skeletonNode);
     }
     return animationTargets_.skeletonNodes.at(node);
+  }
+
+  // Whether a translation, rotation or scale channel drives an ancestor of glTF node `node`.
+  bool hasAnimatedAncestor(int node) const {
+    size_t steps = 0;
+    for (int n = parents_[size_t(node)]; n >= 0 && steps <= size_t(kMaxNodeDepth);
+         n = parents_[size_t(n)], ++steps)
+      if (animatedNodes_.count(n)) return true;
+    return false;
+  }
+
+  // An unskinned mesh node below an animated ancestor follows it: the instance hangs under its
+  // parent's skeleton node, added with its ancestors (shared with the skins' joints). A node
+  // given by a matrix has no TRS for its track, so unless it is animated (an error in
+  // restTrack, as glTF allows animating TRS nodes only) it hangs under its own skeleton node.
+  void hangUnderAnimatedAncestors() {
+    for (gltf::AnimatedInstance& i : animationTargets_.instances) {
+      if (!hasAnimatedAncestor(i.node)) continue;
+      const tinygltf::Node& node = src_.model.nodes[size_t(i.node)];
+      i.placedBySkeleton = !node.matrix.empty() && !animatedNodes_.count(i.node);
+      if (i.placedBySkeleton) i.parent = i.parent * localTransform(i.node);
+      i.parentNode = int(skeletonNode(i.placedBySkeleton ? i.node : parents_[size_t(i.node)]));
+    }
   }
 
   // Every node's parent (-1 = none). A node listed as the child of several is an error met when

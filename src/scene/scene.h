@@ -75,8 +75,9 @@ struct Mesh {
   bool deforms() const { return skin >= 0 || !morphWeights.empty(); }
 };
 
-// A node of the joint hierarchy that skins hang from (a glTF node that is a joint or an ancestor
-// of one). Parents come before their children. `local` is the rest transform relative to the
+// A node of the hierarchy that skins and instances hang from (a glTF node that is a joint, the
+// parent of a mesh node below an animated node, or an ancestor of one). Parents come before
+// their children. `local` is the rest transform relative to the
 // parent (to the world for a root); SceneAnimation::joints may animate it.
 struct SkeletonNode {
   std::string name;
@@ -185,7 +186,9 @@ struct Scene {
   std::vector<Material> materials;  // never empty after loading: a default grey one if needed
   std::vector<Image> images;
   std::vector<PunctualLight> lights;
-  std::vector<SkeletonNode> skeleton;  // joints of the skins and their ancestors
+  // Joints of the skins, nodes that instances hang under (TransformTrack::parentNode), and
+  // their ancestors.
+  std::vector<SkeletonNode> skeleton;
   std::vector<Skin> skins;
   std::optional<Camera> camera;  // from the file or the procedural scene; else a default framing
   Sun sun;
