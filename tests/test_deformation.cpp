@@ -34,6 +34,14 @@
 namespace bounce {
 namespace {
 
+template <typename T>
+std::vector<T> texels(const HybridFrame& frame, const std::string& view) {
+  const graph::DebugView& v = frame.graph().readDebugView(view);
+  std::vector<T> out(v.bytes.size() / sizeof(T));
+  std::memcpy(out.data(), v.bytes.data(), out.size() * sizeof(T));
+  return out;
+}
+
 uint32_t instanceNamed(const Scene& scene, const std::string& name) {
   for (uint32_t i = 0; i < scene.instances.size(); ++i)
     if (scene.instances[i].name == name) return i;
@@ -246,15 +254,34 @@ TEST(DeformedGltf, SkinnedFileTracesAsItsCpuPose) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
-// ---- motion vectors -----------------------------------------------------------------------------
-
-template <typename T>
-std::vector<T> texels(const HybridFrame& frame, const std::string& view) {
-  const graph::DebugView& v = frame.graph().readDebugView(view);
-  std::vector<T> out(v.bytes.size() / sizeof(T));
-  std::memcpy(out.data(), v.bytes.data(), out.size() * sizeof(T));
-  return out;
+// The rasterised vbuffer culls instances by their boxes on the CPU, which for a deforming mesh
+// are those of the rest pose. The strip's tip turned into a view that its rest box misses must
+// still be drawn: the raster and the traced vbuffer both see it at the image centre.
+TEST(DeformedGltf, RasterVBufferDrawsAPoseOutsideTheRestBox) {
+  const Scene scene = loadScene(writeSkinnedStrip(test::tempDir("deformed_gltf_raster")));
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  DeformationPose pose;
+  evaluatePose(scene, scene.animation, 1.0f, pose);
+  const Camera camera{.position = {-0.75f, 1.0f, 1.6f},
+                      .target = {-0.75f, 1.0f, 0.0f},
+                      .verticalFovDegrees = 30.0f};
+  for (VBufferMode mode : {VBufferMode::Raster, VBufferMode::Trace}) {
+    GpuScene gpuScene(context, scene);
+    HybridSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    settings.vbuffer = mode;
+    HybridFrame frame(context, gpuScene, scene, settings);
+    frame.requestDebugView("vbuffer.ids");
+    frame.setDeformation(pose);
+    frame.render(camera);
+    std::vector<glm::uvec4> ids = texels<glm::uvec4>(frame, "vbuffer.ids");
+    EXPECT_EQ(ids[24 * 64 + 32].x, 0u) << (mode == VBufferMode::Raster ? "raster" : "trace");
+  }
+  EXPECT_EQ(context.validationErrorCount(), 0u);
 }
+
+// ---- motion vectors -----------------------------------------------------------------------------
 
 glm::vec2 projectToPixel(const gpu::GpuCamera& cam, glm::uvec2 res, const glm::vec3& p) {
   glm::vec4 clip = viewProjection(cam, 0.01f) * glm::vec4(p, 1.0f);

@@ -65,7 +65,8 @@ VBufferPass::VBufferPass(vk::Context& context, const GpuScene& gpuScene, const S
     for (uint32_t g = instance.geometryBase; g < instance.geometryBase + geometryCount; ++g)
       if (bvh.geometries[g].triangleCount > 0)
         (alphaTested(scene, bvh.geometries[g].material) ? alphaTestedDraws_ : opaqueDraws_)
-            .push_back({i, g, bvh.geometries[g].triangleCount});
+            .push_back(
+                {i, g, bvh.geometries[g].triangleCount, scene.meshes[instance.mesh].deforms()});
   }
   visibleOpaque_.reserve(opaqueDraws_.size());
   visibleAlphaTested_.reserve(alphaTestedDraws_.size());
@@ -137,7 +138,8 @@ void VBufferPass::cullDraws(const glm::mat4& viewProjection) {
     visible->clear();  // keeps the capacity: no allocation per frame
     for (const Draw& d : *all) {
       const gpu::GpuInstance& instance = bvh.instances[d.instance];
-      if (!outsideFrustum(viewProjection,
+      if (d.deforms ||
+          !outsideFrustum(viewProjection,
                           rt::instanceWorldBounds(instance, bvh.meshBounds[instance.mesh])))
         visible->push_back(d);
     }

@@ -35,6 +35,8 @@ class VBufferPass {
     uint32_t instance;
     uint32_t geometry;  // global
     uint32_t triangles;
+    // A deforming mesh's box is known on the GPU only (scene-refit-blas): never culled.
+    bool deforms;
   };
   // The draws whose instance box meets the camera's frustum, opaque ones first.
   void cullDraws(const glm::mat4& viewProjection);
