@@ -20,6 +20,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "frame/hybrid_frame.h"
+#include "frame_texels.h"
 #include "gltf_writer.h"
 #include "harness.h"
 #include "passes/primary_view.h"
@@ -34,13 +35,7 @@
 namespace bounce {
 namespace {
 
-template <typename T>
-std::vector<T> texels(const HybridFrame& frame, const std::string& view) {
-  const graph::DebugView& v = frame.graph().readDebugView(view);
-  std::vector<T> out(v.bytes.size() / sizeof(T));
-  std::memcpy(out.data(), v.bytes.data(), out.size() * sizeof(T));
-  return out;
-}
+using test::texels;
 
 uint32_t instanceNamed(const Scene& scene, const std::string& name) {
   for (uint32_t i = 0; i < scene.instances.size(); ++i)

@@ -28,6 +28,7 @@
 #include "frame/animation_player.h"
 #include "frame/hybrid_frame.h"
 #include "frame/presets.h"
+#include "frame_texels.h"
 #include "harness.h"
 #include "passes/primary_view.h"
 #include "rt/gpu_scene.h"
@@ -41,13 +42,7 @@
 namespace bounce {
 namespace {
 
-template <typename T>
-std::vector<T> texels(const HybridFrame& frame, const std::string& view) {
-  const graph::DebugView& v = frame.graph().readDebugView(view);
-  std::vector<T> out(v.bytes.size() / sizeof(T));
-  std::memcpy(out.data(), v.bytes.data(), out.size() * sizeof(T));
-  return out;
-}
+using test::texels;
 
 float luminance(const glm::vec4& c) {
   return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;

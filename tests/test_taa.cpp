@@ -30,6 +30,7 @@
 #include "floor_and_card.h"
 #include "frame/hybrid_frame.h"
 #include "frame/presets.h"
+#include "frame_texels.h"
 #include "harness.h"
 #include "passes/primary_view.h"
 #include "passes/taa.h"
@@ -48,13 +49,7 @@ double luminance(const glm::vec4& c) {
   return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
 }
 
-template <typename T>
-std::vector<T> texels(const HybridFrame& frame, const std::string& view) {
-  const graph::DebugView& v = frame.graph().readDebugView(view);
-  std::vector<T> out(v.bytes.size() / sizeof(T));
-  std::memcpy(out.data(), v.bytes.data(), out.size() * sizeof(T));
-  return out;
-}
+using test::texels;
 
 void writeTestImage(const std::string& name, const ImageRGBA32F& image, float exposure) {
   if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES")) {
