@@ -34,6 +34,11 @@ BOUNCE_CONST float RESTIR_GI_SKY_DISTANCE = 1.0e5f;
 BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_NEE = 0u;    // + one NEE sample: one bounce only
 BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_PATH = 1u;   // + NEE + a path traced on from x2
 BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_CACHE = 2u;  // + NEE + the clipmap cache
+// Specialization constant of gi-shade-diffuse-hits (PASS_SPEC_FIRST): the chain's second vertex,
+// so that the driver drops the continued path's code (its own traversal) where it never runs;
+// RESTIR_GI_SECOND_VERTEX_ANY (a pipeline created without it) reads RestirGiConstants.
+BOUNCE_CONST uint GI_SPEC_SECOND_VERTEX = 1u;
+BOUNCE_CONST uint RESTIR_GI_SECOND_VERTEX_ANY = 3u;
 
 BOUNCE_CONST uint RESTIR_GI_FLAG_TEMPORAL = 1u;             // gi-restir-temporal merges history
 BOUNCE_CONST uint RESTIR_GI_FLAG_DENOISE = 2u;              // gi-temporal-denoise runs
@@ -154,19 +159,34 @@ BOUNCE_CONST uint GI_PREPARE_BINDING_COUNT = 8u;
 BOUNCE_CONST float GI_RAY_FRESH = 1.0f;
 BOUNCE_CONST float GI_RAY_VALIDATION = 2.0f;
 
-// gi-trace-diffuse-rays
+// gi-trace-diffuse-rays: the closest hit of each GI pixel's ray, nothing more, so that the
+// traversal runs with the registers it needs and no more (shading x2 in the same shader took
+// 128 per thread: docs/benchmarks.md)
 BOUNCE_CONST uint GI_TRACE_BINDING_NORMALS = 0u;
 BOUNCE_CONST uint GI_TRACE_BINDING_DEPTH = 1u;
 BOUNCE_CONST uint GI_TRACE_BINDING_RAYS = 2u;
-BOUNCE_CONST uint GI_TRACE_BINDING_HIT = 3u;           // RGBA32F x2, RESTIR_GI_KIND_*
-BOUNCE_CONST uint GI_TRACE_BINDING_HIT_NORMAL = 4u;    // RGBA16F oct geometric normal at x2
-BOUNCE_CONST uint GI_TRACE_BINDING_HIT_RADIANCE = 5u;  // RGBA32F radiance at x2 without NEE
-BOUNCE_CONST uint GI_TRACE_BINDING_NEE_RAY = 6u;       // RGBA32F direction (unnormalised), tMax
-BOUNCE_CONST uint GI_TRACE_BINDING_NEE_RADIANCE = 7u;  // RGBA32F NEE radiance if unoccluded
+// RGBA32UI instance (GI_HIT_NONE on a miss or without a ray), geometry, primitive, 0
+BOUNCE_CONST uint GI_TRACE_BINDING_HIT_IDS = 3u;
+BOUNCE_CONST uint GI_TRACE_BINDING_HIT_BARYCENTRICS = 4u;  // RG32F
+BOUNCE_CONST uint GI_TRACE_BINDING_COUNT = 5u;
+BOUNCE_CONST uint GI_HIT_NONE = 0xFFFFFFFFu;
+
+// gi-shade-diffuse-hits: x2 at each hit (or the sky), its emission, the set-up of its NEE ray,
+// the cache or a continued path
+BOUNCE_CONST uint GI_SHADE_BINDING_NORMALS = 0u;
+BOUNCE_CONST uint GI_SHADE_BINDING_DEPTH = 1u;
+BOUNCE_CONST uint GI_SHADE_BINDING_RAYS = 2u;
+BOUNCE_CONST uint GI_SHADE_BINDING_HIT_IDS = 3u;
+BOUNCE_CONST uint GI_SHADE_BINDING_HIT_BARYCENTRICS = 4u;
+BOUNCE_CONST uint GI_SHADE_BINDING_HIT = 5u;           // RGBA32F x2, RESTIR_GI_KIND_*
+BOUNCE_CONST uint GI_SHADE_BINDING_HIT_NORMAL = 6u;    // RGBA16F oct geometric normal at x2
+BOUNCE_CONST uint GI_SHADE_BINDING_HIT_RADIANCE = 7u;  // RGBA32F radiance at x2 without NEE
+BOUNCE_CONST uint GI_SHADE_BINDING_NEE_RAY = 8u;       // RGBA32F direction (unnormalised), tMax
+BOUNCE_CONST uint GI_SHADE_BINDING_NEE_RADIANCE = 9u;  // RGBA32F NEE radiance if unoccluded
 // R16F the NEE visibility, 0 here (a GI pixel without a light sample stays at 0); the GI
 // pixels with a light sample go to GI_RAY_LIST_NEE
-BOUNCE_CONST uint GI_TRACE_BINDING_NEE_VISIBILITY = 8u;
-BOUNCE_CONST uint GI_TRACE_BINDING_COUNT = 9u;
+BOUNCE_CONST uint GI_SHADE_BINDING_NEE_VISIBILITY = 10u;
+BOUNCE_CONST uint GI_SHADE_BINDING_COUNT = 11u;
 
 // gi-trace-diffuse-nee-rays: one thread per entry of GI_RAY_LIST_NEE
 BOUNCE_CONST uint GI_NEE_BINDING_HIT = 0u;
@@ -254,7 +274,9 @@ BOUNCE_CONST uint GI_SPATIAL_BINDING_DEPTH = 9u;
 BOUNCE_CONST uint GI_SPATIAL_BINDING_ESTIMATE = 10u;  // RGBA16F the output reservoir's estimate
 BOUNCE_CONST uint GI_SPATIAL_BINDING_COUNT = 11u;
 
-// gi-trace-spatial-validation-rays
+// gi-trace-spatial-validation-rays: groups of GI_VALIDATION_GROUP_SIDE^2 pixels whose rays it
+// bins by direction (rt/ray_bins.glsl)
+BOUNCE_CONST uint GI_VALIDATION_GROUP_SIDE = 16u;
 BOUNCE_CONST uint GI_VALIDATION_BINDING_INPUT = 0u;  // 0-3, gi-restir-spatial-1's reservoir
 BOUNCE_CONST uint GI_VALIDATION_BINDING_TEMPORAL_SAMPLE = 4u;  // gi.reservoir.sample (own)
 BOUNCE_CONST uint GI_VALIDATION_BINDING_NORMALS = 5u;
@@ -294,6 +316,10 @@ BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_FLAGS = 3u;
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_OUTPUT = 4u;     // gi.diffuse
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_OCCLUSION = 5u;  // gi.resolve-occlusion
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_BINDING_COUNT = 6u;
+// RestirGiPassConstants::variant of its two passes: the blur across the rows, then down the
+// columns.
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_ROWS = 0u;
+BOUNCE_CONST uint GI_SPATIAL_DENOISE_COLUMNS = 1u;
 BOUNCE_CONST uint GI_SPATIAL_DENOISE_MAX_RADIUS =
     4u;  // RestirGiSettings::spatialDenoiseRadius at most
 

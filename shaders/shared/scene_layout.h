@@ -99,6 +99,8 @@ BOUNCE_CONST uint BVH_LAYOUT_WIDE = 1u;    // GpuWideBvhNode
 // without it keeps BVH_LAYOUT_ANY and reads blasLayout per ray.
 BOUNCE_CONST uint BVH_SPEC_BLAS_LAYOUT = 0u;
 BOUNCE_CONST uint BVH_LAYOUT_ANY = 2u;
+// A pass's own specialization constants follow the scene's, from this id on (ComputePass).
+BOUNCE_CONST uint PASS_SPEC_FIRST = 1u;
 
 // Triangles in BVH leaf order with their positions copied in (object space), so the
 // intersection loop touches one array. `geometry` holds the geometry index local to the mesh

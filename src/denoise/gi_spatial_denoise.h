@@ -1,6 +1,7 @@
 // `gi-spatial-denoise` (seed 000, desktop preset): one edge-aware blur of a diffuse-GI signal
 // at render resolution, taps only on this pixel's surface; pixels beside an occluder keep their
-// value (shaders/denoise/gi_spatial_denoise.comp).
+// value (shaders/denoise/gi_spatial_denoise.comp). Separable: two passes,
+// `gi-spatial-denoise-rows` across the rows, then `gi-spatial-denoise` down the columns.
 #pragma once
 #include <optional>
 
@@ -29,6 +30,11 @@ class GiSpatialDenoise {
                const GiSpatialDenoiseInputs& inputs, graph::ImageHandle output);
 
  private:
+  void declareDirection(graph::FrameGraph& graph, const FrameContext& frame, const GBuffer& gbuffer,
+                        const GiSpatialDenoiseInputs& in, graph::ImageHandle input,
+                        graph::ImageHandle output, uint32_t direction, const char* name);
+
+  // One pipeline, a descriptor set per direction (dispatch 0: rows, 1: columns).
   ComputePass pass_;
 };
 

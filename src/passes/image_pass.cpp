@@ -22,7 +22,8 @@ std::vector<const vk::DescriptorSetLayout*> setLayouts(
 }  // namespace
 
 ComputePass::ComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
-                         uint32_t imageCount, uint32_t pushConstantBytes, uint32_t dispatches)
+                         uint32_t imageCount, uint32_t pushConstantBytes, uint32_t dispatches,
+                         std::span<const uint32_t> specialization)
     : context_(context), scene_(scene), imageCount_(imageCount) {
   if (imageCount > 64) fail("pass '{}': {} storage images, at most 64", shader, imageCount);
   if (dispatches < 1 || dispatches > 8)
@@ -32,8 +33,13 @@ ComputePass::ComputePass(vk::Context& context, const GpuScene& scene, const std:
     pool_.emplace(context, dispatches, imageCount * dispatches);
     for (uint32_t i = 0; i < dispatches; ++i) sets_.push_back(pool_->allocate(*layout_));
   }
+  std::vector<uint32_t> constants(scene.specialization().begin(), scene.specialization().end());
+  if (!specialization.empty()) {
+    constants.resize(gpu::PASS_SPEC_FIRST, gpu::BVH_LAYOUT_ANY);
+    constants.insert(constants.end(), specialization.begin(), specialization.end());
+  }
   pipeline_ = vk::ComputePipeline(context, shader, setLayouts(scene, layout_), pushConstantBytes,
-                                  scene.specialization());
+                                  constants);
   infos_.resize(imageCount);
   writes_.resize(imageCount);
 }

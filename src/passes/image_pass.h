@@ -23,8 +23,11 @@ class ComputePass {
   // set 1 are storage images (no set 1 when imageCount is 0). `dispatches`: how many times one
   // frame records the pass (each its own descriptor set of the one pipeline, e.g. the iterations
   // of an à-trous filter), at most 8.
+  // `specialization`: the pass's own specialization constants, ids PASS_SPEC_FIRST on
+  // (shared/scene_layout.h; the scene's come first).
   ComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
-              uint32_t imageCount, uint32_t pushConstantBytes, uint32_t dispatches = 1);
+              uint32_t imageCount, uint32_t pushConstantBytes, uint32_t dispatches = 1,
+              std::span<const uint32_t> specialization = {});
 
   // Binds the pipeline, the scene and the images the pass declared with bindings
   // (graph::PassBuilder::read/write with a binding: every binding of set 1 exactly once) and

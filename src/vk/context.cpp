@@ -56,6 +56,11 @@ const char* deviceTypeName(VkPhysicalDeviceType type) {
 }
 
 // A queue family that can do both compute and graphics (the frame uses one queue).
+bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
+  const std::vector<std::string> all = deviceExtensions(pd);
+  return std::find(all.begin(), all.end(), name) != all.end();
+}
+
 std::optional<uint32_t> findQueueFamily(VkPhysicalDevice pd, bool* timestamps) {
   uint32_t count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, nullptr);
@@ -480,6 +485,7 @@ void Context::createDevice() {
   VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, features.chain()};
   ci.queueCreateInfoCount = 1;
   ci.pQueueCreateInfos = &queueInfo;
+  std::vector<const char*> extensions;
 
   // The hardware tracer's extensions, only where the device has them all (DeviceInfo::
   // hardwareRayTracingUsable): a device without them is created exactly as before.
@@ -495,9 +501,24 @@ void Context::createDevice() {
     rayTracingPipeline.rayTracingPipeline = VK_TRUE;
     // Ahead of the required chain: features.vulkan13's pNext is the chain's end.
     features.vulkan13.pNext = &rayTracingPipeline;
-    ci.enabledExtensionCount = uint32_t(std::size(rayTracingExtensions));
-    ci.ppEnabledExtensionNames = rayTracingExtensions;
+    extensions.insert(extensions.end(), std::begin(rayTracingExtensions),
+                      std::end(rayTracingExtensions));
   }
+  // The driver's own statistics of each compute pipeline (registers, spills), asked for with
+  // BOUNCE_PIPELINE_STATS=1 (docs/startup.md); else the device is created without them.
+  VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executableInfo{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+  const char* statisticsWanted = std::getenv("BOUNCE_PIPELINE_STATS");
+  if (statisticsWanted && std::strcmp(statisticsWanted, "0") != 0 &&
+      hasDeviceExtension(physicalDevice_, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME)) {
+    executableInfo.pipelineExecutableInfo = VK_TRUE;
+    executableInfo.pNext = features.vulkan13.pNext;
+    features.vulkan13.pNext = &executableInfo;
+    extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    pipelineStatistics_ = true;
+  }
+  ci.enabledExtensionCount = uint32_t(extensions.size());
+  ci.ppEnabledExtensionNames = extensions.data();
   VK_CHECK(vkCreateDevice(physicalDevice_, &ci, nullptr, &device_));
   hardwareRayTracing_ = info_.hardwareRayTracingUsable;
   vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);

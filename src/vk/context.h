@@ -96,6 +96,9 @@ class Context {
   // and deferred host operations enabled (DeviceInfo::hardwareRayTracingUsable; never for an
   // adopted device, whose enabled extensions Bounce cannot know).
   bool hardwareRayTracing() const { return hardwareRayTracing_; }
+  // Pipelines are created with the driver's statistics captured and print them
+  // (BOUNCE_PIPELINE_STATS=1 on a device with VK_KHR_pipeline_executable_properties).
+  bool pipelineStatistics() const { return pipelineStatistics_; }
 
   // Allocates dedicated memory for a resource; counted so tests can check that frames do
   // not allocate (DESIGN.md §1).
@@ -149,6 +152,7 @@ class Context {
   bool adopted_ = false;  // instance_, device_ and queue_ belong to the host
   bool validationEnabled_ = false;
   bool hardwareRayTracing_ = false;
+  bool pipelineStatistics_ = false;
   bool debugUtils_ = false;
   PFN_vkCmdBeginDebugUtilsLabelEXT beginLabel_ = nullptr;
   PFN_vkCmdEndDebugUtilsLabelEXT endLabel_ = nullptr;

@@ -1,6 +1,10 @@
 #include "vk/pipeline.h"
 
+#include <string>
 #include <utility>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "vk/check.h"
 #include "vk/pipeline_log.h"
@@ -91,6 +95,51 @@ VkPipelineLayout createPipelineLayout(const Context& context,
   return layout;
 }
 
+namespace {
+
+std::string statisticValue(const VkPipelineExecutableStatisticKHR& s) {
+  switch (s.format) {
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR:
+      return s.value.b32 ? "yes" : "no";
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR:
+      return std::to_string(s.value.i64);
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR:
+      return std::to_string(s.value.u64);
+    case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR:
+      return fmt::format("{:g}", s.value.f64);
+    default:
+      return "?";
+  }
+}
+
+}  // namespace
+
+// One line per executable of the pipeline on stderr: the shader, then the driver's statistics
+// as name=value (on NVIDIA the register count and spills: what bounds a pass's occupancy).
+void printPipelineStatistics(Context& context, VkPipeline pipeline, const std::string& name) {
+  auto properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+      vkGetDeviceProcAddr(context.device(), "vkGetPipelineExecutablePropertiesKHR"));
+  auto statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+      vkGetDeviceProcAddr(context.device(), "vkGetPipelineExecutableStatisticsKHR"));
+  if (!properties || !statistics) return;
+  VkPipelineInfoKHR info{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR, nullptr, pipeline};
+  uint32_t executables = 0;
+  if (properties(context.device(), &info, &executables, nullptr) != VK_SUCCESS) return;
+  for (uint32_t i = 0; i < executables; ++i) {
+    VkPipelineExecutableInfoKHR executable{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR, nullptr,
+                                           pipeline, i};
+    uint32_t count = 0;
+    if (statistics(context.device(), &executable, &count, nullptr) != VK_SUCCESS) continue;
+    std::vector<VkPipelineExecutableStatisticKHR> values(
+        count, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
+    if (statistics(context.device(), &executable, &count, values.data()) != VK_SUCCESS) continue;
+    std::string line = fmt::format("bounce: pipeline statistics: {}", name);
+    for (const VkPipelineExecutableStatisticKHR& v : values)
+      line += fmt::format(" | {}={}", v.name, statisticValue(v));
+    fmt::print(stderr, "{}\n", line);
+  }
+}
+
 ComputePipeline::ComputePipeline(Context& context, const std::string& shader,
                                  const std::vector<const DescriptorSetLayout*>& setLayouts,
                                  uint32_t pushConstantBytes,
@@ -112,12 +161,14 @@ ComputePipeline::ComputePipeline(Context& context, const std::string& shader,
                           specialization.data()};
   if (!specialization.empty()) ci.stage.pSpecializationInfo = &si;
   ci.layout = layout_;
+  if (context.pipelineStatistics()) ci.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
   const HostCost start = HostCost::now();
   VkResult r =
       vkCreateComputePipelines(context.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline_);
   logIndex_ = logPipelineCreated(shader, HostCost::now() - start);
   vkDestroyShaderModule(context.device(), module, nullptr);
   if (r != VK_SUCCESS) fail("creating compute pipeline '{}' failed: {}", shader, resultName(r));
+  if (context.pipelineStatistics()) printPipelineStatistics(context, pipeline_, shader);
   context.setObjectName(uint64_t(pipeline_), VK_OBJECT_TYPE_PIPELINE, shader);
 }
 

@@ -60,6 +60,10 @@ VkPipelineLayout createPipelineLayout(const Context& context,
                                       uint32_t pushConstantBytes,
                                       VkShaderStageFlags pushConstantStages);
 
+// Prints the driver's statistics of `pipeline` (created with
+// VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR; Context::pipelineStatistics) to stderr.
+void printPipelineStatistics(Context& context, VkPipeline pipeline, const std::string& name);
+
 class ComputePipeline {
  public:
   ComputePipeline() = default;

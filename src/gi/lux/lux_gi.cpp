@@ -60,10 +60,7 @@ LuxGi::LuxGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
                          gpu::LUX_RESOLVE_BINDING_COUNT, sizeof(gpu::LuxPassConstants)),
       integral_(context, gpuScene, "gi/lux/lux_probe_integral", gpu::LUX_INTEGRAL_BINDING_COUNT,
                 sizeof(gpu::LuxPassConstants)),
-      trace_(context, gpuScene, "gi/evolve/restir/gi_trace_diffuse_rays",
-             gpu::GI_TRACE_BINDING_COUNT),
-      traceNee_(context, gpuScene, "gi/evolve/restir/gi_trace_diffuse_nee_rays",
-                gpu::GI_NEE_BINDING_COUNT),
+      trace_(context, gpuScene, secondVertexConstant(reuse_.secondVertex)),
       temporal_(context, gpuScene),
       spatial_(context, gpuScene, reuse_),
       resolve_(context, gpuScene, reuse_) {
@@ -129,7 +126,7 @@ DiffuseGiOutput LuxGi::declare(graph::FrameGraph& graph, const GiInputs& in) {
     occlusionValidity =
         graph.createHistoryImage("gi.spatial-occlusion-validity", {VK_FORMAT_R16_SFLOAT, f.giSize});
   Rays rays = declareCandidates(graph, f);
-  GiHits hits = declareGiTrace(graph, f, rays.rays, &cache_, trace_, traceNee_);
+  GiHits hits = declareGiTrace(graph, f, rays.rays, &cache_, trace_);
   if (settings_.integralSamples > 0) declareProbeIntegral(graph, f);
   cache_.declareStatisticsReadback(graph);  // after the last pass that looks the cache up
   Candidates candidates = declareResolveCandidates(graph, f, rays, hits);

@@ -6,8 +6,9 @@
 //                              L1 SH of incoming radiance per cell), ClipmapCache::declareUpdate
 //   lux-candidates             M cosine candidates, RIS with p_hat = probe radiance x cos: one
 //                              direction and its W per GI pixel (no rays)
-//   gi-trace-diffuse-rays,     the one ray per final candidate and its NEE shadow ray (ReSTIR
-//   gi-trace-diffuse-nee-rays  GI's, cache 2nd vertex: the probe field at the hit)
+//   gi-trace-diffuse-rays,     the one ray per final candidate, its hit's shading and its NEE
+//   gi-shade-diffuse-hits,     shadow ray (ReSTIR GI's, cache 2nd vertex: the probe field at
+//   gi-trace-diffuse-nee-rays  the hit)
 //   lux-resolve-candidates     candidate reservoirs (M = 1, W from RIS)
 //   lux-probe-integral         test support: plain MC of the same integrand (integralSamples)
 //   temporal, spatial, resolve ReSTIR GI's stages (src/gi/evolve/restir/): reuse with the
@@ -74,7 +75,7 @@ class LuxGi final : public DiffuseGi {
   // history (settleHistoryScale) and SVGF none, or the dark samples of those frames linger.
   uint32_t settleFramesLeft_ = 0;
   ComputePass candidates_, resolveCandidates_, integral_;
-  RestirGiPass trace_, traceNee_;
+  GiTracePasses trace_;  // the trace of Evolve's candidates (gi/evolve/restir/candidates.h)
   TemporalStage temporal_;
   SpatialStage spatial_;
   ResolveStage resolve_;

@@ -34,8 +34,9 @@ bool besideOccluder(FrameConstants f, RestirGiConstants gi, ivec2 pixel, Primary
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       ivec2 q = clamp(pixel + ivec2(dx, dy) * step, ivec2(0), ivec2(f.resolution) - 1);
-      if ((dx == 0 && dy == 0) || (imageLoad(flags, q).x & GBUFFER_FLAG_SURFACE) == 0u) continue;
-      vec3 p = positionFromDepth(f, vec2(q) + 0.5, imageLoad(depths, q).x);
+      float depth = imageLoad(depths, q).x;
+      if ((dx == 0 && dy == 0) || !(depth > 0.0)) continue;  // sky: view depth 0
+      vec3 p = positionFromDepth(f, vec2(q) + 0.5, depth);
       if (dot(x.geometricNormal, p - x.position) > gi.planeTolerance * x.depth) return true;
     }
   return false;

@@ -8,7 +8,7 @@
 // L1 SH irradiance drops the clamped cosine's higher orders (Ramamoorthi & Hanrahan 2001): for
 // light from a small solid angle it gives 1/4 + cos/2 instead of cos, up to 25 % dark where a
 // bright patch faces the surface (sunroom's ceiling above the sunlit floor), and ReSTIR's
-// samples concentrate exactly there. So the SH only supplies the variation with the normal:
+// samples concentrate exactly there. So the SH (of luminance) only supplies the variation with the normal:
 // the result is the exact estimate at the geometric normal (the mean of L cos / pi W) times
 // SH(shading normal) / SH(geometric normal), which is the exact estimate on surfaces without a
 // normal map. With one sample (no reuse; the unbiased configuration) the exact estimate at the
@@ -67,12 +67,15 @@ vec3 shIrradianceOverPiAt(ShL1 sh, vec3 n) {
 
 const float NORMAL_VARIATION_LIMIT = 4.0;
 
-// SH irradiance at x's shading normal over that at its geometric normal (luminance), bounded;
-// 1 where the SH gives nothing at the geometric normal.
-float normalVariation(ShL1 sh, PrimaryVertex x) {
-  float atGeometric = brdfLuminance(shIrradianceOverPiAt(sh, x.geometricNormal));
+// SH irradiance at x's shading normal over that at its geometric normal, bounded; 1 where the
+// SH gives nothing at the geometric normal. Of luminance: the ratio is taken of luminances, so
+// the SH of the samples' luminance is all it needs (a third of the registers and arithmetic of
+// the colour SH; the two differ only where L1 rings below zero in some channels, which the
+// clamp cuts per channel).
+float normalVariation(vec4 shLuminance, PrimaryVertex x) {
+  float atGeometric = shIrradianceOverPi(shLuminance, x.geometricNormal);
   if (!(atGeometric > 1e-8)) return 1.0;
-  float atShading = brdfLuminance(shIrradianceOverPiAt(sh, x.shadingNormal));
+  float atShading = shIrradianceOverPi(shLuminance, x.shadingNormal);
   return clamp(atShading / atGeometric, 0.0, NORMAL_VARIATION_LIMIT);
 }
 
@@ -117,7 +120,7 @@ void main() {
   bool occlusionKnown = (gi.flags & RESTIR_GI_FLAG_OCCLUDER_VISIBILITY) != 0u;
   uint hidden = occlusionKnown ? imageLoad(resolveOcclusion, pixel).x : 0u;
   bool canonical = (gi.flags & RESTIR_GI_FLAG_CANONICAL_RESOLVE) != 0u;
-  ShL1 sh = ShL1(vec4(0.0), vec4(0.0), vec4(0.0));
+  vec4 shLuminance = vec4(0.0);  // L1 SH of the samples' luminance (normalVariation)
   vec3 exact = vec3(0.0);           // the direct estimate L cos / pi W at the shading normal
   vec3 exactGeometric = vec3(0.0);  // ... and at the geometric normal
   float count = 0.0;                // reservoirs on this surface
@@ -127,7 +130,8 @@ void main() {
   vec3 homeDirection = vec3(0.0), homeLw = vec3(0.0);
   bool homeContributes = false;
   float homeProducers = 0.0;
-  ShL1 fallback = sh;
+  // The nearest reservoir off this surface, one sample (kept as such, not as SH: registers).
+  vec3 fallbackDirection = vec3(0.0), fallbackLw = vec3(0.0);
   float fallbackDistance = 3.0e38;
   for (uint i = 0u; i < samples; ++i) {
     ivec2 q = resolveSampleGiPixel(gi, homePixel, i, samples, rotation);
@@ -149,26 +153,30 @@ void main() {
       if (home.M > 0.0 && couldProduce(r.origin, r.originNormal, x, home, gi.maxJacobian))
         homeProducers += 1.0;
       if (!valid || !(r.W > 0.0) || (hidden & (1u << i)) != 0u) continue;
-      shAdd(sh, direction, lw);
+      shLuminance += brdfLuminance(lw) * shBasisL1(direction);
       exact += lw * (max(dot(direction, x.shadingNormal), 0.0) / PI);
       exactGeometric += lw * (max(dot(direction, x.geometricNormal), 0.0) / PI);
     } else if (planeDistance < fallbackDistance) {
       // No reservoir on this surface (a thin feature at reduced GI resolution): the nearest one.
       fallbackDistance = planeDistance;
-      fallback = ShL1(vec4(0.0), vec4(0.0), vec4(0.0));
-      if (valid) shAdd(fallback, direction, lw);
+      fallbackDirection = direction;
+      fallbackLw = valid ? lw : vec3(0.0);
     }
   }
   if (homeContributes) {
     // The neighbours enter with 1/count each (the division below), the home with 1 - k/count.
     vec3 lw = homeLw * (count - homeProducers);
-    shAdd(sh, homeDirection, lw);
+    shLuminance += brdfLuminance(lw) * shBasisL1(homeDirection);
     exact += lw * (max(dot(homeDirection, x.shadingNormal), 0.0) / PI);
     exactGeometric += lw * (max(dot(homeDirection, x.geometricNormal), 0.0) / PI);
   }
   vec3 result;
-  if (!(count > 0.0)) result = shIrradianceOverPiAt(fallback, x.shadingNormal);
+  if (!(count > 0.0)) {
+    ShL1 fallback = ShL1(vec4(0.0), vec4(0.0), vec4(0.0));
+    shAdd(fallback, fallbackDirection, fallbackLw);
+    result = shIrradianceOverPiAt(fallback, x.shadingNormal);
+  }
   else if (!reuse) result = exact / count;
-  else result = (exactGeometric / count) * normalVariation(sh, x);
+  else result = (exactGeometric / count) * normalVariation(shLuminance, x);
   imageStore(outputImage, pixel, finiteOrZero(vec4(result, 1.0)));
 }

@@ -33,15 +33,30 @@ Reservoir loadReservoir(ivec2 q) {
                          imageLoad(inNormals, q));
 }
 
+// The neighbour of spatial sample i (of n): a golden-angle spiral with exponential radius around
+// g, or (-1, -1) where it leaves the image or falls on g itself.
+ivec2 spatialNeighbour(RestirGiConstants gi, ivec2 g, uint i, uint n, float rotation, uint variant) {
+  vec2 offset = goldenSpiralOffset(i, n, rotation, gi.spatialMinRadius, gi.spatialRadius[variant]);
+  ivec2 q = g + ivec2(round(offset));
+  if (q == g || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(gi.giResolution))))
+    return ivec2(-1);
+  return q;
+}
+
 // 1/Z normalisation: the confidence (M) of the reservoirs that could have produced the chosen
 // sample, the own one (the chosen sample has a positive target at x1) and those of the merged
-// neighbours whose surface and shift reach it (couldProduce).
+// neighbours (bit i of `merged`: spatial sample i) whose surface and shift reach it
+// (couldProduce). The neighbours are found again from the spiral rather than kept: an array of
+// them cost every pixel registers.
 float confidenceOfProducers(RestirGiConstants gi, PrimaryVertex x1, float ownM, Reservoir chosen,
-                            ivec2 merged[RESTIR_GI_MAX_SPATIAL_SAMPLES], uint mergedCount) {
+                            ivec2 g, uint merged, uint n, float rotation, uint variant) {
   float z = ownM;
-  for (uint i = 0u; i < mergedCount; ++i) {
-    Reservoir r = loadReservoir(merged[i]);
-    if (couldProduce(r.origin, r.originNormal, x1, chosen, gi.maxJacobian)) z += r.M;
+  for (uint i = 0u; i < n; ++i) {
+    if ((merged & (1u << i)) == 0u) continue;
+    ivec2 q = spatialNeighbour(gi, g, i, n, rotation, variant);
+    vec3 origin = imageLoad(inOrigin, q).xyz;
+    vec3 originNormal = decodeOctahedral(imageLoad(inNormals, q).xy);
+    if (couldProduce(origin, originNormal, x1, chosen, gi.maxJacobian)) z += imageLoad(inRadiance, q).w;
   }
   return z;
 }
@@ -61,21 +76,18 @@ void main() {
     uint n = min(gi.spatialSamples[variant], RESTIR_GI_MAX_SPATIAL_SAMPLES);
     vec2 u0 = random2(uvec2(g), f.frameIndex, RANDOM_GI_SPATIAL + variant);
     float rotation = 2.0 * PI * u0.x;
-    ivec2 merged[RESTIR_GI_MAX_SPATIAL_SAMPLES];  // the neighbours that entered the stream
-    uint mergedCount = 0u;
+    uint merged = 0u;  // bit i: spatial sample i entered the stream
     for (uint i = 0u; i < n; ++i) {
-      vec2 offset = goldenSpiralOffset(i, n, rotation, gi.spatialMinRadius, gi.spatialRadius[variant]);
-      ivec2 q = g + ivec2(round(offset));
-      if (q == g || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(gi.giResolution))))
-        continue;
+      ivec2 q = spatialNeighbour(gi, g, i, n, rotation, variant);
+      if (q.x < 0) continue;
       Reservoir r = loadReservoir(q);
       if (r.M <= 0.0 || !sameSurface(gi, x1, r.origin, r.originNormal)) continue;
       float u = random2(uvec2(g), f.frameIndex * 16u + i, RANDOM_GI_SPATIAL + 2u).x;
       streamReservoir(s, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, u);
-      merged[mergedCount++] = q;
+      merged |= 1u << i;
     }
     bool normalise = (gi.flags & RESTIR_GI_FLAG_PRODUCER_NORMALISATION) != 0u;
-    result = normalise ? endStreamNormalised(s, x1, confidenceOfProducers(gi, x1, own.M, s.chosen, merged, mergedCount))
+    result = normalise ? endStreamNormalised(s, x1, confidenceOfProducers(gi, x1, own.M, s.chosen, g, merged, n, rotation, variant))
                        : endStream(s, x1);
   }
   vec4 a, b, c, d;

@@ -57,6 +57,18 @@ Reservoir loadPrevious(RestirGiConstants gi, ivec2 q) {
   return r;
 }
 
+// Whether last frame's reservoir at q holds a sample young enough (as loadPrevious) whose
+// primary vertex lies on x1's surface. Reads only the origin and its normal: the sample and its
+// radiance are loaded (loadPrevious) for the history actually merged, not for every one tested.
+bool previousOnSurface(RestirGiConstants gi, PrimaryVertex x1, ivec2 q) {
+  vec4 origin = imageLoad(previousOrigin, q);
+  uint kindAge = uint(origin.w + 0.5);
+  uint age = (kindAge >> 2u) + 1u;
+  if ((kindAge & 3u) == RESTIR_GI_KIND_NONE || (gi.maxSampleAge > 0u && age > gi.maxSampleAge))
+    return false;
+  return sameSurface(gi, x1, origin.xyz, decodeOctahedral(imageLoad(previousNormals, q).xy));
+}
+
 bool insideGi(RestirGiConstants gi, ivec2 q) {
   return all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(gi.giResolution)));
 }
@@ -82,25 +94,21 @@ ivec2 canonicalHistoryPixel(FrameConstants f, RestirGiConstants gi, ivec2 pixel,
   ivec2 base = ivec2(floor(p));
   vec2 t = p - vec2(base);
   float weights[4] = float[4]((1.0 - t.x) * (1.0 - t.y), t.x * (1.0 - t.y), (1.0 - t.x) * t.y, t.x * t.y);
-  Reservoir candidates[4];
   float total = 0.0;
   for (int i = 0; i < 4; ++i) {
     ivec2 q = base + ivec2(i & 1, i >> 1);
-    candidates[i] = emptyReservoir();
-    if (weights[i] <= 1e-4 || !insideGi(gi, q)) continue;
-    Reservoir r = loadPrevious(gi, q);
-    if (r.M <= 0.0 || !sameSurface(gi, x1, r.origin, r.originNormal)) continue;
-    candidates[i] = r;
+    if (weights[i] <= 1e-4 || !insideGi(gi, q) || !previousOnSurface(gi, x1, q)) weights[i] = 0.0;
     total += weights[i];
   }
   if (total <= 0.0) return ivec2(-1);
   float u = random2(uvec2(g), f.frameIndex, RANDOM_GI_TEMPORAL + 1u).x * total;
   for (int i = 0; i < 4; ++i) {
-    if (candidates[i].M <= 0.0) continue;
+    if (weights[i] <= 0.0) continue;
     u -= weights[i];
     if (u <= 0.0 || i == 3) {
-      history = candidates[i];
-      return base + ivec2(i & 1, i >> 1);
+      ivec2 q = base + ivec2(i & 1, i >> 1);
+      history = loadPrevious(gi, q);
+      return history.M > 0.0 ? q : ivec2(-1);
     }
   }
   return ivec2(-1);
@@ -121,9 +129,8 @@ Reservoir permutedHistory(FrameConstants f, RestirGiConstants gi, ivec2 q, uint 
   if (!insideGi(gi, p)) return emptyReservoir();
   if ((gi.flags & RESTIR_GI_FLAG_SPATIAL_VALIDATION) != 0u && imageLoad(occlusionValidity, p).x < 0.5)
     return emptyReservoir();
-  Reservoir r = loadPrevious(gi, p);
-  if (r.M <= 0.0 || !sameSurface(gi, x1, r.origin, r.originNormal)) return emptyReservoir();
-  return r;
+  if (!previousOnSurface(gi, x1, p)) return emptyReservoir();
+  return loadPrevious(gi, p);
 }
 
 DEFINE_NEIGHBOURHOOD_LUMINANCES(validity)
@@ -191,20 +198,15 @@ float brighteningScale(RestirGiConstants gi, ivec2 g, ivec2 pixel, bool validate
 
 // The history reservoirs a stream merged: last frame's GI pixel and the confidence each
 // entered with, for the 1/Z normalisation (their vertices are read again there, as
-// gi-restir-spatial does, rather than held).
+// gi-restir-spatial does, rather than held). Slot 0 is the canonical history, slot k the
+// permuted one k; a slot that merged nothing has M = 0. Every index is a constant of unrolled
+// loops, so that the arrays stay in registers (indexed by a running count they went to memory:
+// the pass took twice as long, docs/benchmarks.md).
 const uint MAX_HISTORY_SAMPLES = 5u;  // RestirGiSettings::temporalHistorySamples
 struct MergedHistory {
   ivec2 pixel[MAX_HISTORY_SAMPLES];
   float M[MAX_HISTORY_SAMPLES];
-  uint count;
 };
-
-void addMerged(inout MergedHistory h, ivec2 q, float M) {
-  if (h.count >= MAX_HISTORY_SAMPLES) return;
-  h.pixel[h.count] = q;
-  h.M[h.count] = M;
-  ++h.count;
-}
 
 // Z of 1/Z: the candidate's confidence (its domain is x1's hemisphere, which holds every
 // sample with a positive target at x1) plus that of every merged history reservoir that could
@@ -212,7 +214,8 @@ void addMerged(inout MergedHistory h, ivec2 q, float M) {
 float confidenceOfProducers(RestirGiConstants gi, PrimaryVertex x1, float candidateM,
                             Reservoir chosen, MergedHistory h) {
   float z = candidateM;
-  for (uint i = 0u; i < h.count; ++i) {
+  [[unroll]] for (uint i = 0u; i < MAX_HISTORY_SAMPLES; ++i) {
+    if (!(h.M[i] > 0.0)) continue;
     vec3 origin = imageLoad(previousOrigin, h.pixel[i]).xyz;
     vec3 originNormal = decodeOctahedral(imageLoad(previousNormals, h.pixel[i]).xy);
     if (couldProduce(origin, originNormal, x1, chosen, gi.maxJacobian)) z += h.M[i];
@@ -245,7 +248,10 @@ void main() {
     // confidence threshold (temporalMaxM) is reached or temporalHistorySamples were tried.
     ReservoirStream s = beginStream(x1, candidate);
     MergedHistory merged;
-    merged.count = 0u;
+    [[unroll]] for (uint k = 0u; k < MAX_HISTORY_SAMPLES; ++k) {
+      merged.pixel[k] = ivec2(0);
+      merged.M[k] = 0.0;
+    }
     Reservoir history;
     ivec2 q = canonicalHistoryPixel(f, gi, pixel, g, x1, history);
     if (q.x >= 0) {
@@ -256,9 +262,11 @@ void main() {
       Reservoir h = capped(gi, history, candidate.M);
       float confidence = candidate.M + h.M;
       h.M *= scale;
-      addMerged(merged, q, h.M);
+      merged.pixel[0] = q;
+      merged.M[0] = h.M;
       streamReservoir(s, x1, h, reconnectionJacobian(h.origin, x1.position, h), gi.maxJacobian, u);
-      for (uint k = 1u; k < gi.temporalHistorySamples && confidence < gi.temporalMaxM; ++k) {
+      [[unroll]] for (uint k = 1u; k < MAX_HISTORY_SAMPLES; ++k) {
+        if (k >= gi.temporalHistorySamples || confidence >= gi.temporalMaxM) break;
         ivec2 p;
         Reservoir r = permutedHistory(f, gi, q, k, x1, p);
         if (r.M <= 0.0) continue;
@@ -266,7 +274,8 @@ void main() {
         r.M = min(r.M, gi.temporalMaxM - confidence);
         confidence += r.M;
         r.M *= scale;
-        addMerged(merged, p, r.M);
+        merged.pixel[k] = p;
+        merged.M[k] = r.M;
         float uk = random2(uvec2(g), f.frameIndex * 8u + k, RANDOM_GI_TEMPORAL + 2u).x;
         streamReservoir(s, x1, r, reconnectionJacobian(r.origin, x1.position, r), gi.maxJacobian, uk);
       }

@@ -7,11 +7,14 @@
 // mask, an exponential running mean (validityBlend) reprojected with gbuffer.velocity: low where
 // spatial reuse keeps failing (contact shadows, under foliage). Next frame's gi-restir-temporal
 // and this frame's gi-temporal-denoise read it. Writes the validated sample image (x2, W); the
-// reservoir's other parts stay gi-restir-spatial-1's.
+// reservoir's other parts stay gi-restir-spatial-1's. A workgroup's pixels are handled in the
+// order of their rays' directions, those without a ray last (rt/ray_bins.glsl), so that a
+// subgroup traces rays of about one direction and none idles beside lanes that trace.
 #version 460
 #include "gi/evolve/restir/restir_gi_visibility.glsl"
+#include "rt/ray_bins.glsl"
 
-layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
+layout(local_size_x = RAY_BIN_GROUP_SIDE, local_size_y = RAY_BIN_GROUP_SIDE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
 
 layout(set = 1, binding = GI_VALIDATION_BINDING_INPUT + GI_RESERVOIR_SAMPLE, rgba32f) uniform readonly image2D inSample;
@@ -37,18 +40,42 @@ float previousValidity(RestirGiConstants gi, ivec2 pixel) {
   return isFiniteValue(v) ? clamp(v, 0.0, 1.0) : 1.0;
 }
 
+// Whether GI pixel g's final sample needs a shadow ray from x1: it came from a neighbour.
+bool needsRay(ivec2 g, Reservoir r) {
+  return r.M > 0.0 && r.W > 0.0 && any(notEqual(imageLoad(temporalSample, g).xyz, r.samplePosition));
+}
+
+Reservoir loadReservoir(ivec2 g) {
+  return unpackReservoir(imageLoad(inSample, g), imageLoad(inRadiance, g), imageLoad(inOrigin, g),
+                         imageLoad(inNormals, g));
+}
+
+// The GI pixel this invocation handles (rt/ray_bins.glsl): one of its group's tile, binned by
+// the direction of its shadow ray (from the reservoir's x1 to its x2).
+ivec2 binnedGiPixel(RestirGiConstants gi) {
+  ivec2 tile = ivec2(gl_WorkGroupID.xy * RAY_BIN_GROUP_SIDE);
+  ivec2 own = tile + ivec2(gl_LocalInvocationID.xy);
+  bool ray = false;
+  vec3 direction = vec3(0.0);
+  if (all(lessThan(uvec2(own), gi.giResolution))) {
+    Reservoir r = loadReservoir(own);
+    ray = needsRay(own, r);
+    direction = r.samplePosition - r.origin;
+  }
+  uint handled = binnedInvocation(ray, direction);
+  return tile + ivec2(handled % RAY_BIN_GROUP_SIDE, handled / RAY_BIN_GROUP_SIDE);
+}
+
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
-  ivec2 g = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 g = binnedGiPixel(gi);
   if (any(greaterThanEqual(uvec2(g), gi.giResolution))) return;
   ivec2 pixel = giRepresentativePixel(f, gi, g);
   PrimaryVertex x1 = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
-  Reservoir r = unpackReservoir(imageLoad(inSample, g), imageLoad(inRadiance, g),
-                                imageLoad(inOrigin, g), imageLoad(inNormals, g));
+  Reservoir r = loadReservoir(g);
   float visible = 1.0;
-  bool reused = any(notEqual(imageLoad(temporalSample, g).xyz, r.samplePosition));
-  if (r.M > 0.0 && r.W > 0.0 && reused && !sampleVisible(x1, r)) {
+  if (needsRay(g, r) && !sampleVisible(x1, r)) {
     visible = 0.0;
     r.W = 0.0;
   }

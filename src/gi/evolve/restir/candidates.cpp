@@ -19,19 +19,28 @@ bool historyValid(const graph::PassResources& r, const RestirFrame& f,
 
 }  // namespace
 
-CandidateStage::CandidateStage(vk::Context& context, const GpuScene& scene)
+uint32_t secondVertexConstant(RestirGiSecondVertex v) {
+  switch (v) {
+    case RestirGiSecondVertex::Path:
+      return gpu::RESTIR_GI_SECOND_VERTEX_PATH;
+    case RestirGiSecondVertex::Cache:
+      return gpu::RESTIR_GI_SECOND_VERTEX_CACHE;
+    default:
+      return gpu::RESTIR_GI_SECOND_VERTEX_NEE;
+  }
+}
+
+CandidateStage::CandidateStage(vk::Context& context, const GpuScene& scene, uint32_t secondVertex)
     : prepare_(context, scene, "gi/evolve/restir/gi_prepare_diffuse_rays",
                gpu::GI_PREPARE_BINDING_COUNT),
-      trace_(context, scene, "gi/evolve/restir/gi_trace_diffuse_rays", gpu::GI_TRACE_BINDING_COUNT),
-      traceNee_(context, scene, "gi/evolve/restir/gi_trace_diffuse_nee_rays",
-                gpu::GI_NEE_BINDING_COUNT),
+      trace_(context, scene, secondVertex),
       resolve_(context, scene, "gi/evolve/restir/gi_resolve_diffuse_rays",
                gpu::GI_CANDIDATES_BINDING_COUNT) {}
 
 Candidates CandidateStage::declare(graph::FrameGraph& graph, const RestirFrame& f,
                                    const ReservoirHistory& history, ClipmapCache* cache) {
   graph::ImageHandle rays = declarePrepare(graph, f, history);
-  GiHits hits = declareGiTrace(graph, f, rays, cache, trace_, traceNee_);
+  GiHits hits = declareGiTrace(graph, f, rays, cache, trace_);
   // The trace is the chain's last cache lookup.
   if (cache) cache->declareStatisticsReadback(graph);
   return declareResolve(graph, f, history, rays, hits);
@@ -57,8 +66,32 @@ graph::ImageHandle CandidateStage::declarePrepare(graph::FrameGraph& graph, cons
   return rays;
 }
 
+GiTracePasses::GiTracePasses(vk::Context& context, const GpuScene& scene, uint32_t secondVertex)
+    : trace(context, scene, "gi/evolve/restir/gi_trace_diffuse_rays", gpu::GI_TRACE_BINDING_COUNT),
+      shade(context, scene, "gi/evolve/restir/gi_shade_diffuse_hits", gpu::GI_SHADE_BINDING_COUNT,
+            std::span<const uint32_t>(&secondVertex, 1)),
+      traceNee(context, scene, "gi/evolve/restir/gi_trace_diffuse_nee_rays",
+               gpu::GI_NEE_BINDING_COUNT) {}
+
 GiHits declareGiTrace(graph::FrameGraph& graph, const RestirFrame& f, graph::ImageHandle rays,
-                      const ClipmapCache* cache, RestirGiPass& trace, RestirGiPass& traceNee) {
+                      const ClipmapCache* cache, GiTracePasses& passes) {
+  const graph::ImageHandle ids =
+      graph.createImage("gi.hit-ids", {VK_FORMAT_R32G32B32A32_UINT, f.giSize});
+  const graph::ImageHandle barycentrics =
+      graph.createImage("gi.hit-barycentrics", {VK_FORMAT_R32G32_SFLOAT, f.giSize});
+  graph.addPass("gi-trace-diffuse-rays", QueueKind::Compute)
+      .write(ids, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT_IDS)
+      .write(barycentrics, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT_BARYCENTRICS)
+      .read(f.in.frame.constants, Access::StorageRead)
+      .read(f.in.frame.instances, Access::StorageRead)
+      .read(f.in.frame.tlas, Access::StorageRead)
+      .read(f.in.gbuffer.normals, Access::StorageRead, gpu::GI_TRACE_BINDING_NORMALS)
+      .read(f.in.gbuffer.depth.current, Access::StorageRead, gpu::GI_TRACE_BINDING_DEPTH)
+      .read(rays, Access::StorageRead, gpu::GI_TRACE_BINDING_RAYS)
+      .record([&passes, f](VkCommandBuffer cmd, const graph::PassResources& r) {
+        passes.trace.record(cmd, r, f.passConstants(false), f.giResolution);
+      });
+
   GiHits h;
   h.hit = graph.createImage("gi.hit", {kRgba32f, f.giSize});
   h.normal = graph.createImage("gi.hit-normal", {kRgba16f, f.giSize});
@@ -66,23 +99,25 @@ GiHits declareGiTrace(graph::FrameGraph& graph, const RestirFrame& f, graph::Ima
   h.neeRay = graph.createImage("gi.nee-ray", {kRgba32f, f.giSize});
   h.neeRadiance = graph.createImage("gi.nee-radiance", {kRgba32f, f.giSize});
   h.neeVisibility = graph.createImage("gi.nee-visibility", {VK_FORMAT_R16_SFLOAT, f.giSize});
-  graph::PassBuilder pass = graph.addPass("gi-trace-diffuse-rays", QueueKind::Compute);
+  graph::PassBuilder pass = graph.addPass("gi-shade-diffuse-hits", QueueKind::Compute);
   if (cache) cache->declareLookup(pass);
   pass.read(f.in.frame.constants, Access::StorageRead)
       .read(f.in.frame.instances, Access::StorageRead)
       .read(f.in.frame.tlas, Access::StorageRead)
-      .read(f.in.gbuffer.normals, Access::StorageRead, gpu::GI_TRACE_BINDING_NORMALS)
-      .read(f.in.gbuffer.depth.current, Access::StorageRead, gpu::GI_TRACE_BINDING_DEPTH)
-      .read(rays, Access::StorageRead, gpu::GI_TRACE_BINDING_RAYS)
-      .write(h.hit, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT)
-      .write(h.normal, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT_NORMAL)
-      .write(h.radiance, Access::StorageWrite, gpu::GI_TRACE_BINDING_HIT_RADIANCE)
-      .write(h.neeRay, Access::StorageWrite, gpu::GI_TRACE_BINDING_NEE_RAY)
-      .write(h.neeRadiance, Access::StorageWrite, gpu::GI_TRACE_BINDING_NEE_RADIANCE)
-      .write(h.neeVisibility, Access::StorageWrite, gpu::GI_TRACE_BINDING_NEE_VISIBILITY)
+      .read(f.in.gbuffer.normals, Access::StorageRead, gpu::GI_SHADE_BINDING_NORMALS)
+      .read(f.in.gbuffer.depth.current, Access::StorageRead, gpu::GI_SHADE_BINDING_DEPTH)
+      .read(rays, Access::StorageRead, gpu::GI_SHADE_BINDING_RAYS)
+      .read(ids, Access::StorageRead, gpu::GI_SHADE_BINDING_HIT_IDS)
+      .read(barycentrics, Access::StorageRead, gpu::GI_SHADE_BINDING_HIT_BARYCENTRICS)
+      .write(h.hit, Access::StorageWrite, gpu::GI_SHADE_BINDING_HIT)
+      .write(h.normal, Access::StorageWrite, gpu::GI_SHADE_BINDING_HIT_NORMAL)
+      .write(h.radiance, Access::StorageWrite, gpu::GI_SHADE_BINDING_HIT_RADIANCE)
+      .write(h.neeRay, Access::StorageWrite, gpu::GI_SHADE_BINDING_NEE_RAY)
+      .write(h.neeRadiance, Access::StorageWrite, gpu::GI_SHADE_BINDING_NEE_RADIANCE)
+      .write(h.neeVisibility, Access::StorageWrite, gpu::GI_SHADE_BINDING_NEE_VISIBILITY)
       .write(f.rayLists, Access::StorageReadWrite)
-      .record([&trace, f](VkCommandBuffer cmd, const graph::PassResources& r) {
-        trace.record(cmd, r, f.rayListConstants(r), f.giResolution);
+      .record([&passes, f](VkCommandBuffer cmd, const graph::PassResources& r) {
+        passes.shade.record(cmd, r, f.rayListConstants(r), f.giResolution);
       });
   // StorageReadWrite: the pass writes the listed GI pixels only and keeps the others' 0.
   graph.addPass("gi-trace-diffuse-nee-rays", QueueKind::Compute)
@@ -95,8 +130,9 @@ GiHits declareGiTrace(graph::FrameGraph& graph, const RestirFrame& f, graph::Ima
       .read(h.normal, Access::StorageRead, gpu::GI_NEE_BINDING_HIT_NORMAL)
       .read(h.neeRay, Access::StorageRead, gpu::GI_NEE_BINDING_NEE_RAY)
       .write(h.neeVisibility, Access::StorageReadWrite, gpu::GI_NEE_BINDING_VISIBILITY)
-      .record([&traceNee, f](VkCommandBuffer cmd, const graph::PassResources& r) {
-        traceNee.recordOverRayList(cmd, r, f.rayListConstants(r), f.rayLists, gpu::GI_RAY_LIST_NEE);
+      .record([&passes, f](VkCommandBuffer cmd, const graph::PassResources& r) {
+        passes.traceNee.recordOverRayList(cmd, r, f.rayListConstants(r), f.rayLists,
+                                          gpu::GI_RAY_LIST_NEE);
       });
   return h;
 }

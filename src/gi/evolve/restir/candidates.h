@@ -2,14 +2,16 @@
 //
 //   gi-prepare-diffuse-rays    a uniform hemisphere direction per GI pixel (blue noise); every
 //                              3rd frame a validation ray along the history reservoir's sample
-//   gi-trace-diffuse-rays      closest hit; sky on a miss; emission, NEE set-up, the cache lookup
-//                              (Cache) or a continued path (Path) at the 2nd vertex
+//   gi-trace-diffuse-rays      closest hit (ids and barycentrics)
+//   gi-shade-diffuse-hits      x2 of the hit; sky on a miss; emission, NEE set-up, the cache
+//                              lookup (Cache) or a continued path (Path) at the 2nd vertex
 //   gi-trace-diffuse-nee-rays  visibility of the NEE rays, over the list of GI pixels with one
 //   gi-resolve-diffuse-rays    candidate reservoirs (one sample, W = 2 pi, M = 1), or on
 //                              validation rays the checked history reservoir; reservoir validity
 #pragma once
 #include "gi/evolve/cache/clipmap_cache.h"
 #include "gi/evolve/restir/restir_gi_pass.h"
+#include "gi/evolve/restir/restir_gi_settings.h"
 
 namespace bounce {
 
@@ -20,22 +22,34 @@ struct Candidates {
   graph::ImageHandle neeVisibility;  // gi.nee-visibility: r16f, 1 = the NEE ray is unoccluded
 };
 
-// gi-trace-diffuse-rays' outputs (shared/restir_gi_io.h, GI_TRACE_BINDING_*) and
+// gi-shade-diffuse-hits' outputs (shared/restir_gi_io.h, GI_SHADE_BINDING_*) and
 // gi-trace-diffuse-nee-rays' visibility.
 struct GiHits {
   graph::ImageHandle hit, normal, radiance, neeRay, neeRadiance;
   graph::ImageHandle neeVisibility;  // gi.nee-visibility: r16f, 1 = the NEE ray is unoccluded
 };
 
-// gi-trace-diffuse-rays over `rays` (gi.rays) then gi-trace-diffuse-nee-rays over the GI pixels
-// with a light sample; `cache`: the clipmap cache the 2nd vertex looks up, or nullptr. Evolve's
-// candidates and Lux's trace the same way.
+// RestirGiConstants::secondVertex (RESTIR_GI_SECOND_VERTEX_*) of a setting.
+uint32_t secondVertexConstant(RestirGiSecondVertex v);
+
+// The passes that turn gi.rays into GiHits: Evolve's candidates and Lux's trace the same way.
+struct GiTracePasses {
+  // `secondVertex`: the chain's RestirGiConstants::secondVertex, which gi-shade-diffuse-hits is
+  // specialized for (GI_SPEC_SECOND_VERTEX).
+  GiTracePasses(vk::Context& context, const GpuScene& scene, uint32_t secondVertex);
+  RestirGiPass trace, shade, traceNee;
+};
+
+// gi-trace-diffuse-rays and gi-shade-diffuse-hits over `rays` (gi.rays), then
+// gi-trace-diffuse-nee-rays over the GI pixels with a light sample; `cache`: the clipmap cache
+// the 2nd vertex looks up, or nullptr.
 GiHits declareGiTrace(graph::FrameGraph& graph, const RestirFrame& f, graph::ImageHandle rays,
-                      const ClipmapCache* cache, RestirGiPass& trace, RestirGiPass& traceNee);
+                      const ClipmapCache* cache, GiTracePasses& passes);
 
 class CandidateStage {
  public:
-  CandidateStage(vk::Context& context, const GpuScene& scene);
+  // `secondVertex`: RestirGiConstants::secondVertex (GiTracePasses).
+  CandidateStage(vk::Context& context, const GpuScene& scene, uint32_t secondVertex);
   // `history`: last frame's reservoirs (validation rays retrace their samples); `cache`: the
   // clipmap cache the 2nd vertex looks up, or nullptr.
   Candidates declare(graph::FrameGraph& graph, const RestirFrame& f,
@@ -48,7 +62,9 @@ class CandidateStage {
                             const ReservoirHistory& history, graph::ImageHandle rays,
                             const GiHits& hits);
 
-  RestirGiPass prepare_, trace_, traceNee_, resolve_;
+  RestirGiPass prepare_;
+  GiTracePasses trace_;
+  RestirGiPass resolve_;
 };
 
 }  // namespace bounce

@@ -63,7 +63,7 @@ RestirGi::RestirGi(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
                    VkExtent2D resolution)
     : settings_(settings),
       lights_(context, gpuScene, scene),
-      candidates_(context, gpuScene),
+      candidates_(context, gpuScene, secondVertexConstant(settings.secondVertex)),
       temporal_(context, gpuScene),
       spatial_(context, gpuScene, settings),
       resolve_(context, gpuScene, settings) {
@@ -90,10 +90,7 @@ gpu::RestirGiConstants restirGiConstants(const RestirGiSettings& s, VkExtent2D g
   c.lights = lights;
   c.giResolution = {giResolution.width, giResolution.height};
   c.divisor = s.divisor;
-  c.secondVertex = s.secondVertex == RestirGiSecondVertex::Path ? gpu::RESTIR_GI_SECOND_VERTEX_PATH
-                   : s.secondVertex == RestirGiSecondVertex::Cache
-                       ? gpu::RESTIR_GI_SECOND_VERTEX_CACHE
-                       : gpu::RESTIR_GI_SECOND_VERTEX_NEE;
+  c.secondVertex = secondVertexConstant(s.secondVertex);
   c.flags =
       (s.temporalReuse ? gpu::RESTIR_GI_FLAG_TEMPORAL : 0u) |
       (evolveDenoise ? gpu::RESTIR_GI_FLAG_DENOISE : 0u) |

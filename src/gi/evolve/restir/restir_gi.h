@@ -2,7 +2,8 @@
 //
 //   (cache-*)    the clipmap cache's update (ClipmapCache::declareUpdate), when the 2nd vertex
 //                continues into the cache (RestirGiSecondVertex::Cache)
-//   candidates   gi-prepare-diffuse-rays, gi-trace-diffuse-rays, gi-trace-diffuse-nee-rays,
+//   candidates   gi-prepare-diffuse-rays, gi-trace-diffuse-rays, gi-shade-diffuse-hits,
+//                gi-trace-diffuse-nee-rays,
 //                gi-resolve-diffuse-rays (candidates.h)
 //   temporal     gi-restir-temporal (temporal.h)
 //   spatial      gi-restir-spatial-0/-1, gi-trace-spatial-validation-rays,

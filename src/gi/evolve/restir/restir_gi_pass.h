@@ -16,15 +16,17 @@ namespace bounce {
 class RestirGiPass : public ComputePass {
  public:
   RestirGiPass(vk::Context& context, const GpuScene& scene, const std::string& shader,
-               uint32_t imageCount)
-      : ComputePass(context, scene, shader, imageCount, sizeof(gpu::RestirGiPassConstants)) {}
+               uint32_t imageCount, std::span<const uint32_t> specialization = {})
+      : ComputePass(context, scene, shader, imageCount, sizeof(gpu::RestirGiPassConstants), 1,
+                    specialization) {}
 
-  // Binds the images the pass declared with bindings, pushes the constants, covers `extent`.
+  // Binds the images the pass declared with bindings, pushes the constants, covers `extent`
+  // with groups of groupSide^2 threads (the shader's local size).
   void record(VkCommandBuffer cmd, const graph::PassResources& resources,
-              const gpu::RestirGiPassConstants& constants, VkExtent2D extent) {
+              const gpu::RestirGiPassConstants& constants, VkExtent2D extent,
+              uint32_t groupSide = gpu::RESTIR_GI_GROUP_SIZE) {
     bind(cmd, constants, resources);
-    vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height,
-                                          gpu::RESTIR_GI_GROUP_SIZE, gpu::RESTIR_GI_GROUP_SIZE);
+    vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, groupSide, groupSide);
   }
   // The same for a pass that walks ray list `list` of gi.ray-lists (`rayLists`): as many groups
   // as the pass that filled the list counted (shared/restir_gi_io.h, "Ray lists").

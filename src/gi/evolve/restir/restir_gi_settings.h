@@ -191,7 +191,7 @@ struct RestirGiSettings {
   // (Rejecting Jacobians above 2 instead of 10 removed the dots too but darkened the picture:
   // docs/decisions.md.)
   float fireflyRatio = 2.0f;
-  // gi-trace-diffuse-rays and the continued path read x2's textures at the mip at most this
+  // gi-shade-diffuse-hits and the continued path read x2's textures at the mip at most this
   // many texels wide (seed 000: "always sample materials at a coarse mip level, to reduce
   // bandwidth"; surface.glsl, coarseTextureLod). The hits of hemisphere rays are scattered, so
   // full-resolution fetches miss the texture cache, and the GI only needs a texture's mean

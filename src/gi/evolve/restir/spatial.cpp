@@ -92,7 +92,8 @@ Reservoirs SpatialStage::declareValidation(graph::FrameGraph& graph, const Resti
   for (uint32_t i = 0; i < 4; ++i)
     b.read(spatial.reservoir[i], Access::StorageRead, gpu::GI_VALIDATION_BINDING_INPUT + i);
   b.record([this, f, validity](VkCommandBuffer cmd, const graph::PassResources& r) {
-    validation_.record(cmd, r, f.passConstants(r.historyValid(validity)), f.giResolution);
+    validation_.record(cmd, r, f.passConstants(r.historyValid(validity)), f.giResolution,
+                       gpu::GI_VALIDATION_GROUP_SIDE);
   });
   return validated;
 }
