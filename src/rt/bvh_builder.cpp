@@ -17,6 +17,8 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <deque>
@@ -28,11 +30,8 @@
 #include <thread>
 
 #include "core/error.h"
+#include "rt/huge_pages.h"
 #include "rt/task_pool.h"
-
-#ifdef __linux__
-#include <sys/mman.h>
-#endif
 
 namespace bounce::rt {
 namespace {
@@ -48,29 +47,6 @@ constexpr uint32_t kBinningChunk = 32 * 1024;
 // Bounds of the empty child slot: min > max on every axis, so a slab test that picks the near
 // plane by the sign of the ray direction always finds tNear > tFar.
 constexpr float kEmptyChildBound = 1e30f;
-
-// ---- memory -----------------------------------------------------------------------------------
-
-// A 1M-primitive build touches about 150 MB of fresh memory; with 4 KiB pages the kernel's page
-// faults alone took a quarter of the build time. Asking for transparent huge pages (Linux) cuts
-// their number 512-fold. Only whole 2 MiB pages inside the block are advised.
-void adviseHugePages(void* data, size_t bytes) {
-#ifdef MADV_HUGEPAGE
-  constexpr uintptr_t kHugePage = uintptr_t(2) << 20;
-  uintptr_t begin = (reinterpret_cast<uintptr_t>(data) + kHugePage - 1) & ~(kHugePage - 1);
-  uintptr_t end = (reinterpret_cast<uintptr_t>(data) + bytes) & ~(kHugePage - 1);
-  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-#else
-  (void)data;
-  (void)bytes;
-#endif
-}
-
-template <typename T>
-void reserveLarge(std::vector<T>& v, size_t count) {
-  v.reserve(count);
-  adviseHugePages(v.data(), count * sizeof(T));
-}
 
 // ---- boxes in SSE registers -------------------------------------------------------------------
 
@@ -401,25 +377,44 @@ ExactSplit splitPair(const PrimRef* refs) {
   return split;
 }
 
+// Set bits of each byte value: a table, because x86-64's baseline has no popcnt instruction
+// (std::popcount became a library call).
+constexpr std::array<uint8_t, 256> kBitCount = [] {
+  std::array<uint8_t, 256> table{};
+  for (uint32_t v = 0; v < 256; ++v) table[v] = uint8_t(std::popcount(v));
+  return table;
+}();
+
+// Stable sort of n <= 8 keys (padded to 8 with +inf) by counting, for each key, the keys
+// below it and the equal keys before it: that count is its place. No data-dependent branches,
+// where an insertion sort mispredicts about once per key.
+void sortByRank(const float* keys, uint32_t n, uint8_t* order) {
+  static_assert(kMaxExactSahSize == 8);
+  const __m128 low = _mm_load_ps(keys), high = _mm_load_ps(keys + 4);
+  for (uint32_t i = 0; i < n; ++i) {
+    const __m128 key = _mm_set1_ps(keys[i]);
+    const uint32_t below = uint32_t(_mm_movemask_ps(_mm_cmplt_ps(low, key))) |
+                           uint32_t(_mm_movemask_ps(_mm_cmplt_ps(high, key))) << 4;
+    const uint32_t equal = uint32_t(_mm_movemask_ps(_mm_cmpeq_ps(low, key))) |
+                           uint32_t(_mm_movemask_ps(_mm_cmpeq_ps(high, key))) << 4;
+    order[kBitCount[below | (equal & ((1u << i) - 1u))]] = uint8_t(i);
+  }
+}
+
 ExactSplit findBestExactSplit(const PrimRef* refs, uint32_t n) {
   if (n == 2) return splitPair(refs);
   __m128 lower[kMaxExactSahSize], upper[kMaxExactSahSize];
-  float keys[3][kMaxExactSahSize];
+  // Keys padded with +inf, which no (finite) centroid equals or exceeds.
+  alignas(16) float keys[3][kMaxExactSahSize];
+  std::fill(&keys[0][0], &keys[0][0] + 3 * kMaxExactSahSize,
+            std::numeric_limits<float>::infinity());
   for (uint32_t i = 0; i < n; ++i) {
     lower[i] = refs[i].lo();
     upper[i] = refs[i].hi();
     for (int axis = 0; axis < 3; ++axis) keys[axis][i] = refs[i].centroid[axis];
   }
-  // Insertion sorts: stable, so equal centroids keep their order (deterministic).
   uint8_t order[3][kMaxExactSahSize];
-  for (int axis = 0; axis < 3; ++axis) {
-    const float* key = keys[axis];
-    for (uint32_t i = 0; i < n; ++i) {
-      uint32_t j = i;
-      for (; j > 0 && key[order[axis][j - 1]] > key[i]; --j) order[axis][j] = order[axis][j - 1];
-      order[axis][j] = uint8_t(i);
-    }
-  }
+  for (int axis = 0; axis < 3; ++axis) sortByRank(keys[axis], n, order[axis]);
   SweepColumn columns[kMaxExactSahSize];
   const __m128i one = _mm_setr_epi32(1, 1, 1, 0);
   for (uint32_t i = 0; i < n; ++i) {
@@ -958,6 +953,53 @@ BvhBuildStats measureBvh(std::span<const gpu::GpuBvhNode> nodes, uint32_t root,
   return stats;
 }
 
+namespace {
+
+// measureBvh for the builder's own output, which lists every node of one tree in depth-first
+// pre-order from node 0: a parent precedes its children, so one pass in array order can
+// carry depths down, with no stack. Same sums as measureBvh, added in another order.
+BvhBuildStats measurePreOrderTree(std::span<const gpu::GpuBvhNode> nodes, float traversalCost) {
+  BvhBuildStats stats;
+  if (nodes.empty()) return stats;
+  std::vector<uint8_t> depth(nodes.size());
+  depth[0] = 1;
+  double weightedNodes = 0.0, weightedPrimitives = 0.0, rootArea = 0.0;
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const gpu::GpuBvhNode& n = nodes[i];
+    const bool leftEmpty = n.leftMin.x > n.leftMax.x, rightEmpty = n.rightMin.x > n.rightMax.x;
+    const glm::vec3 lo = leftEmpty    ? n.rightMin
+                         : rightEmpty ? n.leftMin
+                                      : glm::min(n.leftMin, n.rightMin);
+    const glm::vec3 hi = leftEmpty    ? n.rightMax
+                         : rightEmpty ? n.leftMax
+                                      : glm::max(n.leftMax, n.rightMax);
+    const double area = halfArea(lo, hi);
+    if (i == 0) rootArea = area;
+    weightedNodes += area;
+    stats.maxDepth = std::max<uint32_t>(stats.maxDepth, depth[i]);
+    if (n.leftCount > 0) {
+      ++stats.leafCount;
+      stats.primitiveCount += n.leftCount;
+      weightedPrimitives += n.leftCount * halfArea(n.leftMin, n.leftMax);
+    } else if (n.leftIndex != gpu::BVH_INVALID) {
+      depth[n.leftIndex] = uint8_t(depth[i] + 1);
+    }
+    if (n.rightCount > 0) {
+      ++stats.leafCount;
+      stats.primitiveCount += n.rightCount;
+      weightedPrimitives += n.rightCount * halfArea(n.rightMin, n.rightMax);
+    } else if (n.rightIndex != gpu::BVH_INVALID) {
+      depth[n.rightIndex] = uint8_t(depth[i] + 1);
+    }
+  }
+  stats.nodeCount = uint32_t(nodes.size());
+  if (rootArea > 0.0)
+    stats.sahCost = (traversalCost * weightedNodes + weightedPrimitives) / rootArea;
+  return stats;
+}
+
+}  // namespace
+
 Bvh buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centroids,
              const BvhBuildOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -1000,7 +1042,7 @@ Bvh buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centroids,
 
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (options.measureTree) bvh.stats = measureBvh(bvh.nodes, 0, options.traversalCost);
+  if (options.measureTree) bvh.stats = measurePreOrderTree(bvh.nodes, options.traversalCost);
   bvh.stats.primitiveCount = n;
   bvh.stats.nodeCount = uint32_t(bvh.nodes.size());
   bvh.stats.seconds = seconds;
