@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <thread>
 
 #include <glm/gtc/packing.hpp>
@@ -176,13 +178,47 @@ struct MeshBlas {
   }
 };
 
-MeshBlas buildMeshBlas(const Mesh& mesh, const BvhBuildOptions& options, BvhLayout layout) {
-  MeshBlas blas;
-  blas.triangles = numberTriangles(mesh);
+// Working memory of one BLAS build, handed from build to build (ScratchShelf).
+struct MeshScratch {
+  BvhScratch bvh;
   std::vector<Aabb> boxes;
   std::vector<glm::vec3> centroids;
-  resizeLarge(boxes, blas.triangles.count());
-  resizeLarge(centroids, boxes.size());
+};
+
+// Scratches of the builds in flight: a build takes one (or a new one) and puts it back.
+class ScratchShelf {
+ public:
+  std::unique_ptr<MeshScratch> take() {
+    std::lock_guard lock(mutex_);
+    if (free_.empty()) return std::make_unique<MeshScratch>();
+    std::unique_ptr<MeshScratch> s = std::move(free_.back());
+    free_.pop_back();
+    return s;
+  }
+  void give(std::unique_ptr<MeshScratch> s) {
+    std::lock_guard lock(mutex_);
+    free_.push_back(std::move(s));
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<MeshScratch>> free_;
+};
+
+MeshBlas buildMeshBlas(const Mesh& mesh, const BvhBuildOptions& options, BvhLayout layout,
+                       MeshScratch& scratch) {
+  MeshBlas blas;
+  blas.triangles = numberTriangles(mesh);
+  std::vector<Aabb>& boxes = scratch.boxes;
+  std::vector<glm::vec3>& centroids = scratch.centroids;
+  if (boxes.capacity() < blas.triangles.count()) {
+    boxes = {};
+    centroids = {};
+    reserveLarge(boxes, blas.triangles.count());
+    reserveLarge(centroids, blas.triangles.count());
+  }
+  boxes.resize(blas.triangles.count());
+  centroids.resize(boxes.size());
   size_t t = 0;
   for (const Geometry& g : mesh.geometries) {
     for (size_t i = 0; i < g.indices.size(); i += 3, ++t) {
@@ -195,7 +231,7 @@ MeshBlas buildMeshBlas(const Mesh& mesh, const BvhBuildOptions& options, BvhLayo
       blas.bounds.extend(boxes[t]);
     }
   }
-  blas.bvh = buildBvh(boxes, centroids, options);
+  blas.bvh = buildBvh(boxes, centroids, options, &scratch.bvh);
   if (layout == BvhLayout::Wide) {
     blas.wide = collapseToWide(blas.bvh);
     blas.bvh.nodes = {};
@@ -258,10 +294,16 @@ std::vector<MeshBlas> buildAllBlas(const Scene& scene, const BvhBuildOptions& op
   std::vector<std::pair<uint64_t, size_t>> small;  // (triangles, mesh)
   BvhBuildOptions single = options;
   single.threadCount = 1;
+  ScratchShelf shelf;
+  auto build = [&](size_t m, const BvhBuildOptions& buildOptions) {
+    std::unique_ptr<MeshScratch> scratch = shelf.take();
+    blas[m] = buildMeshBlas(scene.meshes[m], buildOptions, out.layout, *scratch);
+    shelf.give(std::move(scratch));
+  };
   for (size_t m = 0; m < meshCount; ++m) {
     const uint64_t triangles = meshTriangleCount(scene.meshes[m]);
     if (triangles >= kLargeMeshTriangles) {
-      blas[m] = buildMeshBlas(scene.meshes[m], options, out.layout);
+      build(m, options);
       writeTriangles(scene, m, blas[m], out);
     } else {
       small.push_back({triangles, m});
@@ -272,7 +314,7 @@ std::vector<MeshBlas> buildAllBlas(const Scene& scene, const BvhBuildOptions& op
   // Each build is deterministic on its own, so the schedule cannot change the result.
   pool.parallelFor(uint32_t(small.size()), [&](uint32_t i) {
     const size_t m = small[i].second;
-    blas[m] = buildMeshBlas(scene.meshes[m], single, out.layout);
+    build(m, single);
     writeTriangles(scene, m, blas[m], out);
   });
   return blas;
