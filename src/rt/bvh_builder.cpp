@@ -705,9 +705,13 @@ class Construction {
   std::pair<BuildRange, BuildRange> exactHalves(const BuildRange& range, const ExactSplit& exact) {
     PrimRef* refs = buffers_[range.buffer] + range.begin;
     const uint32_t n = range.size();
-    PrimRef sorted[kMaxExactSahSize];
-    for (uint32_t i = 0; i < n; ++i) sorted[i] = refs[exact.order[i]];
-    std::copy(sorted, sorted + n, refs);
+    bool inOrder = true;
+    for (uint32_t i = 0; i < n; ++i) inOrder &= exact.order[i] == i;
+    if (!inOrder) {
+      PrimRef sorted[kMaxExactSahSize];
+      for (uint32_t i = 0; i < n; ++i) sorted[i] = refs[exact.order[i]];
+      std::copy(sorted, sorted + n, refs);
+    }
     BuildRange left, right;
     left.buffer = right.buffer = range.buffer;
     left.begin = range.begin;
@@ -715,8 +719,11 @@ class Construction {
     right.end = range.end;
     left.bounds = exact.sah.leftBounds;
     right.bounds = exact.sah.rightBounds;
-    for (uint32_t i = 0; i < n; ++i)
-      (i < exact.sah.leftCount ? left : right).centroidBounds.extend(refs[i].c(), refs[i].c());
+    // Both halves take the exact path again, which needs no centroid bounds; only the
+    // object-median fallback of a half too large for a leaf reads them.
+    if (n > options_.maxLeafSize + 1)
+      for (uint32_t i = 0; i < n; ++i)
+        (i < exact.sah.leftCount ? left : right).centroidBounds.extend(refs[i].c(), refs[i].c());
     left.depth = right.depth = range.depth + 1;
     return {left, right};
   }
@@ -829,20 +836,23 @@ void validateOptions(const BvhBuildOptions& options) {
     fail("BVH build: maxDepth {} outside [1, {}]", options.maxDepth, gpu::BVH_STACK_SIZE);
 }
 
-bool finite(const glm::vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-bool validPrimitive(const Aabb& box, const glm::vec3& centroid) {
-  return finite(box.min) && finite(box.max) && finite(centroid) && box.min.x <= box.max.x &&
-         box.min.y <= box.max.y && box.min.z <= box.max.z;
-}
-
 struct RootBounds {
   Box4 bounds;
   Box4 centroidBounds;
   uint32_t firstInvalid = std::numeric_limits<uint32_t>::max();
 };
+
+// Whether a primitive is valid, without a branch per test: |x| < inf fails for NaN and both
+// infinities, and min <= max for NaN too.
+bool validPrimitiveSse(__m128 lo, __m128 hi, __m128 c) {
+  const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF));
+  const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity());
+  __m128 ok = _mm_and_ps(_mm_cmplt_ps(_mm_and_ps(lo, absMask), infinity),
+                         _mm_cmplt_ps(_mm_and_ps(hi, absMask), infinity));
+  ok = _mm_and_ps(ok, _mm_cmplt_ps(_mm_and_ps(c, absMask), infinity));
+  ok = _mm_and_ps(ok, _mm_cmple_ps(lo, hi));
+  return (_mm_movemask_ps(ok) & 7) == 7;
+}
 
 RootBounds fillPrimRefs(std::span<const Aabb> boxes, std::span<const glm::vec3> centroids,
                         uint32_t begin, uint32_t end, PrimRef* refs) {
@@ -850,7 +860,7 @@ RootBounds fillPrimRefs(std::span<const Aabb> boxes, std::span<const glm::vec3> 
   for (uint32_t i = begin; i < end; ++i) {
     const Aabb& box = boxes[i];
     const glm::vec3& c = centroids[i];
-    if (!validPrimitive(box, c)) {
+    if (!validPrimitiveSse(toM128(box.min), toM128(box.max), toM128(c))) {
       result.firstInvalid = std::min(result.firstInvalid, i);
       continue;
     }
