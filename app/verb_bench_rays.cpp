@@ -1,8 +1,12 @@
 // bounce bench-rays: Mrays/s of primary, sun-shadow and diffuse-bounce rays through the
 // software BVH and/or the hardware tracer (--tracer), plus BVH build time, triangles/s and
 // memory, and with both tracers how far their hits agree.
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <memory>
+#include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -23,6 +27,8 @@ struct BenchRaysOptions {
   std::string json;
   std::string tracer = "software";
   bool verbose = false;
+  bool buildOnly = false;
+  uint32_t buildThreads = 0;
 };
 
 nlohmann::json kindsJson(const std::vector<RayKindResult>& kinds) {
@@ -93,8 +99,69 @@ nlohmann::json reportJson(const Scene& scene, const std::string& source, const s
   return j;
 }
 
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// --build-only: the CPU BVH build that GpuScene's constructor runs (buildGpuSceneBvh, the time
+// bench-rays reports as "BVH ... build"), `iterations` times, without a device. The machine
+// may be shared, so the median is the figure to quote; the SAH costs show that a faster build
+// did not buy its speed with a worse tree.
+int runBuildOnly(const BenchRaysOptions& options) {
+  Scene scene = options.common.loadScene();
+  GpuSceneOptions sceneOptions = options.common.gpuSceneOptions();
+  sceneOptions.bvhBuildThreads = options.buildThreads;
+  const uint64_t unique = scene.uniqueTriangleCount();
+  std::vector<double> seconds;
+  rt::SceneBvhStats stats;
+  for (uint32_t i = 0; i < options.iterations; ++i) {
+    rt::TlasRefitState refit;
+    const auto start = std::chrono::steady_clock::now();
+    rt::SceneBvh bvh = buildGpuSceneBvh(scene, sceneOptions, refit);
+    seconds.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    stats = bvh.stats;
+  }
+  const double med = median(seconds);
+  const double best = *std::min_element(seconds.begin(), seconds.end());
+  std::printf("scene %s: %llu unique triangles, BVH %s, %u build thread(s)\n", scene.name.c_str(),
+              (unsigned long long)unique, rt::bvhLayoutName(sceneOptions.bvhLayout),
+              options.buildThreads ? options.buildThreads
+                                   : std::max(1u, std::thread::hardware_concurrency()));
+  std::printf(
+      "BVH build over %u runs: median %.1f ms (%.2f M triangles/s), best %.1f ms (%.2f M "
+      "triangles/s); BLAS SAH cost %.3f, TLAS SAH cost %.3f\n",
+      options.iterations, med * 1e3, double(unique) / med * 1e-6, best * 1e3,
+      double(unique) / best * 1e-6, stats.blasSahCost, stats.tlasSahCost);
+  if (!options.json.empty()) {
+    nlohmann::json j;
+    j["scene"] = scene.name;
+    j["scene_source"] = options.common.scene;
+    j["unique_triangles"] = unique;
+    j["bvh_layout"] = rt::bvhLayoutName(sceneOptions.bvhLayout);
+    j["build_threads"] = options.buildThreads;
+    j["bvh_build_seconds"] = seconds;
+    j["bvh_build_median_seconds"] = med;
+    j["bvh_build_mtriangles_per_second"] = double(unique) / med * 1e-6;
+    j["blas_sah_cost"] = stats.blasSahCost;
+    j["tlas_sah_cost"] = stats.tlasSahCost;
+    writeTextFile(options.json,
+                  j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  }
+  return 0;
+}
+
 int runBenchRays(const BenchRaysOptions& options) {
   options.common.checkArguments();
+  if (options.buildOnly) {
+    if (options.tracer != "software")
+      fail("--build-only and --tracer {} cannot be used together: --build-only traces no rays",
+           options.tracer);
+    if (!options.json.empty()) requireWritableFile("--json", options.json);
+    return runBuildOnly(options);
+  }
   requireOneOf("--tracer", options.tracer, {"software", "hardware", "both"});
   const RayTracer tracer = options.tracer == "hardware" ? RayTracer::Hardware
                            : options.tracer == "both"   ? RayTracer::Both
@@ -106,7 +173,9 @@ int runBenchRays(const BenchRaysOptions& options) {
   // Before the BVH build, which takes a while on large scenes.
   if (tracer == RayTracer::Hardware && !HardwareTracer::supported(*context))
     fail("{}", HardwareTracer::unsupportedMessage(*context));
-  GpuScene gpuScene(*context, scene, options.common.gpuSceneOptions());
+  GpuSceneOptions sceneOptions = options.common.gpuSceneOptions();
+  sceneOptions.bvhBuildThreads = options.buildThreads;
+  GpuScene gpuScene(*context, scene, sceneOptions);
   const GpuSceneStats& s = gpuScene.stats();
   std::printf("scene %s: %llu triangles (%llu unique), device %s\n", scene.name.c_str(),
               (unsigned long long)s.triangles, (unsigned long long)s.uniqueTriangles,
@@ -209,6 +278,13 @@ void addBenchRaysVerb(CLI::App& app, VerbAction& action) {
                   "software (the BVH in shaders/rt/), hardware (VK_KHR_ray_tracing_pipeline) or "
                   "both (times both, compares their hits on the same rays)")
       ->capture_default_str();
+  cmd->add_flag("--build-only", options->buildOnly,
+                "Only time the CPU BVH build, --iterations times (median reported), with no "
+                "device and no rays; docs/benchmarks.md, \"BVH build\"");
+  cmd->add_option("--build-threads", options->buildThreads,
+                  "Threads of the BVH build; 0 = every core")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 1024));
   cmd->add_flag("-v,--verbose", options->verbose,
                 "Print the hardware tracer's device limits and acceleration-structure details");
   cmd->callback([&action, options, cmd] {

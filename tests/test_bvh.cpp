@@ -346,6 +346,72 @@ TEST(BvhBuilder, OutputDoesNotDependOnThreadCount) {
   }
 }
 
+// Ranges of up to 8 primitives are split by an exact SAH sweep (every plane between centroids
+// sorted along each axis). On small random sets, with centroids on a coarse grid so that many
+// tie, the root's split must cost what the best plane found by brute force costs.
+TEST(BvhBuilder, SmallRangesTakeTheBestExactSplit) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> grid(0, 3);
+  std::uniform_real_distribution<float> size(0.05f, 1.5f);
+  BvhBuildOptions options = tlasBuildOptions();  // leaves of one: the root always splits
+  for (int trial = 0; trial < 400; ++trial) {
+    const uint32_t n = 2 + uint32_t(trial % 7);
+    Primitives input;
+    for (uint32_t i = 0; i < n; ++i) {
+      const glm::vec3 c(float(grid(rng)), float(grid(rng)), float(grid(rng)));
+      const glm::vec3 half(size(rng), size(rng), size(rng));
+      input.boxes.push_back({c - half, c + half});
+      input.centroids.push_back(c);
+    }
+    auto halfArea = [](const Aabb& b) {
+      const glm::vec3 d = b.max - b.min;
+      return double(d.x) * d.y + double(d.y) * d.z + double(d.z) * d.x;
+    };
+    double best = std::numeric_limits<double>::infinity();
+    for (int axis = 0; axis < 3; ++axis) {
+      std::vector<uint32_t> order(n);
+      for (uint32_t i = 0; i < n; ++i) order[i] = i;
+      std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return input.centroids[a][axis] < input.centroids[b][axis];
+      });
+      for (uint32_t k = 1; k < n; ++k) {
+        Aabb left, right;
+        for (uint32_t i = 0; i < n; ++i) (i < k ? left : right).extend(input.boxes[order[i]]);
+        best = std::min(best, halfArea(left) * k + halfArea(right) * (n - k));
+      }
+    }
+    Bvh bvh = buildBvh(input.boxes, input.centroids, options);
+    const gpu::GpuBvhNode& root = bvh.nodes[0];
+    auto count = [&](uint32_t index, uint32_t leafCount) {
+      return leafCount > 0 ? leafCount : measureBvh(bvh.nodes, index, 1.0f).primitiveCount;
+    };
+    const double cost =
+        halfArea({root.leftMin, root.leftMax}) * count(root.leftIndex, root.leftCount) +
+        halfArea({root.rightMin, root.rightMax}) * count(root.rightIndex, root.rightCount);
+    EXPECT_NEAR(cost, best, 1e-5 * best) << "trial " << trial << ", " << n << " primitives";
+  }
+}
+
+// A scratch handed from build to build (as buildSceneBvh does from mesh to mesh) changes
+// nothing in the output, whether the next input is larger or smaller.
+TEST(BvhBuilder, ReusedScratchGivesTheSameTree) {
+  BvhScratch scratch;
+  for (uint32_t count : {30000u, 500u, 70000u, 9u}) {
+    Primitives input = primitivesOf(triangleSoup(count, count));
+    for (uint32_t threads : {1u, 2u}) {
+      BvhBuildOptions options;
+      options.threadCount = threads;
+      const Bvh fresh = buildBvh(input.boxes, input.centroids, options);
+      const Bvh reused = buildBvh(input.boxes, input.centroids, options, &scratch);
+      ASSERT_EQ(reused.nodes.size(), fresh.nodes.size()) << count;
+      EXPECT_EQ(0, std::memcmp(reused.nodes.data(), fresh.nodes.data(),
+                               fresh.nodes.size() * sizeof(gpu::GpuBvhNode)))
+          << count;
+      EXPECT_EQ(reused.primitiveOrder, fresh.primitiveOrder) << count;
+    }
+  }
+}
+
 // ---- scenes for traversal tests ---------------------------------------------------------------
 
 Geometry geometryOf(const std::vector<Triangle>& triangles, uint32_t material) {
@@ -938,6 +1004,20 @@ TEST(SceneBvh, ArraysDescribeTheScene) {
   EXPECT_GT(stats.bytes.total(), 0u);
 }
 
+// Issue 22 asks for a faster build at an SAH cost within 2 % of the builder's before it
+// (commit 2df13e8: BLAS 30.236, TLAS 14.606 on `city`, docs/ray-tracing.md "Build times").
+TEST(SceneBvh, CitySahCostStaysWithinTwoPercentOfTheEarlierBuilder) {
+  std::optional<Scene> city = makeBuiltinScene("city");
+  if (!city) GTEST_SKIP() << "built-in scene 'city' not available";
+  for (uint32_t threads : {1u, 2u}) {
+    SceneBvhOptions options;
+    options.blas.threadCount = threads;
+    const SceneBvhStats stats = buildSceneBvh(*city, options).stats;
+    EXPECT_LE(stats.blasSahCost, 1.02 * 30.236) << threads << " thread(s)";
+    EXPECT_LE(stats.tlasSahCost, 1.02 * 14.606) << threads << " thread(s)";
+  }
+}
+
 TEST(SceneBvh, RejectsUnusableScenes) {
   Scene scene = randomScene(6);
   {
@@ -1280,6 +1360,32 @@ void printBuild(const char* what, const Primitives& input, uint32_t threads) {
       "SAH cost %.2f, %u nodes, %u leaves, depth %u\n",
       what, input.boxes.size(), threads, best.seconds * 1e3, best.primitivesPerSecond * 1e-6,
       best.sahCost, best.nodeCount, best.leafCount, best.maxDepth);
+}
+
+// Issue 22's aim: `city` (441 k unique triangles) built at 5 M triangles/s or more on two
+// threads, timed as bench-rays times it (rt::buildSceneBvh; GpuScene adds a TLAS of 1.7 k
+// instances). Disabled: not met yet, and a timing on a shared machine is no pass/fail test.
+// Measured 2026-11-27 on the 2-core development machine (bench-rays --build-only, commit
+// 87bde46): median 93.7 ms, 4.70 M triangles/s when quiet (runs from 4.2 to 5.1 M/s),
+// 2.2-2.7 M/s with other jobs on the cores; 2.37 M/s before (docs/benchmarks.md, "BVH
+// build"). Run it with --gtest_also_run_disabled_tests on a quiet machine.
+TEST(BvhBenchmark, DISABLED_CityBuildsAtFiveMillionTrianglesPerSecondOnTwoThreads) {
+  std::optional<Scene> city = makeBuiltinScene("city");
+  if (!city) GTEST_SKIP() << "built-in scene 'city' not available";
+  SceneBvhOptions options;
+  options.blas.threadCount = options.tlas.threadCount = 2;
+  std::vector<double> seconds;
+  for (int i = 0; i < 9; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    SceneBvh bvh = buildSceneBvh(*city, options);
+    seconds.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::sort(seconds.begin(), seconds.end());
+  const double perSecond = double(city->uniqueTriangleCount()) / seconds[seconds.size() / 2];
+  std::printf("[ bvh ] city on 2 threads: median %.1f ms, %.2f M triangles/s\n",
+              seconds[seconds.size() / 2] * 1e3, perSecond * 1e-6);
+  EXPECT_GE(perSecond, 5e6);
 }
 
 TEST(BvhBenchmark, PrintsBuildThroughput) {

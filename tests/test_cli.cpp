@@ -192,6 +192,7 @@ TEST(Cli, ConflictingOptionsAreRefusedNamingBoth) {
        {"--view primary-albedo", "--timings"}},
       {"reference --exposure 1 --out " + dir + "/x.exr", {"--exposure", "--out"}},
       {"compare a.png b.png --zoom 2", {"--zoom", "--side-by-side"}},
+      {"bench-rays --build-only --tracer both", {"--build-only", "--tracer both"}},
   };
   for (const auto& [args, names] : cases) {
     test::CommandResult r = runCommand(bounceExe() + " " + args, 30);
@@ -200,6 +201,25 @@ TEST(Cli, ConflictingOptionsAreRefusedNamingBoth) {
     for (const std::string& name : names)
       EXPECT_NE(r.output.find(name), std::string::npos) << args << "\n" << r.output;
   }
+}
+
+// bench-rays --build-only times the CPU BVH build alone, with no device: one time per
+// iteration, their median as triangles/s, and the trees' SAH costs.
+TEST(Cli, BenchRaysBuildOnlyTimesTheBvhBuild) {
+  const std::string dir = test::tempDir("cli-build-only");
+  test::CommandResult r = runCommand(bounceExe() +
+                                         " bench-rays --build-only --scene sunroom --iterations 3 "
+                                         "--build-threads 2 --json " +
+                                         dir + "/b.json",
+                                     60);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("M triangles/s"), std::string::npos) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(dir + "/b.json"));
+  EXPECT_EQ(j["bvh_build_seconds"].size(), 3u);
+  EXPECT_GT(j["unique_triangles"].get<double>(), 0.0);
+  EXPECT_GT(j["bvh_build_mtriangles_per_second"].get<double>(), 0.0);
+  EXPECT_GT(j["blas_sah_cost"].get<double>(), 1.0);
+  EXPECT_EQ(j["build_threads"], 2);
 }
 
 // Values out of range are refused naming the flag (not the library's field alone), never

@@ -9,7 +9,9 @@
 // (a node, then its whole left subtree, then its right subtree) however subtrees were
 // scheduled.
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -26,6 +28,7 @@ struct BvhBuildOptions {
   uint32_t maxLeafSize = gpu::BVH_MAX_LEAF_TRIANGLES;
   // SAH bins per axis (2 .. 64). A few tens of bins come close to a full SAH sweep (Wald
   // 2007); on a 200k-triangle mesh 16 bins gave an SAH cost 0.8% above 32 bins, 8 bins 1.6%.
+  // Ranges under 32 primitives use at most 8 (bvh_builder.cpp, kFewBins).
   uint32_t binCount = 16;
   // Cost of visiting a node relative to intersecting one primitive (SAH constant C_t / C_i).
   float traversalCost = 1.0f;
@@ -67,12 +70,30 @@ struct Bvh {
   BvhBuildStats stats;
 };
 
+// Working memory of a build (the builder's two arrays of primitive references, 96 bytes per
+// primitive), kept between builds: a caller that builds many BVHs one after another
+// (buildSceneBvh, one BLAS per mesh) then touches fresh pages only once, where page faults
+// cost about a seventh of the build. One build at a time may use a scratch.
+class BvhScratch {
+ public:
+  // At least `bytes` bytes, 64-byte aligned; the last block when it is large enough.
+  void* reserve(size_t bytes);
+
+ private:
+  struct Free {
+    void operator()(void* p) const;
+  };
+  std::unique_ptr<void, Free> block_;
+  size_t bytes_ = 0;
+};
+
 // Builds a BVH over primitives given by their bounds and centroids (the point used to bin
 // them; for triangles, the vertex average or the box centre). Zero primitives give a root whose
 // two children are empty. Throws bounce::Error on NaN or infinite input, a box with
 // min > max, mismatched span sizes, invalid options, or more primitives than maxDepth allows.
+// `scratch`, when given, provides the working memory (else the build allocates its own).
 Bvh buildBvh(std::span<const Aabb> boxes, std::span<const glm::vec3> centroids,
-             const BvhBuildOptions& options = {});
+             const BvhBuildOptions& options = {}, BvhScratch* scratch = nullptr);
 
 // A child slot that nothing can hit: count 0, index BVH_INVALID and an inverted box.
 void setEmptyChild(gpu::GpuBvhNode& node, bool right);

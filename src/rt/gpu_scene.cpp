@@ -38,29 +38,38 @@ uint32_t textureSlot(uint32_t sizeClass, bool srgb) {
 
 }  // namespace
 
+rt::SceneBvh buildGpuSceneBvh(const Scene& scene, const GpuSceneOptions& options,
+                              rt::TlasRefitState& refit, Aabb* bounds) {
+  rt::SceneBvhOptions bvhOptions;
+  bvhOptions.layout = options.bvhLayout;
+  bvhOptions.blas.threadCount = options.bvhBuildThreads;
+  bvhOptions.tlas.threadCount = options.bvhBuildThreads;
+  rt::SceneBvh bvh;
+  if (scene.deforms()) {
+    // Deforming meshes start in their rest pose (a skinned mesh's bind-pose streams are not
+    // where its skeleton places it), and their boxes move on the GPU.
+    if (options.tlasUpdate != TlasUpdate::GpuRefit)
+      fail("{}: deforming meshes need the TLAS refitted on the GPU (TlasUpdate::GpuRefit)",
+           scene.name.empty() ? std::string("scene") : scene.name);
+    const Scene rest = posedScene(scene, restPose(scene));
+    bvh = rt::buildSceneBvh(rest, bvhOptions);
+    if (bounds) *bounds = rest.bounds();
+  } else {
+    bvh = rt::buildSceneBvh(scene, bvhOptions);
+    if (bounds) *bounds = scene.bounds();
+  }
+  // A refitted tree needs a leaf for every instance that may ever show (scene_bvh.h).
+  if (options.tlasUpdate == TlasUpdate::GpuRefit)
+    rt::buildRefittedTlas(bvh.tlasNodes, refit, bvh.instances, bvh.meshBounds);
+  return bvh;
+}
+
 GpuScene::GpuScene(vk::Context& context, const Scene& scene, const GpuSceneOptions& options)
     : context_(context),
       tlasUpdate_(options.tlasUpdate),
       tlasRebuildRatio_(options.tlasRebuildRatio) {
   auto start = Clock::now();
-  rt::SceneBvhOptions bvhOptions;
-  bvhOptions.layout = options.bvhLayout;
-  if (scene.deforms()) {
-    // Deforming meshes start in their rest pose (a skinned mesh's bind-pose streams are not
-    // where its skeleton places it), and their boxes move on the GPU.
-    if (tlasUpdate_ != TlasUpdate::GpuRefit)
-      fail("{}: deforming meshes need the TLAS refitted on the GPU (TlasUpdate::GpuRefit)",
-           scene.name.empty() ? std::string("scene") : scene.name);
-    const Scene rest = posedScene(scene, restPose(scene));
-    bvh_ = rt::buildSceneBvh(rest, bvhOptions);
-    bounds_ = rest.bounds();
-  } else {
-    bvh_ = rt::buildSceneBvh(scene, bvhOptions);
-    bounds_ = scene.bounds();
-  }
-  // A refitted tree needs a leaf for every instance that may ever show (scene_bvh.h).
-  if (tlasUpdate_ == TlasUpdate::GpuRefit)
-    rt::buildRefittedTlas(bvh_.tlasNodes, tlasRefit_, bvh_.instances, bvh_.meshBounds);
+  bvh_ = buildGpuSceneBvh(scene, options, tlasRefit_, &bounds_);
   stats_.bvhBuildSeconds = secondsSince(start);
   textures_ = packSceneTextures(scene);
   stats_.triangles = scene.triangleCount();

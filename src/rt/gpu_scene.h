@@ -40,6 +40,9 @@ struct GpuSceneOptions {
   // over the nodes at every setInstanceTransforms (docs/ray-tracing.md, "Moving instances", has the
   // timings and why 1.5). 0 = never rebuild (no CPU work per move).
   double tlasRebuildRatio = 1.5;
+  // Threads of the BVH build, the calling thread included; 0 = every core
+  // (rt::BvhBuildOptions::threadCount). The tree does not depend on it.
+  uint32_t bvhBuildThreads = 0;
 };
 
 struct GpuSceneStats {
@@ -53,6 +56,13 @@ struct GpuSceneStats {
   uint64_t textureBytes = 0;
   uint64_t totalBytes = 0;
 };
+
+// The CPU half of GpuScene's constructor: the scene BVH (deforming meshes in their rest pose)
+// and, with TlasUpdate::GpuRefit, the refittable TLAS with its plan in `refit`. `bounds`, when
+// given, receives the bounds of the scene as built. GpuSceneStats::bvhBuildSeconds times
+// exactly this; `bounce bench-rays --build-only` runs it without a device.
+rt::SceneBvh buildGpuSceneBvh(const Scene& scene, const GpuSceneOptions& options,
+                              rt::TlasRefitState& refit, Aabb* bounds = nullptr);
 
 class GpuScene {
  public:

@@ -5,11 +5,14 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <thread>
 
 #include <glm/gtc/packing.hpp>
 
 #include "core/error.h"
+#include "rt/huge_pages.h"
 #include "rt/task_pool.h"
 #include "rt/wide_bvh.h"
 
@@ -79,40 +82,62 @@ void appendColors(const Geometry& g, std::vector<uint32_t>& out) {
   for (const glm::vec4& c : g.colors) out.push_back(glm::packUnorm4x8(c));
 }
 
-// Appends every geometry's streams in mesh order and records where each starts.
-void flattenGeometries(const Scene& scene, SceneBvh& out) {
-  const bool colors = hasVertexColors(scene);
+// Records where each geometry's streams start in the flattened arrays and reserves them;
+// checks every geometry first, so that nothing later reads through a bad index.
+void placeGeometries(const Scene& scene, SceneBvh& out) {
   size_t vertices = 0, indices = 0;
-  for (const Mesh& mesh : scene.meshes)
-    for (const Geometry& g : mesh.geometries) {
-      vertices += g.positions.size();
-      indices += g.indices.size();
-    }
-  if (vertices >= gpu::BVH_INVALID || indices >= gpu::BVH_INVALID)
-    fail("scene BVH: {} vertices and {} indices exceed 32-bit offsets", vertices, indices);
-  out.positions.reserve(vertices);
-  out.normals.reserve(vertices);
-  out.uvs.reserve(vertices);
-  out.tangents.reserve(vertices);
-  out.indices.reserve(indices);
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     out.geometryBase.push_back(uint32_t(out.geometries.size()));
     for (size_t gi = 0; gi < scene.meshes[m].geometries.size(); ++gi) {
       checkGeometry(scene, m, gi);
       const Geometry& g = scene.meshes[m].geometries[gi];
-      out.geometries.push_back({uint32_t(out.indices.size()), uint32_t(out.positions.size()),
-                                g.triangleCount(), g.material});
-      out.indices.insert(out.indices.end(), g.indices.begin(), g.indices.end());
-      out.positions.insert(out.positions.end(), g.positions.begin(), g.positions.end());
-      out.normals.insert(out.normals.end(), g.normals.begin(), g.normals.end());
-      out.uvs.insert(out.uvs.end(), g.uvs.begin(), g.uvs.end());
+      out.geometries.push_back(
+          {uint32_t(indices), uint32_t(vertices), g.triangleCount(), g.material});
+      vertices += g.positions.size();
+      indices += g.indices.size();
+      if (vertices >= gpu::BVH_INVALID || indices >= gpu::BVH_INVALID)
+        fail("scene BVH: {} vertices and {} indices exceed 32-bit offsets", vertices, indices);
+    }
+  }
+  reserveLarge(out.positions, vertices);
+  reserveLarge(out.normals, vertices);
+  reserveLarge(out.uvs, vertices);
+  reserveLarge(out.tangents, vertices);
+  reserveLarge(out.indices, indices);
+  if (hasVertexColors(scene)) reserveLarge(out.colors, vertices);
+}
+
+// Appends every geometry's streams in mesh order, one task per stream: the copies share no
+// data with each other or with the BLAS builds, so they run beside them.
+void submitStreamCopies(const Scene& scene, SceneBvh& out, TaskPool& pool) {
+  auto forEachGeometry = [&scene](auto append) {
+    for (const Mesh& mesh : scene.meshes)
+      for (const Geometry& g : mesh.geometries) append(g);
+  };
+  auto copy = [forEachGeometry](auto member, auto& stream) {
+    return [forEachGeometry, member, &stream] {
+      forEachGeometry([&](const Geometry& g) {
+        const auto& from = g.*member;
+        stream.insert(stream.end(), from.begin(), from.end());
+      });
+    };
+  };
+  pool.submit(copy(&Geometry::indices, out.indices));
+  pool.submit(copy(&Geometry::positions, out.positions));
+  pool.submit(copy(&Geometry::normals, out.normals));
+  pool.submit(copy(&Geometry::uvs, out.uvs));
+  pool.submit([forEachGeometry, &out] {
+    forEachGeometry([&](const Geometry& g) {
       if (g.tangents.empty())
         out.tangents.insert(out.tangents.end(), g.positions.size(), glm::vec4(1, 0, 0, 1));
       else
         out.tangents.insert(out.tangents.end(), g.tangents.begin(), g.tangents.end());
-      if (colors) appendColors(g, out.colors);
-    }
-  }
+    });
+  });
+  if (out.colors.capacity() > 0)
+    pool.submit([forEachGeometry, &out] {
+      forEachGeometry([&](const Geometry& g) { appendColors(g, out.colors); });
+    });
 }
 
 // ---- one BLAS per mesh ------------------------------------------------------------------------
@@ -153,11 +178,47 @@ struct MeshBlas {
   }
 };
 
-MeshBlas buildMeshBlas(const Mesh& mesh, const BvhBuildOptions& options, BvhLayout layout) {
+// Working memory of one BLAS build, handed from build to build (ScratchShelf).
+struct MeshScratch {
+  BvhScratch bvh;
+  std::vector<Aabb> boxes;
+  std::vector<glm::vec3> centroids;
+};
+
+// Scratches of the builds in flight: a build takes one (or a new one) and puts it back.
+class ScratchShelf {
+ public:
+  std::unique_ptr<MeshScratch> take() {
+    std::lock_guard lock(mutex_);
+    if (free_.empty()) return std::make_unique<MeshScratch>();
+    std::unique_ptr<MeshScratch> s = std::move(free_.back());
+    free_.pop_back();
+    return s;
+  }
+  void give(std::unique_ptr<MeshScratch> s) {
+    std::lock_guard lock(mutex_);
+    free_.push_back(std::move(s));
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<MeshScratch>> free_;
+};
+
+MeshBlas buildMeshBlas(const Mesh& mesh, const BvhBuildOptions& options, BvhLayout layout,
+                       MeshScratch& scratch) {
   MeshBlas blas;
   blas.triangles = numberTriangles(mesh);
-  std::vector<Aabb> boxes(blas.triangles.count());
-  std::vector<glm::vec3> centroids(boxes.size());
+  std::vector<Aabb>& boxes = scratch.boxes;
+  std::vector<glm::vec3>& centroids = scratch.centroids;
+  if (boxes.capacity() < blas.triangles.count()) {
+    boxes = {};
+    centroids = {};
+    reserveLarge(boxes, blas.triangles.count());
+    reserveLarge(centroids, blas.triangles.count());
+  }
+  boxes.resize(blas.triangles.count());
+  centroids.resize(boxes.size());
   size_t t = 0;
   for (const Geometry& g : mesh.geometries) {
     for (size_t i = 0; i < g.indices.size(); i += 3, ++t) {
@@ -170,7 +231,7 @@ MeshBlas buildMeshBlas(const Mesh& mesh, const BvhBuildOptions& options, BvhLayo
       blas.bounds.extend(boxes[t]);
     }
   }
-  blas.bvh = buildBvh(boxes, centroids, options);
+  blas.bvh = buildBvh(boxes, centroids, options, &scratch.bvh);
   if (layout == BvhLayout::Wide) {
     blas.wide = collapseToWide(blas.bvh);
     blas.bvh.nodes = {};
@@ -179,60 +240,36 @@ MeshBlas buildMeshBlas(const Mesh& mesh, const BvhBuildOptions& options, BvhLayo
   return blas;
 }
 
-std::vector<MeshBlas> buildAllBlas(const Scene& scene, const BvhBuildOptions& options,
-                                   BvhLayout layout) {
-  const size_t meshCount = scene.meshes.size();
-  std::vector<MeshBlas> blas(meshCount);
-  std::vector<size_t> small;
-  BvhBuildOptions single = options;
-  single.threadCount = 1;
-  for (size_t m = 0; m < meshCount; ++m) {
-    uint64_t triangles = 0;
-    for (const Geometry& g : scene.meshes[m].geometries) triangles += g.triangleCount();
-    if (triangles >= kLargeMeshTriangles)
-      blas[m] = buildMeshBlas(scene.meshes[m], options, layout);
-    else
-      small.push_back(m);
-  }
-  // Each build is deterministic on its own, so the schedule cannot change the result.
-  TaskPool pool(std::min<uint32_t>(resolveThreads(options.threadCount), uint32_t(small.size())));
-  pool.parallelFor(uint32_t(small.size()), [&](uint32_t i) {
-    blas[small[i]] = buildMeshBlas(scene.meshes[small[i]], single, layout);
-  });
-  return blas;
+uint64_t meshTriangleCount(const Mesh& mesh) {
+  uint64_t triangles = 0;
+  for (const Geometry& g : mesh.geometries) triangles += g.triangleCount();
+  return triangles;
 }
 
-// Copies one mesh's BLAS into the shared arrays: node indices become absolute, leaves point
-// into the shared triangle array, whose entries are written in leaf order.
-void appendBlas(const Scene& scene, size_t meshIndex, const MeshBlas& blas, uint32_t nodeOffset,
-                uint32_t triangleOffset, SceneBvh& out) {
-  const Mesh& mesh = scene.meshes[meshIndex];
-  if (out.layout == BvhLayout::Wide) {
-    gpu::GpuWideBvhNode* nodes = out.blasWideNodes.data() + nodeOffset;
-    for (size_t i = 0; i < blas.wide.nodes.size(); ++i) {
-      gpu::GpuWideBvhNode node = blas.wide.nodes[i];
-      node.childBase += nodeOffset;
-      node.triangleBase += triangleOffset;
-      nodes[i] = node;
-    }
-  } else {
-    auto relocate = [&](uint32_t& index, uint32_t count) {
-      if (count > 0)
-        index += triangleOffset;
-      else if (index != gpu::BVH_INVALID)
-        index += nodeOffset;
-    };
-    gpu::GpuBvhNode* nodes = out.blasNodes.data() + nodeOffset;
-    for (size_t i = 0; i < blas.bvh.nodes.size(); ++i) {
-      gpu::GpuBvhNode node = blas.bvh.nodes[i];
-      relocate(node.leftIndex, node.leftCount);
-      relocate(node.rightIndex, node.rightCount);
-      nodes[i] = node;
-    }
+// Where each mesh's triangles start in the shared triangle array (known before any BLAS is
+// built, so each build can write its triangles at once), and the array itself.
+void placeTriangles(const Scene& scene, SceneBvh& out) {
+  uint64_t triangles = 0;
+  for (const Mesh& mesh : scene.meshes) {
+    out.blasTriangleBase.push_back(uint32_t(triangles));
+    triangles += meshTriangleCount(mesh);
+    // The traversal stack packs a leaf's first triangle into 26 bits (shared/scene_layout.h).
+    if (triangles >= gpu::BVH_MAX_SCENE_TRIANGLES)
+      fail("scene BVH: {} triangles; at most {} fit the traversal's stack entries", triangles,
+           gpu::BVH_MAX_SCENE_TRIANGLES - 1);
   }
-  gpu::GpuTriangle* triangles = out.triangles.data() + triangleOffset;
+  resizeLarge(out.triangles, triangles);
+}
+
+// Writes one mesh's triangles into the shared array, in its BLAS leaf order.
+void writeTriangles(const Scene& scene, size_t meshIndex, const MeshBlas& blas, SceneBvh& out) {
+  const Mesh& mesh = scene.meshes[meshIndex];
   const std::vector<uint32_t>& first = blas.triangles.firstTriangle;
   const std::vector<uint32_t>& order = blas.order(out.layout);
+  if (order.size() != blas.triangles.count())
+    fail("scene BVH: mesh {} ('{}'): its BLAS lists {} of its {} triangles", meshIndex, mesh.name,
+         order.size(), blas.triangles.count());
+  gpu::GpuTriangle* triangles = out.triangles.data() + out.blasTriangleBase[meshIndex];
   for (size_t i = 0; i < order.size(); ++i) {
     const uint32_t t = order[i];
     const uint32_t g =
@@ -247,34 +284,89 @@ void appendBlas(const Scene& scene, size_t meshIndex, const MeshBlas& blas, uint
   }
 }
 
-void concatenateBlas(const Scene& scene, const std::vector<MeshBlas>& blas, uint32_t threads,
+// Builds every mesh's BLAS and writes its triangles. Large meshes are built one at a time with
+// all threads; the others side by side, one thread each, largest first so that no long build
+// starts last. Work already queued on the pool (the stream copies) runs beside them.
+std::vector<MeshBlas> buildAllBlas(const Scene& scene, const BvhBuildOptions& options,
+                                   SceneBvh& out, TaskPool& pool) {
+  const size_t meshCount = scene.meshes.size();
+  std::vector<MeshBlas> blas(meshCount);
+  std::vector<std::pair<uint64_t, size_t>> small;  // (triangles, mesh)
+  BvhBuildOptions single = options;
+  single.threadCount = 1;
+  ScratchShelf shelf;
+  auto build = [&](size_t m, const BvhBuildOptions& buildOptions) {
+    std::unique_ptr<MeshScratch> scratch = shelf.take();
+    blas[m] = buildMeshBlas(scene.meshes[m], buildOptions, out.layout, *scratch);
+    shelf.give(std::move(scratch));
+  };
+  for (size_t m = 0; m < meshCount; ++m) {
+    const uint64_t triangles = meshTriangleCount(scene.meshes[m]);
+    if (triangles >= kLargeMeshTriangles) {
+      build(m, options);
+      writeTriangles(scene, m, blas[m], out);
+    } else {
+      small.push_back({triangles, m});
+    }
+  }
+  std::stable_sort(small.begin(), small.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  // Each build is deterministic on its own, so the schedule cannot change the result.
+  pool.parallelFor(uint32_t(small.size()), [&](uint32_t i) {
+    const size_t m = small[i].second;
+    build(m, single);
+    writeTriangles(scene, m, blas[m], out);
+  });
+  return blas;
+}
+
+// Copies one mesh's BLAS nodes into the shared array: node indices become absolute, leaves
+// point into the shared triangle array.
+void appendBlasNodes(const MeshBlas& blas, uint32_t nodeOffset, uint32_t triangleOffset,
                      SceneBvh& out) {
-  std::vector<uint32_t> nodeOffset(blas.size()), triangleOffset(blas.size());
-  uint64_t nodes = 0, triangles = 0;
+  if (out.layout == BvhLayout::Wide) {
+    gpu::GpuWideBvhNode* nodes = out.blasWideNodes.data() + nodeOffset;
+    for (size_t i = 0; i < blas.wide.nodes.size(); ++i) {
+      gpu::GpuWideBvhNode node = blas.wide.nodes[i];
+      node.childBase += nodeOffset;
+      node.triangleBase += triangleOffset;
+      nodes[i] = node;
+    }
+    return;
+  }
+  auto relocate = [&](uint32_t& index, uint32_t count) {
+    if (count > 0)
+      index += triangleOffset;
+    else if (index != gpu::BVH_INVALID)
+      index += nodeOffset;
+  };
+  gpu::GpuBvhNode* nodes = out.blasNodes.data() + nodeOffset;
+  for (size_t i = 0; i < blas.bvh.nodes.size(); ++i) {
+    gpu::GpuBvhNode node = blas.bvh.nodes[i];
+    relocate(node.leftIndex, node.leftCount);
+    relocate(node.rightIndex, node.rightCount);
+    nodes[i] = node;
+  }
+}
+
+void concatenateBlasNodes(const std::vector<MeshBlas>& blas, TaskPool& pool, SceneBvh& out) {
+  std::vector<uint32_t> nodeOffset(blas.size());
+  uint64_t nodes = 0;
   for (size_t m = 0; m < blas.size(); ++m) {
     nodeOffset[m] = uint32_t(nodes);
-    triangleOffset[m] = uint32_t(triangles);
     nodes += blas[m].nodeCount(out.layout);
-    triangles += blas[m].order(out.layout).size();
-    // The traversal stack packs a leaf's first triangle into 26 bits and a node index into 30
-    // (shared/scene_layout.h).
-    if (triangles >= gpu::BVH_MAX_SCENE_TRIANGLES)
-      fail("scene BVH: {} triangles; at most {} fit the traversal's stack entries", triangles,
-           gpu::BVH_MAX_SCENE_TRIANGLES - 1);
+    // The traversal stack packs a node index into 30 bits (shared/scene_layout.h).
     if (nodes >= gpu::BVH_STACK_LEAF)
       fail("scene BVH: {} BLAS nodes; at most {} fit the traversal's stack entries", nodes,
            gpu::BVH_STACK_LEAF - 1);
   }
   if (out.layout == BvhLayout::Wide)
-    out.blasWideNodes.resize(nodes);
+    resizeLarge(out.blasWideNodes, nodes);
   else
-    out.blasNodes.resize(nodes);
-  out.triangles.resize(triangles);
+    resizeLarge(out.blasNodes, nodes);
   out.blasRoot = nodeOffset;
-  out.blasTriangleBase = triangleOffset;
-  TaskPool pool(std::min<uint32_t>(threads, uint32_t(blas.size())));
   pool.parallelFor(uint32_t(blas.size()), [&](uint32_t m) {
-    appendBlas(scene, m, blas[m], nodeOffset[m], triangleOffset[m], out);
+    appendBlasNodes(blas[m], nodeOffset[m], out.blasTriangleBase[m], out);
   });
 }
 
@@ -521,7 +613,7 @@ bool updateRefittedTlas(std::vector<gpu::GpuBvhNode>& tlas, TlasRefitState& stat
 SceneBvh buildSceneBvh(const Scene& scene, const SceneBvhOptions& options) {
   const auto start = Clock::now();
   SceneBvh out;
-  flattenGeometries(scene, out);
+  placeGeometries(scene, out);
 
   const uint32_t leafLimit = 1u << (30 - gpu::BVH_STACK_LEAF_COUNT_SHIFT);
   if (options.blas.maxLeafSize > leafLimit)
@@ -532,8 +624,15 @@ SceneBvh buildSceneBvh(const Scene& scene, const SceneBvhOptions& options) {
   if (options.layout == BvhLayout::Wide)
     blasOptions.maxLeafSize = std::min(blasOptions.maxLeafSize, gpu::BVH_WIDE_MAX_LEAF_TRIANGLES);
   const auto blasStart = Clock::now();
-  std::vector<MeshBlas> blas = buildAllBlas(scene, blasOptions, options.layout);
-  concatenateBlas(scene, blas, resolveThreads(options.blas.threadCount), out);
+  std::vector<MeshBlas> blas;
+  {
+    TaskPool pool(resolveThreads(options.blas.threadCount));
+    submitStreamCopies(scene, out, pool);
+    placeTriangles(scene, out);
+    blas = buildAllBlas(scene, blasOptions, out, pool);
+    concatenateBlasNodes(blas, pool, out);
+    pool.wait();
+  }
   for (const MeshBlas& b : blas) out.meshBounds.push_back(b.bounds);
   out.stats.blasSeconds = secondsSince(blasStart);
   recordBlasStats(blas, options.layout, out.stats);
