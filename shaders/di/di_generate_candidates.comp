@@ -9,8 +9,7 @@
 // (With the grid the light strategy's density is not known, only each slot's RIS weight, so the
 // host turns the BRDF candidate off there: RestirDi's makeConstants.) The kept one y has
 // W = (sum of weights) / p_hat(y) and M = 1.
-// Then one shadow ray for y (RTXDI's initial visibility): an occluded y keeps M but W = 0, so
-// that reuse does not spread a light this pixel cannot see.
+// Its shadow ray (RTXDI's initial visibility) is di-trace-candidate-visibility's.
 #version 460
 #include "di/di_brdf_candidate.glsl"
 #include "di/light_grid.glsl"
@@ -19,12 +18,15 @@ layout(local_size_x = DI_GROUP_SIZE, local_size_y = DI_GROUP_SIZE) in;
 
 layout(set = 1, binding = DI_CANDIDATES_BINDING_RESERVOIR, rgba32ui) uniform writeonly uimage2D reservoirOut;
 
+layout(constant_id = DI_SPEC_BRDF_CANDIDATE) const uint SPEC_BRDF_CANDIDATE = DI_SPEC_ANY;
+
 DiReservoir resampleCandidates(FrameConstants f, DiConstants di, DiSurface s, ivec2 pixel, out float target) {
   uvec4 key = diRandomKey(f, di, pixel, RANDOM_DI_CANDIDATES);
   DiReservoir r = emptyDiReservoir();
   float weightSum = 0.0;
   target = 0.0;
-  if (!diTracesBrdfCandidate(di, s)) {
+  bool brdfCandidate = SPEC_BRDF_CANDIDATE != 0u && diTracesBrdfCandidate(di, s);
+  if (!brdfCandidate) {
     // Light candidates only: from the grid's cell where there is a grid, else the alias table.
     DiGridLookup grid = diLightGridLookup(f, di, s.position, diRandom(key).xyz);
     [[dont_unroll]] for (uint i = 0u; i < di.lightCandidates; ++i) {
@@ -72,9 +74,6 @@ void main() {
   if (s.valid) {
     float target;
     r = resampleCandidates(f, di, s, pixel, target);
-    if ((di.flags & DI_FLAG_CANDIDATE_VISIBILITY) != 0u && r.W > 0.0 &&
-        !diVisible(s, evaluateDiLight(s, r.light, r.u)))
-      r.W = 0.0;
   }
   imageStore(reservoirOut, pixel, packDiReservoir(r));
 }

@@ -74,9 +74,19 @@ BOUNCE_CONST uint DI_BINDING_EMISSIVE = 3u;  // roughness in w
 BOUNCE_CONST uint DI_BINDING_FLAGS = 4u;
 BOUNCE_CONST uint DI_GBUFFER_BINDING_COUNT = 5u;
 
-// di-generate-candidates
+// di-generate-candidates, and di-trace-candidate-visibility after it (which reads and writes
+// the same reservoirs)
 BOUNCE_CONST uint DI_CANDIDATES_BINDING_RESERVOIR = 5u;  // out: di.candidate
 BOUNCE_CONST uint DI_CANDIDATES_BINDING_COUNT = 6u;
+// Specialization constant of di-generate-candidates (PASS_SPEC_FIRST, shared/scene_layout.h):
+// 0 when no pixel takes a BRDF candidate (DiConstants::brdfCandidates 0), so that the driver
+// drops that candidate's traversal and the pass runs with fewer registers; 1 when some may;
+// DI_SPEC_ANY (a pipeline created without it) reads DiConstants.
+BOUNCE_CONST uint DI_SPEC_BRDF_CANDIDATE = 1u;
+BOUNCE_CONST uint DI_SPEC_ANY = 2u;
+// di-trace-candidate-visibility's groups: tiles of this many pixels squared, whose rays it bins
+// by direction (rt/ray_bins.glsl)
+BOUNCE_CONST uint DI_VISIBILITY_GROUP_SIDE = 16u;
 
 // di-temporal
 BOUNCE_CONST uint DI_TEMPORAL_BINDING_CANDIDATE = 5u;         // di.candidate

@@ -1,6 +1,8 @@
 // `di-generate-candidates` (shaders/di/di_generate_candidates.comp): each pixel's initial
-// reservoir from DiSettings::lightCandidates light candidates by RIS, with the kept sample's
-// shadow ray.
+// reservoir from DiSettings::lightCandidates light candidates by RIS; then
+// `di-trace-candidate-visibility` (shaders/di/di_trace_candidate_visibility.comp), the kept
+// sample's shadow ray. Two passes so that the candidates' loop runs without the traversal's
+// registers (docs/benchmarks.md).
 #pragma once
 #include "di/di_pass.h"
 
@@ -8,12 +10,16 @@ namespace bounce {
 
 class DiGenerateCandidatesPass {
  public:
-  DiGenerateCandidatesPass(vk::Context& context, const GpuScene& scene);
+  // `brdfCandidate`: whether DiConstants::brdfCandidates is above 0 (DI_SPEC_BRDF_CANDIDATE);
+  // `visibility`: whether DiConstants::flags has DI_FLAG_CANDIDATE_VISIBILITY.
+  DiGenerateCandidatesPass(vk::Context& context, const GpuScene& scene, bool brdfCandidate,
+                           bool visibility);
   // di.candidate: the reservoirs (kDiReservoirFormat).
   graph::ImageHandle declare(graph::FrameGraph& graph, const DiFrame& f);
 
  private:
-  DiPass pass_;
+  DiPass generate_;
+  std::optional<DiPass> visibility_;
 };
 
 }  // namespace bounce

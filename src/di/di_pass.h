@@ -16,14 +16,16 @@ namespace bounce {
 class DiPass : public ComputePass {
  public:
   DiPass(vk::Context& context, const GpuScene& scene, const std::string& shader,
-         uint32_t imageCount)
-      : ComputePass(context, scene, shader, imageCount, sizeof(gpu::DiPassConstants)) {}
+         uint32_t imageCount, std::span<const uint32_t> specialization = {})
+      : ComputePass(context, scene, shader, imageCount, sizeof(gpu::DiPassConstants), 1,
+                    specialization) {}
 
+  // Covers `extent` with groups of groupSide^2 threads (the shader's local size).
   void record(VkCommandBuffer cmd, const graph::PassResources& resources,
-              const gpu::DiPassConstants& constants, VkExtent2D extent) {
+              const gpu::DiPassConstants& constants, VkExtent2D extent,
+              uint32_t groupSide = gpu::DI_GROUP_SIZE) {
     bind(cmd, constants, resources);
-    vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, gpu::DI_GROUP_SIZE,
-                                          gpu::DI_GROUP_SIZE);
+    vk::ComputePipeline::dispatchCovering(cmd, extent.width, extent.height, groupSide, groupSide);
   }
 };
 

@@ -53,9 +53,10 @@ RestirDi::RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& 
   if (lights_.localLightCount() == 0 && lights_.distantLightCount() == 0) return;
   if (lights_.localLightCount() >= settings.lightGridThreshold)
     grid_.emplace(context, gpuScene, settings, gpuScene.bounds());
-  candidates_.emplace(context, gpuScene);
-  shade_.emplace(context, gpuScene);
   const gpu::DiConstants c = makeConstants(settings, lights_, grid_ ? grid_->address() : 0);
+  candidates_.emplace(context, gpuScene, c.brdfCandidates > 0,
+                      (c.flags & gpu::DI_FLAG_CANDIDATE_VISIBILITY) != 0);
+  shade_.emplace(context, gpuScene);
   constants_ = vk::uploadBuffer(context, std::as_bytes(std::span(&c, 1)),
                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "di.constants");
   if (settings.reuses()) {
