@@ -55,12 +55,12 @@ const char* deviceTypeName(VkPhysicalDeviceType type) {
   }
 }
 
-// A queue family that can do both compute and graphics (the frame uses one queue).
 bool hasDeviceExtension(VkPhysicalDevice pd, const char* name) {
   const std::vector<std::string> all = deviceExtensions(pd);
   return std::find(all.begin(), all.end(), name) != all.end();
 }
 
+// A queue family that can do both compute and graphics (the frame uses one queue).
 std::optional<uint32_t> findQueueFamily(VkPhysicalDevice pd, bool* timestamps) {
   uint32_t count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, nullptr);
