@@ -1,8 +1,10 @@
 // gi-shade-diffuse-hits: x2 of each GI pixel's ray from the closest hit gi-trace-diffuse-rays
-// found. A miss sees the sky (x2 is then a direction). A hit x2 gets its emission (none from the emitters
-// ReSTIR DI samples, FRAME_FLAG_DI_LIGHTS), the set-up of one NEE shadow ray (traced by
-// gi-trace-diffuse-nee-rays, which walks the list of GI pixels with one: ray_list.glsl) and, by
-// RestirGiSettings::secondVertex, a continued path (restir_gi_second_vertex.glsl).
+// found. A miss sees the sky (x2 is then a direction). A hit x2 gets its emission (none from
+// the emitters ReSTIR DI samples, FRAME_FLAG_DI_LIGHTS), the set-up of one NEE shadow ray
+// (traced by gi-trace-diffuse-nee-rays, which walks the list of GI pixels with one:
+// ray_list.glsl) and, by RestirGiSettings::secondVertex, the cache's irradiance or a continued
+// path (restir_gi_second_vertex.glsl). The pipeline is specialized for the second vertex
+// (GI_SPEC_SECOND_VERTEX), so the continued path's traversal is compiled in only where it runs.
 #version 460
 #include "gi/evolve/restir/restir_gi_second_vertex.glsl"
 #include "gi/evolve/cache/cache_radiance.glsl"
