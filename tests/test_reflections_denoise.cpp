@@ -266,12 +266,12 @@ Camera lerpCamera(const Camera& a, const Camera& b, float t) {
 // trucks back to the scene's camera over 16 frames (7.5 cm per frame: reflections and
 // surfaces slide across the glossy spheres and floor), and stops.
 //
-// DISABLED: it fails (measured on lavapipe with the fast history's lag test and clamp: static
-// error 0.65 against an independent run, after the pan 33.9 at frame 1 falling to 15.3 at frame
-// 8, ratio 23.5). The error is a ghost on the glossy floor: pixels that reflect the spheres' dark
-// undersides (reference 0) keep light from history that slid in during the pan (the floor's
-// roughness 0.3 takes 60 % of its history from the surface reprojection). docs/reflections.md,
-// "Motion".
+// DISABLED: it fails (lavapipe: static error 1.30 against an independent run; at frame 8 after
+// the pan 54.8, ratio 42, before the motion parallax tests, 469, ratio 361, with them; with reuse
+// on, the default, 7.5x and 8.0x). The error is a few floor pixels that reflect the spheres' dark
+// undersides (reference near 0): before, light that slid in from history during the pan; now the
+// raw single samples of a roughness-0.3 floor where the tests restarted a history under motion.
+// docs/reflections.md, "Motion".
 TEST(ReflectionsDenoise, DISABLED_NoGhostAfterACameraPanStops) {
   SpheresDenoise run(denoiseSettings(), 0.3f);
   const Camera still = run.camera();

@@ -8,7 +8,11 @@
 //     GI's. The converged image comes from a static run at the final state, the static error
 //     from a second, independent one (another noise seed); the ball's error is measured around
 //     its path. Each run also checks that its metric sees a ghost: the same frames with 15 % of
-//     a frame from the middle of the motion blended in must fail the bound;
+//     a frame from the middle of the motion blended in must fail the bound. Each measure is the
+//     mean of several independent runs;
+//   - no trail while moving: the last frame of a camera dolly, over independent runs, against
+//     static runs of the final view, block by block in units of the standard error; the motion
+//     parallax tests of the reuse and the denoiser must cut that at least tenfold;
 //   - 1,000 animated frames (the ball, the cube, the swinging panel, a moving camera and sun)
 //     stay finite with the validation layers silent (ReSTIR GI on).
 #include <cmath>
@@ -49,9 +53,13 @@ constexpr double kGhostBound = 1.5;
 constexpr float kProbeGhostWeight = 0.15f;
 
 // Each run draws its own noise (HybridSettings::noiseSeed): the converged image, the static
-// run and the moving run are independent, so the static error is the error between two
-// independent converged runs of the final view, which the moving run is held to.
-constexpr uint32_t kConvergedSeed = 0, kStaticSeed = 7919, kMovingSeed = 15877;
+// runs and the moving runs are independent, so the static error is the error between
+// independent converged runs of the final view, which the moving runs are held to. One run of
+// each measured 1.2x to 3.5x for the same code, depending on the seed (a glossy reflection's rare
+// bright samples decide a 64 x 36 frame's error): the errors are means over several runs.
+constexpr uint32_t kConvergedSeed = 0;
+constexpr uint32_t kStaticSeeds[] = {7919, 9973};
+constexpr uint32_t kMovingSeeds[] = {15877, 21011, 26153, 31321};
 
 HybridSettings motionSettings(uint32_t noiseSeed = 0, GiMode gi = GiMode::Evolve) {
   HybridSettings settings = presetSettings(Preset::Desktop);
@@ -130,8 +138,14 @@ ImageRGBA32F blend(const ImageRGBA32F& a, const ImageRGBA32F& b, float weightOfB
 
 struct GhostRun {
   double staticError = 0.0;  // mean relMSE of static frames 33-40 against the converged image
-  std::vector<double> settleErrors;  // relMSE of each frame after the motion stops
+  std::vector<double> settleErrors;  // relMSE of each frame after the motion stops (mean of runs)
   std::vector<double> probeErrors;   // the same with the probe ghost blended in
+};
+
+// What one moving run leaves: the frames after the stop and one from the middle of the motion.
+struct MovingFrames {
+  std::vector<ImageRGBA32F> settled;
+  ImageRGBA32F midMotion;
 };
 
 // Renders `frames` frames of the static final state; frames from `first` on are passed to `use`.
@@ -195,28 +209,29 @@ GhostRun runGhostTest(const Scene& scene, const StateAt& stateAt,
   GpuScene gpuScene(context, scene);
   GhostRun run;
 
-  // The moving run: rest at the start, move, stop at the final state.
-  std::vector<ImageRGBA32F> settled;
-  ImageRGBA32F midMotion;
+  // The moving runs: rest at the start, move, stop at the final state.
+  std::vector<MovingFrames> moving;
   Region region;
-  {
-    PathRegion path(movingInstance.value_or(0));
-    HybridFrame frame(context, gpuScene, scene, motionSettings(kMovingSeed, kGhostGi));
+  PathRegion path(movingInstance.value_or(0));
+  for (uint32_t seed : kMovingSeeds) {
+    MovingFrames run;
+    HybridFrame frame(context, gpuScene, scene, motionSettings(seed, kGhostGi));
     frame.requestDebugView(kMeasuredView);
     if (movingInstance) frame.requestDebugView("vbuffer.ids");
     for (int i = 0; i < kRestFrames + kMotionFrames + kSettleFrames; ++i) {
-      const int moving = i - kRestFrames;
-      const float s = std::clamp(float(moving + 1) / float(kMotionFrames), 0.0f, 1.0f);
+      const int step = i - kRestFrames;
+      const float s = std::clamp(float(step + 1) / float(kMotionFrames), 0.0f, 1.0f);
       frame.render(stateAt(frame, s));
-      if (moving < 0) continue;
+      if (step < 0) continue;
       if (movingInstance) path.add(frame);
       ImageRGBA32F composite = frame.debugViewImage(kMeasuredView);
       EXPECT_EQ(countNonFinitePixels(composite), 0u);
-      if (moving == kMotionFrames / 2) midMotion = composite;
-      if (moving >= kMotionFrames) settled.push_back(composite);
+      if (step == kMotionFrames / 2) run.midMotion = composite;
+      if (step >= kMotionFrames) run.settled.push_back(composite);
     }
-    if (movingInstance) region = path.region();
+    moving.push_back(std::move(run));
   }
+  if (movingInstance) region = path.region();
   std::printf("error measured over blocks x %d-%d, y %d-%d (of %d x %d)\n", region.x0,
               region.x1 - 1, region.y0, region.y1 - 1, int(kWidth) / kErrorBlock,
               int(kHeight) / kErrorBlock);
@@ -228,24 +243,31 @@ GhostRun runGhostTest(const Scene& scene, const StateAt& stateAt,
                  for (size_t k = 0; k < converged.pixels.size(); ++k)
                    converged.pixels[k] += composite.pixels[k] / float(kConvergedFrames);
                });
-  // The static error: frames 33-40 of an independent static run (the history age of the moving
-  // run's frames after the stop) against the converged image.
-  renderStatic(context, gpuScene, scene, stateAt, kStaticSeed,
-               kWarmFrames + kConvergedFrames + kSettleFrames, kWarmFrames + kConvergedFrames,
-               [&](int, const ImageRGBA32F& composite) {
-                 run.staticError += ghostError(composite, converged, region) / kSettleFrames;
-               });
+  // The static error: frames 33-40 of independent static runs (the history age of the moving
+  // runs' frames after the stop) against the converged image.
+  const double staticFrames = double(kSettleFrames) * std::size(kStaticSeeds);
+  for (uint32_t seed : kStaticSeeds)
+    renderStatic(context, gpuScene, scene, stateAt, seed,
+                 kWarmFrames + kConvergedFrames + kSettleFrames, kWarmFrames + kConvergedFrames,
+                 [&](int, const ImageRGBA32F& composite) {
+                   run.staticError += ghostError(composite, converged, region) / staticFrames;
+                 });
 
-  for (size_t k = 0; k < settled.size(); ++k) {
-    run.settleErrors.push_back(ghostError(settled[k], converged, region));
-    run.probeErrors.push_back(
-        ghostError(blend(settled[k], midMotion, kProbeGhostWeight), converged, region));
-    if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES"))
-      writeImage(fmt::format("{}/ghost-{}-settle-{}.exr", dir, scene.name, k), settled[k]);
-  }
+  run.settleErrors.assign(kSettleFrames, 0.0);
+  run.probeErrors.assign(kSettleFrames, 0.0);
+  for (const MovingFrames& m : moving)
+    for (int k = 0; k < kSettleFrames; ++k) {
+      const double share = 1.0 / double(moving.size());
+      run.settleErrors[k] += share * ghostError(m.settled[k], converged, region);
+      run.probeErrors[k] += share * ghostError(blend(m.settled[k], m.midMotion, kProbeGhostWeight),
+                                               converged, region);
+    }
   if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES")) {
+    for (int k = 0; k < kSettleFrames; ++k)
+      writeImage(fmt::format("{}/ghost-{}-settle-{}.exr", dir, scene.name, k),
+                 moving.front().settled[k]);
     writeImage(fmt::format("{}/ghost-{}-converged.exr", dir, scene.name), converged);
-    writeImage(fmt::format("{}/ghost-{}-mid.exr", dir, scene.name), midMotion);
+    writeImage(fmt::format("{}/ghost-{}-mid.exr", dir, scene.name), moving.front().midMotion);
   }
   EXPECT_EQ(context.validationErrorCount(), 0u);
   std::printf("static error %.4f; after the motion stops:", run.staticError);
@@ -269,10 +291,11 @@ void expectNoGhost(const GhostRun& run) {
 // The steel ball rolls 1.2 m across the lacquered floor (through the sun patch) in 16 frames
 // and stops: its reflection in the floor and its own reflections move with it. The error is
 // measured around its path.
-// Disabled: the bound holds but the self-check does not (lavapipe, 64 x 36: static error 0.052,
-// the frames after the stop 1.78x falling to 0.89x at the 8th; the probe ghost only 1.05x
-// there): in the ball's region the reflection signal's noise hides a 15 % ghost, so a pass says
-// nothing yet (docs/reflections.md, "Motion").
+// Disabled: the bound holds but the self-check only just does (lavapipe, 64 x 36, the means of 4
+// moving runs: static error 0.030, the frames after the stop 2.39x falling to 1.27x at the 8th;
+// the probe ghost 1.51x there, against the 1.5 it must exceed; with one run it was 1.05x): in
+// the ball's region the reflection signal's noise nearly hides a 15 % ghost, so a pass says
+// little (docs/reflections.md, "Motion").
 TEST(SpecularMotion, DISABLED_MovingGlossyBallLeavesNoGhostTrail) {
   Scene scene = *makeBuiltinScene("sunroom-glossy");
   const uint32_t ball = instanceNamed(scene, "ball_steel");
@@ -290,11 +313,11 @@ TEST(SpecularMotion, DISABLED_MovingGlossyBallLeavesNoGhostTrail) {
 
 // The camera dollies 1 m towards its target, low over the lacquered floor, in 16 frames and
 // stops: every reflection on the floor moves across the screen with the view.
-// Disabled: it fails (lavapipe: static error 0.0094, after the stop 10.1x falling to 4.0x at the
-// 8th frame). The trail is the denoiser's history: with --reflection-denoise off the 8th frame is
-// at 0.96x of that configuration's static error, with reuse off (denoiser on, before the
-// fast-history clamp) at 7.9x
-// (docs/reflections.md, "Motion").
+// Disabled: it fails (lavapipe, the means of 4 moving runs: static error 0.011, after the stop
+// 4.70x falling to 2.35x at the 8th frame; single runs 0.7x to 5.5x). Before the motion
+// parallax tests: 7.85x falling to 4.00x (single runs 3.2x to 5.8x). What is left is small
+// bright reflections darker under motion than at rest (DISABLED_CameraDollyLeavesNoBiasIn...
+// below; docs/reflections.md, "Motion").
 TEST(SpecularMotion, DISABLED_CameraDollyOverGlossyFloorLeavesNoGhostTrail) {
   Scene scene = *makeBuiltinScene("sunroom-glossy");
   const Camera start = *scene.camera;
@@ -305,6 +328,155 @@ TEST(SpecularMotion, DISABLED_CameraDollyOverGlossyFloorLeavesNoGhostTrail) {
     return camera;
   };
   expectNoGhost(runGhostTest(scene, stateAt));
+}
+
+// The last frames of independent runs, each rendered `frames` frames by `cameraAt` (the frame's
+// index in, its camera out) (HybridSettings::noiseSeed draws each run's own noise). `parallaxTests`
+// false turns off the reflection passes' motion parallax tests (ReflectionSettings and
+// ReflectionDenoiseSettings::motionParallaxTolerance).
+std::vector<ImageRGBA32F> lastFrames(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                                     const std::function<Camera(int)>& cameraAt, int frames,
+                                     uint32_t firstSeed, int runs, bool parallaxTests = true) {
+  std::vector<ImageRGBA32F> out;
+  for (int run = 0; run < runs; ++run) {
+    HybridSettings settings = motionSettings(firstSeed + 101 * run, kGhostGi);
+    if (!parallaxTests) {
+      settings.reflections.motionParallaxTolerance = 0.0f;
+      settings.reflectionDenoise.motionParallaxTolerance = 0.0f;
+    }
+    HybridFrame frame(context, gpuScene, scene, settings);
+    frame.requestDebugView(kMeasuredView);
+    for (int i = 0; i < frames; ++i) frame.render(cameraAt(i));
+    ImageRGBA32F last = frame.debugViewImage(kMeasuredView);
+    EXPECT_EQ(countNonFinitePixels(last), 0u);
+    out.push_back(std::move(last));
+  }
+  return out;
+}
+
+ImageRGBA32F meanOf(const std::vector<ImageRGBA32F>& images) {
+  ImageRGBA32F mean(images.front().width, images.front().height, glm::vec4(0.0f));
+  for (const ImageRGBA32F& image : images)
+    for (size_t k = 0; k < mean.pixels.size(); ++k)
+      mean.pixels[k] += image.pixels[k] / float(images.size());
+  return mean;
+}
+
+double blockLuminance(const ImageRGBA32F& image, int x, int y) {
+  const glm::vec4 c = image.at(x, y);
+  return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+}
+
+// How far the mean of runs `a` lies from the mean of runs `b`, block by block (the ghost tests'
+// 4 x 4 blocks), in units of the difference's standard error (from the runs' spread): the mean
+// over blocks of z^2. Where both
+// kinds of run converge to the same image it is about 1 (each block's z^2 a chi-square of one
+// degree of freedom); a bias shows as more, however noisy each run is.
+double meanSquaredZ(const std::vector<ImageRGBA32F>& fullA,
+                    const std::vector<ImageRGBA32F>& fullB) {
+  std::vector<ImageRGBA32F> a, b;
+  for (const ImageRGBA32F& image : fullA) a.push_back(boxFiltered(image));
+  for (const ImageRGBA32F& image : fullB) b.push_back(boxFiltered(image));
+  const int width = a.front().width, height = a.front().height;
+  double sum = 0.0;
+  int blocks = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      double difference = 0.0, errorVariance = 0.0;
+      for (const std::vector<ImageRGBA32F>* runs : {&a, &b}) {
+        const double n = double(runs->size());
+        double mean = 0.0, meanSquare = 0.0;
+        for (const ImageRGBA32F& image : *runs) {
+          const double l = blockLuminance(image, x, y);
+          mean += l / n;
+          meanSquare += l * l / n;
+        }
+        difference = runs == &a ? mean : difference - mean;
+        errorVariance += std::max(meanSquare - mean * mean, 0.0) / (n - 1.0);
+      }
+      if (!(errorVariance > 1e-12)) continue;  // black in every run
+      sum += difference * difference / errorVariance;
+      ++blocks;
+    }
+  return blocks > 0 ? sum / blocks : 0.0;
+}
+
+// The camera dolly of the ghost test below, 1 m towards the target over the glossy floor: the
+// last frame of the motion (frame 32: 16 at rest, 16 moving) of independent runs, and the
+// frame of the same index of static runs of the final view, whose histories are as old.
+class DollyRuns {
+ public:
+  static constexpr int kRuns = 8;
+  DollyRuns()
+      : scene_(*makeBuiltinScene("sunroom-glossy")),
+        context_(vk::contextOptionsFromEnvironment()),
+        gpuScene_(context_, scene_) {}
+  std::vector<ImageRGBA32F> still(uint32_t firstSeed) {
+    return lastFrames(
+        context_, gpuScene_, scene_, [&](int) { return dollied(1.0f); }, kFrames, firstSeed, kRuns);
+  }
+  std::vector<ImageRGBA32F> moving(uint32_t firstSeed, bool parallaxTests = true) {
+    return lastFrames(
+        context_, gpuScene_, scene_,
+        [&](int i) {
+          return dollied(std::clamp(float(i - kRestFrames + 1) / float(kMotionFrames), 0.0f, 1.0f));
+        },
+        kFrames, firstSeed, kRuns, parallaxTests);
+  }
+  uint32_t validationErrors() const { return context_.validationErrorCount(); }
+
+ private:
+  static constexpr int kFrames = kRestFrames + kMotionFrames;
+  Camera dollied(float s) const {
+    Camera camera = *scene_.camera;
+    camera.position += glm::normalize(camera.target - camera.position) * s;
+    return camera;
+  }
+  Scene scene_;
+  vk::Context context_;
+  GpuScene gpuScene_;
+};
+
+// What the motion parallax tests are for: under the dolly, reprojection lands next to every
+// reflection's edge on history that reflected another object, and that light stays in the
+// reflection's histories as a trail. Their difference from static runs (meanSquaredZ) must fall
+// at least tenfold with the tests on. Measured (lavapipe, 64 x 36): 529 without, 5.7 with
+// (static runs against static runs: 1.2).
+TEST(SpecularMotion, ParallaxTestsCutTheDollysTrail) {
+  DollyRuns runs;
+  const std::vector<ImageRGBA32F> still = runs.still(40009);
+  const std::vector<ImageRGBA32F> movingWith = runs.moving(50021);
+  const std::vector<ImageRGBA32F> movingWithout = runs.moving(50021, false);
+  const double with = meanSquaredZ(movingWith, still);
+  const double without = meanSquaredZ(movingWithout, still);
+  if (const char* dir = std::getenv("BOUNCE_TEST_IMAGES")) {
+    writeImage(fmt::format("{}/dolly-still-mean.exr", dir), meanOf(still));
+    writeImage(fmt::format("{}/dolly-with-tests-mean.exr", dir), meanOf(movingWith));
+    writeImage(fmt::format("{}/dolly-without-tests-mean.exr", dir), meanOf(movingWithout));
+  }
+  std::printf(
+      "mean squared z of the dolly's last frame against static runs, %d runs each: %.2f "
+      "with the parallax tests, %.2f without\n",
+      DollyRuns::kRuns, with, without);
+  EXPECT_EQ(runs.validationErrors(), 0u);
+  EXPECT_GE(without, 10.0 * with);
+}
+
+// Issue 19's aim for the same measure: the dolly's last frame as static runs converge to (mean
+// squared z at most 3, against about 1 between static runs). Not met: 5.7 (static against
+// static 1.2). What is left is small bright reflections darker under motion than at rest
+// (the red cube's in the floor 0.37 against 1.03): it needs reflections-spatial and the
+// denoiser's history together (1.75 with the denoiser off, 3.2 with reuse off), and not the
+// temporal reuse (5.8 without it). docs/reflections.md, "Motion".
+TEST(SpecularMotion, DISABLED_CameraDollyLeavesNoBiasInTheReflections) {
+  DollyRuns runs;
+  const std::vector<ImageRGBA32F> still = runs.still(40009);
+  const double z2 = meanSquaredZ(runs.moving(50021), still);
+  const double control = meanSquaredZ(runs.still(60013), still);
+  std::printf("mean squared z against static runs, %d runs each: the dolly %.2f, static %.2f\n",
+              DollyRuns::kRuns, z2, control);
+  EXPECT_EQ(runs.validationErrors(), 0u);
+  EXPECT_LE(z2, 3.0);
 }
 
 // 1,000 frames of sunroom-glossy's animation (the ball, the cube, the panel, the camera sway and

@@ -5,7 +5,8 @@
 // last frame, whose reservoir counts only when its x1 lies on this pixel's tangent plane with a
 // similar normal and roughness, and when its sample is still there (a ray; historySampleStillThere).
 // Under motion its M shrinks by how much of its sample's target the turned lobe keeps
-// (motionConfidence). History M is capped at temporalMaxM (RTXDI's and ReSTIR GI's
+// (motionConfidence), and it counts only where its sample lies at the depth of what the
+// neighbours' fresh candidates reflect (sameReflectedDepth). History M is capped at temporalMaxM (RTXDI's and ReSTIR GI's
 // ~20: it bounds how long a stale sample persists). The history sample is shifted to this
 // frame's x1 by reconnection (its weight carries the Jacobian; the sky's is 1) and weighed by the
 // GGX target at this frame's x1 and view. Normalisation 1/M: the history's x1 and lobe are this
@@ -80,6 +81,50 @@ float motionConfidence(ReflectionReceiver p, Reservoir history, float targetThen
   return r > 1.0 ? 1.0 / r : max(r, 0.0);
 }
 
+// A sample's parallax seen from x1: hit distance / (camera distance of x1 + hit distance), 1 for
+// the sky (what reflections-denoise-temporal's rayParallax measures of its rays).
+float sampleParallax(FrameConstants f, ReflectionReceiver p, Reservoir r) {
+  if (r.kind == RESTIR_GI_KIND_SKY) return 1.0;
+  float hitDistance = distance(r.samplePosition, p.x.position);
+  return hitDistance / max(hitDistance + distance(p.x.position, f.camera.position), 1e-6);
+}
+
+// The mean parallax of the 8 neighbouring traced pixels' fresh candidates, each seen from its
+// own x1 (negative where fewer than 3 have one): what the neighbourhood reflects, and at what
+// depth, decided without this pixel's own candidate, so that whether its history is kept does
+// not depend on the sample it is then merged with (a test on the candidate itself keeps or drops
+// the history by the candidate's value: a biased mean).
+float neighbourCandidatesParallax(FrameConstants f, ivec2 g) {
+  float sum = 0.0, n = 0.0;
+  for (int k = 0; k < 9; ++k) {
+    ivec2 d = ivec2(k % 3 - 1, k / 3 - 1);
+    ivec2 q = g + d;
+    if (d == ivec2(0) || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(pc.tracedResolution)))) continue;
+    vec4 originKind = imageLoad(candidateOrigin, q);
+    uint kind = reservoirKind(originKind.w);
+    if (kind == RESTIR_GI_KIND_NONE) continue;
+    float surfaceDistance = distance(originKind.xyz, f.camera.position);
+    float hitDistance = distance(imageLoad(candidateSample, q).xyz, originKind.xyz);
+    sum += kind == RESTIR_GI_KIND_SKY ? 1.0 : hitDistance / max(hitDistance + surfaceDistance, 1e-6);
+    n += 1.0;
+  }
+  return n >= 3.0 ? sum / n : -1.0;
+}
+
+// Under motion, whether the history reservoir reflects what this pixel's neighbourhood reflects
+// now: its sample's parallax within motionParallaxTolerance of the neighbours' candidates'.
+// Nearest-pixel reprojection by the surface's motion lands, next to the edge of a reflected object, on a reservoir whose sample is
+// another object at another depth; reconnected here it passes the visibility check (the path is
+// real) but is a sample this pixel's narrow lobe would almost never draw, and 1/M weighs it as if
+// it could: under a camera move that leaves the object's light in the wrong pixels for up to
+// temporalMaxM frames (docs/reflections.md, "Motion"). A still view is never tested.
+bool sameReflectedDepth(FrameConstants f, ivec2 g, ivec2 pixel, ReflectionReceiver p, Reservoir history) {
+  if (pc.motionParallaxTolerance <= 0.0 || length(imageLoad(velocities, pixel).xy) <= REFLECTION_STILL_PIXELS) return true;
+  float expected = neighbourCandidatesParallax(f, g);
+  if (expected < 0.0 || history.kind == RESTIR_GI_KIND_NONE) return true;
+  return abs(sampleParallax(f, p, history) - expected) <= pc.motionParallaxTolerance;
+}
+
 // The candidate merged with last frame's reservoir of the same surface and lobe, if any.
 Reservoir temporalReuse(FrameConstants f, ivec2 g, ivec2 pixel, ReflectionReceiver p, Reservoir candidate) {
   ReservoirStream s = beginStreamWithTarget(candidate, reflectionTarget(p, candidate));
@@ -88,7 +133,8 @@ Reservoir temporalReuse(FrameConstants f, ivec2 g, ivec2 pixel, ReflectionReceiv
     Reservoir history = unpackReservoir(imageLoad(previousSample, q), imageLoad(previousRadiance, q),
                                         imageLoad(previousOrigin, q), imageLoad(previousNormals, q));
     vec2 lobe = imageLoad(previousLobe, q).xy;
-    if (reflectionReusable(p, history, lobe.x) && historySampleStillThere(p, history)) {
+    if (reflectionReusable(p, history, lobe.x) && sameReflectedDepth(f, g, pixel, p, history) &&
+        historySampleStillThere(p, history)) {
       history.M = min(history.M, pc.temporalMaxM) * motionConfidence(p, history, lobe.y);
       streamReflection(s, p, history, random2(uvec2(g), f.frameIndex ^ (pc.seed * 0x9E3779B9u), RANDOM_REFLECTION_TEMPORAL).x);
     }

@@ -50,8 +50,10 @@ struct ReflectionDenoiseConstants {
   uint flags;  // REFLECTION_DENOISE_FLAG_*
   float fastHistoryFrames;
   float lagSigma;
+  float motionParallaxTolerance;  // 0: no test
+  uint padding;
 };
-BOUNCE_CHECK_SIZE(ReflectionDenoiseConstants, 88);
+BOUNCE_CHECK_SIZE(ReflectionDenoiseConstants, 96);
 
 // Tests only: the temporal pass replaces every REFLECTION_DENOISE_POISON_PERIOD-th traced sample
 // by NaN or Inf before it sanitizes its input (ReflectionDenoiseSettings::poisonInput).

@@ -29,19 +29,21 @@ BOUNCE_BEGIN_SHARED
 
 // Push constants of the three reuse passes (ReflectionSettings documents the knobs).
 struct ReflectionReuseConstants {
-  DeviceAddress frame;           // FrameConstants
-  DeviceAddress specularAlbedo;  // the split-sum table
-  uvec2 tracedResolution;        // reflections.traced
-  uint divisor;                  // render resolution / traced resolution
-  uint historyValid;             // 0: the first frame, after a reset, a resize or a lighting cut
-  float reuseMinRoughness;       // below: no reuse, the traced signal passes unchanged
-  float maxTracedRoughness;      // above: nothing traced
-  float temporalMaxM;            // M cap of the history reservoir (0: no temporal reuse)
-  float spatialRadius;           // traced pixels at roughness 1; scaled by the roughness
-  uint spatialSamples;           // neighbours per pixel (0: no spatial reuse)
-  uint seed;                     // ReflectionSettings::seed
+  DeviceAddress frame;            // FrameConstants
+  DeviceAddress specularAlbedo;   // the split-sum table
+  uvec2 tracedResolution;         // reflections.traced
+  uint divisor;                   // render resolution / traced resolution
+  uint historyValid;              // 0: the first frame, after a reset, a resize or a lighting cut
+  float reuseMinRoughness;        // below: no reuse, the traced signal passes unchanged
+  float maxTracedRoughness;       // above: nothing traced
+  float temporalMaxM;             // M cap of the history reservoir (0: no temporal reuse)
+  float spatialRadius;            // traced pixels at roughness 1; scaled by the roughness
+  uint spatialSamples;            // neighbours per pixel (0: no spatial reuse)
+  uint seed;                      // ReflectionSettings::seed
+  float motionParallaxTolerance;  // ReflectionSettings::motionParallaxTolerance (0: no test)
+  uint padding;
 };
-BOUNCE_CHECK_SIZE(ReflectionReuseConstants, 56);
+BOUNCE_CHECK_SIZE(ReflectionReuseConstants, 64);
 
 // Reuse tests between primary vertices (the same meaning as ReSTIR GI's, RestirGiSettings):
 // x1' counts as x1's surface within this distance from x1's tangent plane per unit view depth,

@@ -51,6 +51,10 @@ BOUNCE_CHECK_SIZE(ReflectionPassConstants, 64);
 
 BOUNCE_CONST float REFLECTION_NO_SAMPLE = -1.0f;     // reflections.traced w: no ray here
 BOUNCE_CONST float REFLECTION_MISS_DISTANCE = 1e4f;  // reflections.traced w: the ray left
+// A reprojection that moves a pixel by less than this many render pixels counts as a still view:
+// the reflection passes' motion-only tests (ReflectionSettings and ReflectionDenoiseSettings::
+// motionParallaxTolerance) leave it alone, so a static view's estimates are as without them.
+BOUNCE_CONST float REFLECTION_STILL_PIXELS = 0.005f;
 
 BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_NORMALS = 0u;
 BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_DEPTH = 1u;

@@ -42,6 +42,9 @@ void validate(const ReflectionDenoiseSettings& s) {
   if (!within(s.fastHistoryFrames, 1.0f, s.mirrorHistoryFrames))
     fail("reflection denoise fast history frames {}: expected 1 to the mirror history ({})",
          s.fastHistoryFrames, s.mirrorHistoryFrames);
+  if (!(s.motionParallaxTolerance >= 0.0f && s.motionParallaxTolerance <= 1.0f))
+    fail("reflection denoise motion parallax tolerance {}: expected 0 (no test) to 1",
+         s.motionParallaxTolerance);
   if (!(s.lagSigma >= 0.0f && std::isfinite(s.lagSigma)))
     fail("reflection denoise lag sigma {}: expected 0 (never) or more", s.lagSigma);
   if (!within(s.spatialMaxRadius, 0.0f, 16.0f))
@@ -83,6 +86,7 @@ gpu::ReflectionDenoiseConstants ReflectionsDenoisePass::constants(
   c.spatialFootprintScale = s.spatialFootprintScale;
   c.fastHistoryFrames = s.fastHistoryFrames;
   c.lagSigma = s.lagSigma;
+  c.motionParallaxTolerance = s.motionParallaxTolerance;
   c.flags = s.poisonInput ? gpu::REFLECTION_DENOISE_FLAG_POISON_INPUT : 0u;
   return c;
 }

@@ -69,6 +69,17 @@ struct ReflectionDenoiseSettings {
   // 0 or more.
   float fastHistoryFrames = 4.0f;
   float lagSigma = 5.4f;
+  // Where the view moved at a pixel, a history pixel counts only if it reflected what this
+  // frame's sample reflects: its running mean of the parallax (hit distance / (camera distance
+  // + hit distance), 1 for a miss) within this much of the sample's. Reprojected by its virtual
+  // image point or by the surface, a pixel next to a reflection's edge lands on history that
+  // saw another object at another depth (a disocclusion in the reflected scene, which the
+  // surface tests cannot see on a flat floor); each frame of motion moved some of that light,
+  // and the running mean kept it for glossyHistoryFrames (docs/reflections.md, "Motion"; NRD
+  // ReBLUR checks the virtual history's hit distance for the same reason). A static view is
+  // never tested, so its running mean is as before. Lower: fewer trails, shorter histories
+  // while moving. 0 = no test. 0 to 1.
+  float motionParallaxTolerance = 0.05f;
   // The spatial filter's radius in traced pixels: the reflection lobe's footprint on screen
   // (a lobe of half-angle ~2 alpha, seen at the hit distance through the surface) times
   // spatialFootprintScale, at most spatialMaxRadius. A mirror's footprint is 0: no spatial

@@ -27,6 +27,7 @@ gpu::ReflectionReuseConstants ReflectionsReuse::constants(const FrameContext& fr
   c.spatialRadius = settings_.spatialRadius;
   c.spatialSamples = settings_.spatialSamples;
   c.seed = settings_.seed;
+  c.motionParallaxTolerance = settings_.motionParallaxTolerance;
   return c;
 }
 

@@ -30,6 +30,9 @@ void validate(const ReflectionSettings& s) {
         s.reuseMinRoughness, s.mirrorRoughness, s.maxTracedRoughness);
   if (!(s.temporalMaxM >= 0.0f && s.temporalMaxM <= 1000.0f))
     fail("reflection temporal max M {}: expected 0 (no temporal reuse) to 1000", s.temporalMaxM);
+  if (!(s.motionParallaxTolerance >= 0.0f && s.motionParallaxTolerance <= 1.0f))
+    fail("reflection motion parallax tolerance {}: expected 0 (no test) to 1",
+         s.motionParallaxTolerance);
   if (s.spatialSamples > gpu::REFLECTION_REUSE_MAX_SPATIAL_SAMPLES)
     fail("reflection spatial samples {}: expected 0 (no spatial reuse) to {}", s.spatialSamples,
          gpu::REFLECTION_REUSE_MAX_SPATIAL_SAMPLES);

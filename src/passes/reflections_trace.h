@@ -71,6 +71,14 @@ struct ReflectionSettings {
   // ReSTIR GI's ~20. Higher: lower variance on a static view, slower response to change (a
   // stale sample lasts ~M frames). 0 = no temporal reuse. 0 to 1000. Default 20.
   float temporalMaxM = 20.0f;
+  // Where the view moved at a pixel, its history reservoir is reused only if its sample lies at
+  // the depth of this frame's candidate: their parallaxes (hit distance / (camera distance of
+  // x1 + hit distance), 1 for the sky) within this much. A history that reflected another
+  // object (a reflection-space disocclusion: the sample a neighbouring surface point saw last
+  // frame) would otherwise carry that object's light into this pixel for up to temporalMaxM
+  // frames (docs/reflections.md, "Motion"). A static view is never tested. Lower: fewer stale
+  // samples under motion, less reuse (noisier) while moving. 0 = no test. 0 to 1. Default 0.05.
+  float motionParallaxTolerance = 0.05f;
   // Neighbours each pixel resamples in reflections-spatial. More: lower variance, more time and
   // more bias from unchecked visibility. 0 = no spatial reuse. 0 to 8. Default 4.
   uint32_t spatialSamples = 4;
