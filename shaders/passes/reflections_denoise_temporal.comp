@@ -28,6 +28,7 @@
 #version 460
 #include "passes/hybrid_frame.glsl"
 #include "shared/reflections_denoise_io.h"
+#include "shared/restir_gi_io.h"
 
 layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { ReflectionDenoiseConstants pc; };
@@ -48,6 +49,8 @@ layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_MOMENTS, 
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_SURFACE, rgba32f) uniform writeonly image2D currentSurface;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_FAST, rgba16f) uniform readonly image2D previousFast;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_FAST, rgba16f) uniform writeonly image2D currentFast;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_SAMPLE, rgba32f) uniform readonly image2D candidateSample;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_ORIGIN, rgba32f) uniform readonly image2D candidateOrigin;
 
 // The surface a traced pixel stands for (its full-res GBuffer pixel).
 DenoiseSurface loadSurface(FrameConstants f, ivec2 tracedPixel) {
@@ -340,22 +343,28 @@ vec3 clampedToFastNeighbourhood(FrameConstants f, ivec2 tracedPixel, vec2 screen
   return h.signal * (clamp(l, lo, hi) / l);
 }
 
-// The mean parallax of this frame's samples at the 8 neighbours on this pixel's surface (negative
-// where fewer than 3 have one). The pixel's own sample takes no part, as in the ghost and lag
-// tests: a decision that depends on the sample it is then merged with keeps or drops history by
-// that sample's value. The neighbours' rays also say more than one ray does (one glossy ray may
-// hit anything in the lobe): 8 frames after the dolly stops, its trail measured 1.1x the static
-// error against 2.0x with the pixel's own sample, means of 8 runs (docs/reflections.md,
-// "Motion").
+// The mean parallax of this frame's traced rays at the 8 neighbours on this pixel's surface
+// (negative where fewer than 3 have one), read from reflections.candidate.*, before any reuse.
+// The pixel's own ray takes no part, as in the ghost and lag tests: a decision that depends on
+// the sample the history is then merged with keeps or drops it by that sample's value. The
+// reused samples would bring that back, since spatial reuse shares samples between neighbours:
+// decided on them, small bright reflections came out darker under motion (the dolly's last
+// frame against static runs, mean squared z, 5.7 against 3.2 on the raw rays). The neighbours'
+// rays also say more than one ray does: 8 frames after the dolly stops, its trail measured 1.1x
+// the static error against 2.0x with the pixel's own sample, means of 8 runs
+// (docs/reflections.md, "Motion").
 float neighboursParallax(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here, float surfaceDistance) {
   float sum = 0.0, n = 0.0;
   for (int k = 0; k < 9; ++k) {
     ivec2 d = ivec2(k % 3 - 1, k / 3 - 1);
     ivec2 q = tracedPixel + d;
-    vec4 v;
-    if (d == ivec2(0) || !insideTraced(q) || !freshSample(f, q, v)) continue;
+    if (d == ivec2(0) || !insideTraced(q)) continue;
+    vec4 originKind = imageLoad(candidateOrigin, q);
+    uint kind = uint(originKind.w + 0.5) & 3u;
+    if (kind == RESTIR_GI_KIND_NONE) continue;
     if (!sameSurface(here, encodeSurface(loadSurface(f, q)))) continue;
-    sum += rayParallax(surfaceDistance, v.w);
+    float hitDistance = distance(imageLoad(candidateSample, q).xyz, originKind.xyz);
+    sum += rayParallax(surfaceDistance, kind == RESTIR_GI_KIND_SKY ? REFLECTION_MISS_DISTANCE : hitDistance);
     n += 1.0;
   }
   return n >= 3.0 ? sum / n : -1.0;

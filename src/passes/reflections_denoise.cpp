@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "shared/restir_gi_io.h"
 
 namespace bounce {
 
@@ -139,6 +140,10 @@ TracedReflections ReflectionsDenoisePass::declare(graph::FrameGraph& graph,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_SURFACE)
       .read(fast.previous, Access::StorageRead,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_FAST)
+      .read(traced.candidate[gpu::GI_RESERVOIR_SAMPLE], Access::StorageRead,
+            gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_SAMPLE)
+      .read(traced.candidate[gpu::GI_RESERVOIR_ORIGIN], Access::StorageRead,
+            gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_ORIGIN)
       .record([this, push, frame, temporal, moments, surface, fast, dispatch](
                   VkCommandBuffer cmd, const graph::PassResources& r) {
         gpu::ReflectionDenoiseConstants c = push;
