@@ -28,12 +28,12 @@
 #version 460
 #include "passes/hybrid_frame.glsl"
 #include "shared/reflections_denoise_io.h"
-#include "shared/restir_gi_io.h"
 
 layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { ReflectionDenoiseConstants pc; };
 
 #include "passes/reflections_denoise.glsl"
+#include "passes/reflection_parallax.glsl"
 
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_TRACED, rgba16f) uniform readonly image2D traced;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
@@ -127,13 +127,6 @@ History normalized(History sum) {
   if (sum.weight <= 1e-4) return noHistory();
   float w = sum.weight;
   return History(sum.signal / w, sum.fast / w, sum.hitDistance / w, sum.secondMoment / w, sum.parallax / w, sum.frames / w, 1.0);
-}
-
-// A ray's parallax: hit distance / (surface distance + hit distance), 1 for a miss. Screen
-// motion under a camera move goes with one over depth, so this, not the hit distance, is what a
-// reflection's motion and its history's comparison need.
-float rayParallax(float surfaceDistance, float hitDistance) {
-  return hitDistance >= REFLECTION_MISS_DISTANCE ? 1.0 : hitDistance / max(surfaceDistance + hitDistance, 1e-6);
 }
 
 // Whether history h reflected what this frame's rays around the pixel reflect, whose mean
@@ -349,22 +342,19 @@ vec3 clampedToFastNeighbourhood(FrameConstants f, ivec2 tracedPixel, vec2 screen
 // the sample the history is then merged with keeps or drops it by that sample's value. The
 // reused samples would bring that back, since spatial reuse shares samples between neighbours:
 // decided on them, small bright reflections came out darker under motion (the dolly's last
-// frame against static runs, mean squared z, 5.7 against 3.2 on the raw rays). The neighbours'
+// frame against static runs, mean squared z, 5.7 against 3.0 on the raw rays). The neighbours'
 // rays also say more than one ray does: 8 frames after the dolly stops, its trail measured 1.1x
 // the static error against 2.0x with the pixel's own sample, means of 8 runs
 // (docs/reflections.md, "Motion").
-float neighboursParallax(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here, float surfaceDistance) {
+float neighboursParallax(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here) {
   float sum = 0.0, n = 0.0;
   for (int k = 0; k < 9; ++k) {
     ivec2 d = ivec2(k % 3 - 1, k / 3 - 1);
     ivec2 q = tracedPixel + d;
     if (d == ivec2(0) || !insideTraced(q)) continue;
-    vec4 originKind = imageLoad(candidateOrigin, q);
-    uint kind = uint(originKind.w + 0.5) & 3u;
-    if (kind == RESTIR_GI_KIND_NONE) continue;
-    if (!sameSurface(here, encodeSurface(loadSurface(f, q)))) continue;
-    float hitDistance = distance(imageLoad(candidateSample, q).xyz, originKind.xyz);
-    sum += rayParallax(surfaceDistance, kind == RESTIR_GI_KIND_SKY ? REFLECTION_MISS_DISTANCE : hitDistance);
+    float parallax = candidateParallax(f.camera.position, imageLoad(candidateSample, q), imageLoad(candidateOrigin, q));
+    if (parallax < 0.0 || !sameSurface(here, encodeSurface(loadSurface(f, q)))) continue;
+    sum += parallax;
     n += 1.0;
   }
   return n >= 3.0 ? sum / n : -1.0;
@@ -386,9 +376,8 @@ Accumulated accumulate(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here)
     Reprojection r = reproject(f, tracedPixel, here, hasFresh ? fresh.w : -1.0);
     vec2 centre = vec2(fullResPixel(f, tracedPixel)) + 0.5;
     bool viewMoved = max(distance(r.surface, centre), distance(r.virtualPoint, centre)) > REFLECTION_STILL_PIXELS;
-    float surfaceDistance = distance(here.position, f.camera.position);
     bool tested = viewMoved && pc.motionParallaxTolerance > 0.0;
-    h = reprojectedHistory(here, r, tested ? neighboursParallax(f, tracedPixel, here, surfaceDistance) : -1.0);
+    h = reprojectedHistory(here, r, tested ? neighboursParallax(f, tracedPixel, here) : -1.0);
     bool virtualFirst = r.hasVirtual && virtualShare(here.roughness) >= 0.5;
     vec2 previous = virtualFirst ? r.virtualPoint : r.surface;
     if (h.weight > 0.0 && h.frames > pc.fastHistoryFrames && slowHistoryLags(f, tracedPixel, previous)) {

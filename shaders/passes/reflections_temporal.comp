@@ -6,15 +6,16 @@
 // similar normal and roughness, and when its sample is still there (a ray; historySampleStillThere).
 // Under motion its M shrinks by how much of its sample's target the turned lobe keeps
 // (motionConfidence), and it counts only where its sample lies at the depth of what the
-// neighbours' fresh candidates reflect (sameReflectedDepth). History M is capped at temporalMaxM (RTXDI's and ReSTIR GI's
-// ~20: it bounds how long a stale sample persists). The history sample is shifted to this
-// frame's x1 by reconnection (its weight carries the Jacobian; the sky's is 1) and weighed by the
-// GGX target at this frame's x1 and view. Normalisation 1/M: the history's x1 and lobe are this
+// neighbours' fresh candidates reflect (sameReflectedDepth). History M is capped at temporalMaxM
+// (RTXDI's and ReSTIR GI's ~20: it bounds how long a stale sample persists). The history sample
+// is shifted to this frame's x1 by reconnection (its weight carries the Jacobian; the sky's is
+// 1) and weighed by the GGX target at this frame's x1 and view. Normalisation 1/M: the history's x1 and lobe are this
 // pixel's (the tests above), so both reservoirs could have produced either sample. The output is
 // next frame's history. Pixels without reuse (mirrors, below reuseMinRoughness) pass their
 // candidate through.
 #version 460
 #include "passes/reflections_reuse.glsl"
+#include "passes/reflection_parallax.glsl"
 #include "common/random.glsl"
 #include "rt/trace.glsl"
 
@@ -81,12 +82,10 @@ float motionConfidence(ReflectionReceiver p, Reservoir history, float targetThen
   return r > 1.0 ? 1.0 / r : max(r, 0.0);
 }
 
-// A sample's parallax seen from x1: hit distance / (camera distance of x1 + hit distance), 1 for
-// the sky (what reflections-denoise-temporal's rayParallax measures of its rays).
+// A reservoir's sample's parallax seen from this pixel's x1 (passes/reflection_parallax.glsl).
 float sampleParallax(FrameConstants f, ReflectionReceiver p, Reservoir r) {
   if (r.kind == RESTIR_GI_KIND_SKY) return 1.0;
-  float hitDistance = distance(r.samplePosition, p.x.position);
-  return hitDistance / max(hitDistance + distance(p.x.position, f.camera.position), 1e-6);
+  return rayParallax(distance(p.x.position, f.camera.position), distance(r.samplePosition, p.x.position));
 }
 
 // The mean parallax of the 8 neighbouring traced pixels' fresh candidates, each seen from its
@@ -100,12 +99,9 @@ float neighbourCandidatesParallax(FrameConstants f, ivec2 g) {
     ivec2 d = ivec2(k % 3 - 1, k / 3 - 1);
     ivec2 q = g + d;
     if (d == ivec2(0) || any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(pc.tracedResolution)))) continue;
-    vec4 originKind = imageLoad(candidateOrigin, q);
-    uint kind = reservoirKind(originKind.w);
-    if (kind == RESTIR_GI_KIND_NONE) continue;
-    float surfaceDistance = distance(originKind.xyz, f.camera.position);
-    float hitDistance = distance(imageLoad(candidateSample, q).xyz, originKind.xyz);
-    sum += kind == RESTIR_GI_KIND_SKY ? 1.0 : hitDistance / max(hitDistance + surfaceDistance, 1e-6);
+    float parallax = candidateParallax(f.camera.position, imageLoad(candidateSample, q), imageLoad(candidateOrigin, q));
+    if (parallax < 0.0) continue;
+    sum += parallax;
     n += 1.0;
   }
   return n >= 3.0 ? sum / n : -1.0;
@@ -113,8 +109,8 @@ float neighbourCandidatesParallax(FrameConstants f, ivec2 g) {
 
 // Under motion, whether the history reservoir reflects what this pixel's neighbourhood reflects
 // now: its sample's parallax within motionParallaxTolerance of the neighbours' candidates'.
-// Nearest-pixel reprojection by the surface's motion lands, next to the edge of a reflected object, on a reservoir whose sample is
-// another object at another depth; reconnected here it passes the visibility check (the path is
+// Nearest-pixel reprojection by the surface's motion lands, next to the edge of a reflected
+// object, on a reservoir whose sample is another object at another depth; reconnected here it passes the visibility check (the path is
 // real) but is a sample this pixel's narrow lobe would almost never draw, and 1/M weighs it as if
 // it could: under a camera move that leaves the object's light in the wrong pixels for up to
 // temporalMaxM frames (docs/reflections.md, "Motion"). A still view is never tested.
