@@ -173,6 +173,10 @@ TEST(FrameSettings, ValidateRefusesOutOfRangeFieldsByName) {
   };
   refused("resolution 0x1080", [](HybridSettings& s) { s.width = 0; });
   refused("shadow divisor 0", [](HybridSettings& s) { s.shadows.divisor = 0; });
+  refused("reflection motion parallax tolerance 2",
+          [](HybridSettings& s) { s.reflections.motionParallaxTolerance = 2.0f; });
+  refused("reflection denoise motion parallax tolerance -1",
+          [](HybridSettings& s) { s.reflectionDenoise.motionParallaxTolerance = -1.0f; });
   refused("exposure 100 stops", [](HybridSettings& s) { s.exposureStops = 100.0f; });
   refused("auto exposure percentiles 0.9 .. 0.5", [](HybridSettings& s) {
     s.exposure.lowPercentile = 0.9f;
