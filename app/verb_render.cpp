@@ -48,7 +48,9 @@ struct RenderOptions {
   std::string di = "restir";  // ReSTIR DI (DiSettings)
   bool diUnbiased = false;
   int64_t diBrdfCandidates = 1;
-  std::string diDenoiser;  // svgf|reblur|none; empty: the settings' (none)
+  std::string
+      diCandidateVisibility;  // auto|on|off; empty: the settings' (auto; on with --di-unbiased)
+  std::string diDenoiser;     // svgf|reblur|none; empty: the settings' (none)
   std::string vbuffer = "raster";
   std::optional<int64_t> giDivisor;
   std::string restirSecondVertex;
@@ -174,6 +176,14 @@ void checkArguments(const RenderOptions& o) {
         "--di {} and --di-unbiased cannot be used together: the bias correction is in spatial "
         "reuse, which only --di restir runs",
         o.di);
+  if (!o.diCandidateVisibility.empty()) {
+    requireOneOf("--di-candidate-visibility", o.diCandidateVisibility, {"auto", "on", "off"});
+    if (o.diUnbiased && o.diCandidateVisibility != "on")
+      fail(
+          "--di-unbiased and --di-candidate-visibility {} cannot be used together: the "
+          "ray-traced bias correction needs the candidates' shadow ray (on)",
+          o.diCandidateVisibility);
+  }
   if (!o.diDenoiser.empty()) {
     requireOneOf("--di-denoiser", o.diDenoiser, splitNames(diDenoiserNames()));
     if (o.di != "restir" && o.diDenoiser != "none")
@@ -289,7 +299,12 @@ HybridSettings settingsFrom(const RenderOptions& o) {
   settings.gi = *giModeFromName(o.gi);
   settings.vbuffer = *vbufferModeFromName(o.vbuffer);
   settings.di.mode = *diModeFromName(o.di);
-  settings.di.unbiased = o.diUnbiased;
+  if (o.diUnbiased) {  // DiSettings::unbiasedConfiguration() on the preset's settings
+    settings.di.unbiased = true;
+    settings.di.candidateVisibility = DiCandidateVisibility::On;
+  }
+  if (!o.diCandidateVisibility.empty())
+    settings.di.candidateVisibility = *diCandidateVisibilityFromName(o.diCandidateVisibility);
   settings.di.brdfCandidates = uint32_t(o.diBrdfCandidates);
   if (!o.diDenoiser.empty()) settings.di.denoiser = *diDenoiserFromName(o.diDenoiser);
   validate(settings);  // the preset's values, for the chosen GI
@@ -534,6 +549,11 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                   "emissive triangles in glossy reflections)")
       ->check(CLI::Range(0, 1))
       ->capture_default_str();
+  cmd->add_option("--di-candidate-visibility", options->diCandidateVisibility,
+                  "ReSTIR DI's shadow ray for each pixel's new candidate (RTXDI's initial "
+                  "visibility): auto (the default: on with the light grid, from 512 lights), on, "
+                  "or off (a ray per pixel less; di-shade's final ray is fed back instead); on "
+                  "with --di-unbiased");
   cmd->add_option("--di-denoiser", options->diDenoiser,
                   std::string("Denoiser of ReSTIR DI's signal (di-denoise-*, docs/di.md): ") +
                       diDenoiserNames() + " (default: none)");

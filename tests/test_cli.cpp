@@ -193,6 +193,8 @@ TEST(Cli, ConflictingOptionsAreRefusedNamingBoth) {
       {"reference --exposure 1 --out " + dir + "/x.exr", {"--exposure", "--out"}},
       {"compare a.png b.png --zoom 2", {"--zoom", "--side-by-side"}},
       {"bench-rays --build-only --tracer both", {"--build-only", "--tracer both"}},
+      {"render --di-unbiased --di-candidate-visibility auto",
+       {"--di-unbiased", "--di-candidate-visibility auto"}},
   };
   for (const auto& [args, names] : cases) {
     test::CommandResult r = runCommand(bounceExe() + " " + args, 30);

@@ -4,7 +4,14 @@
 // emission, where the targets took its mean (di_common.glsl), times its contribution weight W, times one final shadow
 // ray (RTXDI's final visibility). Writes di.radiance, which composite adds (or the DI
 // denoiser's output, di/di_denoise.h), di.reservoir-info for the debug views, and
-// di.reflectance, what the denoiser divides the radiance by.
+// di.reflectance, what the denoiser divides the radiance by. It also writes di-temporal's next
+// history, di.reservoir-final: di-temporal's reservoir, with W = 0 where its sample is the one
+// shaded and the final shadow ray found it blocked (RTXDI stores the final visibility in the
+// reservoir and discards invisible samples). So no later frame reuses a light this pixel was
+// seen not to see, even where the candidates had no shadow ray of their own
+// (DiSettings::candidateVisibility). W V(y) is an unbiased contribution weight of the
+// visible integrand whenever it is applied. The spatial output is not what is fed back: its
+// "basic" bias correction would then compound frame over frame (docs/di.md).
 #version 460
 #include "di/di_common.glsl"
 #include "lighting/specular_albedo.glsl"
@@ -16,6 +23,8 @@ layout(set = 1, binding = DI_SHADE_BINDING_RADIANCE, rgba16f) uniform writeonly 
 // (chosen light index, or -1; M; W; visibility 0/1, or -1 where nothing was traced)
 layout(set = 1, binding = DI_SHADE_BINDING_INFO, rgba32f) uniform writeonly image2D infoOut;
 layout(set = 1, binding = DI_SHADE_BINDING_REFLECTANCE, rgba16f) uniform writeonly image2D reflectanceOut;
+layout(set = 1, binding = DI_SHADE_BINDING_FINAL_RESERVOIR, rgba32ui) uniform writeonly uimage2D finalReservoirOut;
+layout(set = 1, binding = DI_SHADE_BINDING_TEMPORAL_RESERVOIR, rgba32ui) uniform readonly uimage2D temporalReservoirs;
 
 // What the surface reflects of uniform light, both lobes (the split-sum directional albedo,
 // lighting/specular_albedo.glsl, as composite weighs indirect light): the DI denoiser filters
@@ -34,7 +43,8 @@ void main() {
   if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
   lightTables = LightTablesBlock(di.lights).v;
   DiSurface s = loadDiSurface(f, pixel);
-  DiReservoir r = unpackDiReservoir(imageLoad(reservoirs, pixel));
+  uvec4 shaded = imageLoad(reservoirs, pixel);
+  DiReservoir r = unpackDiReservoir(shaded);
   vec3 radiance = vec3(0.0);
   float visibility = -1.0;
   if (s.valid && r.W > 0.0) {
@@ -45,6 +55,11 @@ void main() {
       radiance = visible ? l.contribution * r.W : vec3(0.0);
     }
   }
+  // The same light and u are the same point y, whichever pixel's reservoir it came through.
+  uvec4 continued = imageLoad(temporalReservoirs, pixel);
+  DiReservoir history = unpackDiReservoir(continued);
+  if (visibility == 0.0 && continued.xy == shaded.xy) history.W = 0.0;
+  imageStore(finalReservoirOut, pixel, packDiReservoir(history));
   // Nothing non-finite leaves the pass (composite and later temporal passes read it).
   if (any(isnan(radiance)) || any(isinf(radiance))) radiance = vec3(0.0);
   imageStore(radianceOut, pixel, vec4(min(radiance, vec3(65000.0)), 1.0));

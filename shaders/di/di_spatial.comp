@@ -6,9 +6,11 @@
 // of the inputs that could have produced it: those whose own target at their own pixel is
 // positive for y (RTXDI's "basic" correction), and with DI_FLAG_UNBIASED also not occluded
 // there, by one shadow ray per neighbour (the "ray-traced" correction, unbiased: a neighbour's
-// reservoir cannot hold a light that it cannot see, because of the candidates' visibility ray).
+// reservoir cannot hold a light that it cannot see, because of the candidates' visibility ray,
+// which that configuration turns on, and di-shade's final one on the history).
 // This pixel's own reservoir always counts (where y is hidden from it, di-shade's ray gives 0).
-// Not fed back: the next frame's history is di-temporal's output.
+// Not fed back (its basic correction's bias would compound): the next frame's history is
+// di-temporal's output, through di-shade (di.reservoir-final).
 #version 460
 #include "di/di_common.glsl"
 

@@ -5,7 +5,9 @@
 // normal, kept in di.reservoir-surface). Each input is weighted p_hat(y) W M at this pixel and
 // the result normalised by the sum of M (1/M weights): exact while the reprojected point is this
 // pixel's point (a static view: the unbiased tests), biased on motion where the two points'
-// targets differ (RTXDI's temporal bias correction "off"). Its output is the reservoir fed back.
+// targets differ (RTXDI's temporal bias correction "off"). The history is this pass's output of
+// last frame as di-shade passed it on (di.reservoir-final): with W = 0 where it held the sample
+// di-shade shaded and the final shadow ray was blocked.
 #version 460
 #include "di/di_common.glsl"
 

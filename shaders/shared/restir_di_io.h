@@ -91,14 +91,14 @@ BOUNCE_CONST uint DI_VISIBILITY_GROUP_SIDE = 16u;
 // di-temporal
 BOUNCE_CONST uint DI_TEMPORAL_BINDING_CANDIDATE = 5u;         // di.candidate
 BOUNCE_CONST uint DI_TEMPORAL_BINDING_VELOCITY = 6u;          // gbuffer.velocity
-BOUNCE_CONST uint DI_TEMPORAL_BINDING_PREVIOUS = 7u;          // di.reservoir (previous)
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_PREVIOUS = 7u;          // di.reservoir-final (previous)
 BOUNCE_CONST uint DI_TEMPORAL_BINDING_PREVIOUS_SURFACE = 8u;  // di.reservoir-surface (previous)
-BOUNCE_CONST uint DI_TEMPORAL_BINDING_CURRENT = 9u;           // di.reservoir (current)
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_CURRENT = 9u;           // out: di.reservoir
 BOUNCE_CONST uint DI_TEMPORAL_BINDING_CURRENT_SURFACE = 10u;  // di.reservoir-surface (current)
 BOUNCE_CONST uint DI_TEMPORAL_BINDING_COUNT = 11u;
 
 // di-spatial
-BOUNCE_CONST uint DI_SPATIAL_BINDING_INPUT = 5u;   // di.reservoir (current)
+BOUNCE_CONST uint DI_SPATIAL_BINDING_INPUT = 5u;   // di.reservoir
 BOUNCE_CONST uint DI_SPATIAL_BINDING_OUTPUT = 6u;  // di.spatial
 BOUNCE_CONST uint DI_SPATIAL_BINDING_COUNT = 7u;
 
@@ -109,7 +109,11 @@ BOUNCE_CONST uint DI_SHADE_BINDING_INFO = 7u;       // out: di.reservoir-info
 // out: di.reflectance, the split-sum directional albedo (diffuse + specular lobes) that the DI
 // denoiser demodulates by (di/di_denoise.h)
 BOUNCE_CONST uint DI_SHADE_BINDING_REFLECTANCE = 8u;
-BOUNCE_CONST uint DI_SHADE_BINDING_COUNT = 9u;
+// out: di.reservoir-final, di-temporal's history next frame: di-temporal's reservoir, with W = 0
+// where its sample is the one shaded and the final shadow ray was blocked
+BOUNCE_CONST uint DI_SHADE_BINDING_FINAL_RESERVOIR = 9u;
+BOUNCE_CONST uint DI_SHADE_BINDING_TEMPORAL_RESERVOIR = 10u;  // di.reservoir (di-temporal's)
+BOUNCE_CONST uint DI_SHADE_BINDING_COUNT = 11u;
 
 BOUNCE_END_SHARED
 #endif

@@ -74,7 +74,7 @@ ImageRGBA32F diDerivedView(const std::string& name, const ImageRGBA32F& info) {
 bool isDiReservoirView(const graph::DebugView& view) {
   return view.isImage && view.format == kDiReservoirFormat &&
          (view.resource == "di.candidate" || view.resource == "di.reservoir" ||
-          view.resource == "di.spatial");
+          view.resource == "di.spatial" || view.resource == "di.reservoir-final");
 }
 
 ImageRGBA32F decodeDiReservoirView(const graph::DebugView& view) {

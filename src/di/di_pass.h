@@ -39,6 +39,9 @@ struct DiFrame {
   // di-light-grid's slots (DiConstants::lightGrid's), which di-generate-candidates reads; none
   // without the grid.
   std::optional<graph::BufferHandle> lightGrid;
+  // di.reservoir-final: di-shade writes its current side, di-temporal reads the previous one;
+  // none without reuse (--di uniform).
+  std::optional<graph::HistoryImage> finalReservoirs;
 
   gpu::DiPassConstants passConstants(bool historyValid = false) const {
     return {frame.constantsAddress, constants, historyValid ? 1u : 0u, 0u};

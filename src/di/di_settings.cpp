@@ -36,6 +36,13 @@ const char* diDenoiserName(DiDenoiser denoiser) {
   return "?";
 }
 
+std::optional<DiCandidateVisibility> diCandidateVisibilityFromName(const std::string& name) {
+  if (name == "auto") return DiCandidateVisibility::Auto;
+  if (name == "on") return DiCandidateVisibility::On;
+  if (name == "off") return DiCandidateVisibility::Off;
+  return std::nullopt;
+}
+
 const char* diDenoiserNames() {
   return "svgf, reblur, none";
 }
@@ -77,7 +84,7 @@ void validate(const DiSettings& s) {
         "DI light grid candidates {}: at most {} (one of the {} light candidates stays the alias "
         "table's)",
         s.lightGridCandidates, s.lightCandidates - 1, s.lightCandidates);
-  if (s.unbiased && !s.candidateVisibility)
+  if (s.unbiased && s.candidateVisibility != DiCandidateVisibility::On)
     fail(
         "DI unbiased configuration without candidate visibility: the ray-traced correction "
         "needs the candidates' shadow ray");

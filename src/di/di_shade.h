@@ -1,6 +1,8 @@
 // `di-shade` (shaders/di/di_shade.comp): the final reservoir's sample with the full BRDF, W and
 // one shadow ray: di.radiance, the direct light composite adds (through the DI denoiser when
-// one is on, di/di_denoise.h).
+// one is on, di/di_denoise.h); and di.reservoir-final, di-temporal's next history
+// (DiFrame::finalReservoirs): di-temporal's reservoir, with W = 0 where it holds the sample
+// shaded and the ray was blocked.
 #pragma once
 #include "di/di_pass.h"
 
@@ -17,7 +19,10 @@ struct DirectLight {
 class DiShadePass {
  public:
   DiShadePass(vk::Context& context, const GpuScene& scene);
-  DirectLight declare(graph::FrameGraph& graph, const DiFrame& f, graph::ImageHandle reservoirs);
+  // `reservoirs`: the chain's last (spatial's, or temporal's); `temporal`: di-temporal's (or,
+  // without reuse, the same as `reservoirs`).
+  DirectLight declare(graph::FrameGraph& graph, const DiFrame& f, graph::ImageHandle reservoirs,
+                      graph::ImageHandle temporal);
 
  private:
   DiPass pass_;

@@ -1,6 +1,7 @@
 // `di-temporal` (shaders/di/di_temporal.comp): the candidate merged with last frame's reservoir
-// at the reprojected pixel (M capped at DiSettings::temporalMaxM). Its output, di.reservoir
-// (with di.reservoir-surface: the normal and depth it belongs to), is the history fed back.
+// at the reprojected pixel (M capped at DiSettings::temporalMaxM): di.reservoir. The history is
+// last frame's di.reservoir-final, which di-shade writes (with di.reservoir-surface, written here:
+// the normal and depth it belongs to).
 #pragma once
 #include "di/di_pass.h"
 
@@ -9,7 +10,7 @@ namespace bounce {
 class DiTemporalPass {
  public:
   DiTemporalPass(vk::Context& context, const GpuScene& scene);
-  // The current side of di.reservoir.
+  // di.reservoir; reads f.finalReservoirs' previous side.
   graph::ImageHandle declare(graph::FrameGraph& graph, const DiFrame& f,
                              graph::ImageHandle candidates);
 

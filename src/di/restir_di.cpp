@@ -27,7 +27,7 @@ gpu::DiConstants makeConstants(const DiSettings& s, const GpuLightTables& lights
   if (s.reuses() && (s.spatialSamples > 0 || s.disocclusionSamples > 0))
     c.flags |= gpu::DI_FLAG_SPATIAL;
   if (s.unbiased) c.flags |= gpu::DI_FLAG_UNBIASED;
-  if (s.candidateVisibility) c.flags |= gpu::DI_FLAG_CANDIDATE_VISIBILITY;
+  if (s.tracesCandidateVisibility(lightGrid != 0)) c.flags |= gpu::DI_FLAG_CANDIDATE_VISIBILITY;
   c.lightCandidates = s.lightCandidates;
   c.temporalMaxM = s.temporalMaxM;
   c.depthTolerance = s.depthTolerance;
@@ -132,10 +132,13 @@ DirectLight RestirDi::declare(graph::FrameGraph& graph, const FrameContext& fram
         dropDenoiseHistory_ = false;
       });
   if (grid_) f.lightGrid = grid_->declare(graph, f);
+  if (temporal_)
+    f.finalReservoirs = graph.createHistoryImage("di.reservoir-final", {kDiReservoirFormat});
   graph::ImageHandle reservoirs = candidates_->declare(graph, f);
   if (temporal_) reservoirs = temporal_->declare(graph, f, reservoirs);
+  const graph::ImageHandle temporal = reservoirs;
   if (spatial_) reservoirs = spatial_->declare(graph, f, reservoirs);
-  DirectLight direct = shade_->declare(graph, f, reservoirs);
+  DirectLight direct = shade_->declare(graph, f, reservoirs, temporal);
   if (denoise_) direct.radiance = denoise_->declare(graph, f, direct, dropDenoiseHistory_);
   return direct;
 }
