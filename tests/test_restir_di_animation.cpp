@@ -323,11 +323,17 @@ TEST(RestirDi, PipelineCountWithinSeedBudget) {
   uniform.mode = DiMode::Uniform;
   HybridFrame restir(context, gpuScene, scene, diSettings(16, 16, DiSettings{}));
   HybridFrame baseline(context, gpuScene, scene, diSettings(16, 16, uniform));
-  std::printf("DI pipelines: restir %u, uniform %u\n", restir.diPipelineCount(),
-              baseline.diPipelineCount());
+  // The wall's one light is below the light grid's threshold: `auto` traces no candidates'
+  // shadow ray there; `on` adds its pipeline.
+  DiSettings visibility;
+  visibility.candidateVisibility = DiCandidateVisibility::On;
+  HybridFrame traced(context, gpuScene, scene, diSettings(16, 16, visibility));
+  std::printf("DI pipelines: restir %u (candidates' shadow ray on: %u), uniform %u\n",
+              restir.diPipelineCount(), traced.diPipelineCount(), baseline.diPipelineCount());
   EXPECT_EQ(restir.diPipelineCount(), 4u);
+  EXPECT_EQ(traced.diPipelineCount(), 5u);
   EXPECT_EQ(baseline.diPipelineCount(), 2u);
-  EXPECT_LE(restir.diPipelineCount(), 15u);
+  EXPECT_LE(traced.diPipelineCount(), 15u);
 }
 
 }  // namespace

@@ -16,6 +16,8 @@ class DiGenerateCandidatesPass {
                            bool visibility);
   // di.candidate: the reservoirs (kDiReservoirFormat).
   graph::ImageHandle declare(graph::FrameGraph& graph, const DiFrame& f);
+  // Compute pipelines: the candidates' and, with `visibility`, the shadow ray's.
+  uint32_t pipelineCount() const { return visibility_ ? 2u : 1u; }
 
  private:
   DiPass generate_;

@@ -111,7 +111,8 @@ void RestirDi::instancesMoved() {
 
 uint32_t RestirDi::pipelineCount() const {
   if (!hasLights()) return 0;
-  return 2 + (grid_ ? 1 : 0) + (temporal_ ? 1 : 0) + (spatial_ ? 1 : 0) +
+  return candidates_->pipelineCount() + 1 + (grid_ ? 1 : 0) + (temporal_ ? 1 : 0) +
+         (spatial_ ? 1 : 0) +
          (denoise_ ? denoise_->pipelineCount() : 0);
 }
 
