@@ -112,8 +112,7 @@ void RestirDi::instancesMoved() {
 uint32_t RestirDi::pipelineCount() const {
   if (!hasLights()) return 0;
   return candidates_->pipelineCount() + 1 + (grid_ ? 1 : 0) + (temporal_ ? 1 : 0) +
-         (spatial_ ? 1 : 0) +
-         (denoise_ ? denoise_->pipelineCount() : 0);
+         (spatial_ ? 1 : 0) + (denoise_ ? denoise_->pipelineCount() : 0);
 }
 
 // The chain, top to bottom (see the header).
