@@ -48,9 +48,9 @@ struct RenderOptions {
   std::string di = "restir";  // ReSTIR DI (DiSettings)
   bool diUnbiased = false;
   int64_t diBrdfCandidates = 1;
-  std::string
-      diCandidateVisibility;  // auto|on|off; empty: the settings' (auto; on with --di-unbiased)
-  std::string diDenoiser;     // svgf|reblur|none; empty: the settings' (none)
+  // auto|on|off; empty: the settings' (auto; on with --di-unbiased)
+  std::string diCandidateVisibility;
+  std::string diDenoiser;  // svgf|reblur|none; empty: the settings' (none)
   std::string vbuffer = "raster";
   std::optional<int64_t> giDivisor;
   std::string restirSecondVertex;
