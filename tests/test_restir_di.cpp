@@ -79,6 +79,51 @@ TEST(RestirDi, PointLightBehindAWallLightsNothingBeyondIt) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
+// The final visibility fed back (di-shade writes di.reservoir-final, di-temporal's history):
+// without the candidates' shadow ray and without spatial reuse, the sample di-shade shades is
+// always di-temporal's, so every pixel beyond the wall whose temporal reservoir holds the hidden
+// light (the new candidate, unshadowed, W > 0) passes it on with W = 0; left of the wall the
+// visible light is passed on as it is. Without the feedback the history would keep the hidden
+// light wherever di-temporal does.
+TEST(RestirDi, FinalVisibilityDropsHiddenLightsFromTheHistory) {
+  const uint32_t width = 48, height = 32;
+  Scene scene = wallScene();
+  Camera camera = effectiveCamera(scene);
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  DiSettings di;
+  di.candidateVisibility = DiCandidateVisibility::Off;
+  di.spatialSamples = di.disocclusionSamples = 0;
+  HybridFrame frame(context, gpuScene, scene, diSettings(width, height, di));
+  frame.requestDebugView("di.reservoir");
+  frame.requestDebugView("di.reservoir-final");
+  for (int i = 0; i < 4; ++i) frame.render(camera);
+  const ImageRGBA32F temporal = frame.debugViewImage("di.reservoir");
+  const ImageRGBA32F history = frame.debugViewImage("di.reservoir-final");
+  // Decoded reservoirs: (light or -1, M, W, 0).
+  auto count = [&](uint32_t x0, uint32_t x1, bool passedOn) {
+    size_t n = 0;
+    for (uint32_t y = 0; y < height; ++y)
+      for (uint32_t x = x0; x < x1; ++x)
+        if (temporal.at(x, y).z > 0.0f && (!passedOn || history.at(x, y).z > 0.0f)) ++n;
+    return n;
+  };
+  const uint32_t rightStart = width / 2 + 4, leftEnd = width / 2 - 4;
+  const size_t hiddenHeld = count(rightStart, width, false);
+  const size_t hiddenPassedOn = count(rightStart, width, true);
+  const size_t visibleHeld = count(0, leftEnd, false);
+  const size_t visiblePassedOn = count(0, leftEnd, true);
+  std::printf(
+      "wall, no candidates' ray, no spatial reuse: beyond the wall %zu pixels hold the light, %zu "
+      "pass it on; left of it %zu and %zu\n",
+      hiddenHeld, hiddenPassedOn, visibleHeld, visiblePassedOn);
+  EXPECT_GT(hiddenHeld, 0u);
+  EXPECT_EQ(hiddenPassedOn, 0u);
+  EXPECT_GT(visibleHeld, 0u);
+  EXPECT_EQ(visiblePassedOn, visibleHeld);
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+}
+
 // Issue 20, "unbiased": the unbiased configuration's estimate of direct light, the mean of 64
 // frames (16 independent runs of 4 frames: runs are what the standard error needs, frames of one
 // run are correlated by reuse), against the reference path tracer with one scattering event
