@@ -3,7 +3,9 @@
 // steps 1..16, a reach of 2 (1 + 2 + 4 + 8 + 16) = 62 pixels). Each tap's weight is the kernel's
 // times the edge stops (svgf_common.glsl): depth (relative to the surface's slope), normal
 // (cos^phiNormal) and luminance, whose scale is phiLuminance standard deviations of the centre's
-// luminance, its variance first blurred by a 3x3 Gaussian (Schied eq. 5). The variance in alpha
+// luminance, its variance first blurred by a 3x3 Gaussian (Schied eq. 5), or with
+// SVGF_FLAG_SHARED_LUMINANCE_STOP (the default) the geometric mean of that and the tap's standard
+// deviation, so that a tap weighs the same from either side (SvgfLuminanceStop). The variance in alpha
 // is filtered with the squared weights (Schied eq. 2), so later iterations stop at a smaller
 // luminance difference. Iteration 0 writes svgf.illumination, next frame's colour history; the
 // last multiplies the albedo back in (SVGF_FLAG_ALBEDO). Pixels without a surface pass through,
@@ -53,7 +55,9 @@ void main() {
     return;
   }
   float l = svgfLuminance(centre.rgb);
-  float phiL = pc.phiLuminance * sqrt(max(prefilteredVariance(pixel), 0.0)) + 1e-10;
+  const bool sharedScale = (pc.flags & SVGF_FLAG_SHARED_LUMINANCE_STOP) != 0u;
+  float deviation = sqrt(max(prefilteredVariance(pixel), 0.0));
+  float phiL = pc.phiLuminance * deviation + 1e-10;
   float slope = depthSlope(pixel, s.w);
   float k0 = b3(0) * b3(0);
   vec3 colourSum = k0 * centre.rgb;
@@ -69,6 +73,7 @@ void main() {
       vec4 sq = imageLoad(surfaces, q);
       if (!hasSurface(sq.w)) continue;
       vec4 c = imageLoad(inputImage, q);
+      if (sharedScale) phiL = pc.phiLuminance * sqrt(deviation * sqrt(max(c.a, 0.0))) + 1e-10;
       float w = b3(dx) * b3(dy) *
                 edgeStopWeight(s.w, sq.w, slope, vec2(offset), s.xyz, sq.xyz, l, svgfLuminance(c.rgb), phiL);
       colourSum += w * c.rgb;

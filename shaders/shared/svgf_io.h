@@ -52,6 +52,9 @@ BOUNCE_CONST uint SVGF_FLAG_ALBEDO = 2u;
 // svgf-atrous-*: the hybrid's tile classes are bound (SVGF_ATROUS_BINDING_TILES); a workgroup
 // whose tile does not need SVGF (red 0) copies its input.
 BOUNCE_CONST uint SVGF_FLAG_TILES = 4u;
+// svgf-atrous-*: the luminance stop's scale is shared by the centre and the tap (the geometric
+// mean of their standard deviations, SvgfLuminanceStop::Shared) instead of the centre's alone.
+BOUNCE_CONST uint SVGF_FLAG_SHARED_LUMINANCE_STOP = 8u;
 
 // svgf-temporal
 BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_NOISY = 0u;

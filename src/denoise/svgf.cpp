@@ -57,8 +57,10 @@ gpu::SvgfConstants Svgf::constants(VkExtent2D resolution, const SvgfInputs& in) 
   const SvgfSettings& s = settings_;
   gpu::SvgfConstants c{};
   c.resolution = {resolution.width, resolution.height};
-  c.flags = (in.octahedralNormals ? gpu::SVGF_FLAG_OCTAHEDRAL_NORMALS : 0u) |
-            (in.albedo ? gpu::SVGF_FLAG_ALBEDO : 0u);
+  c.flags =
+      (in.octahedralNormals ? gpu::SVGF_FLAG_OCTAHEDRAL_NORMALS : 0u) |
+      (in.albedo ? gpu::SVGF_FLAG_ALBEDO : 0u) |
+      (s.luminanceStop == SvgfLuminanceStop::Shared ? gpu::SVGF_FLAG_SHARED_LUMINANCE_STOP : 0u);
   c.colorAlpha = s.colorAlpha;
   c.momentsAlpha = s.momentsAlpha;
   c.depthTolerance = s.depthTolerance;

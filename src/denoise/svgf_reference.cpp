@@ -59,8 +59,7 @@ glm::vec4 filterPixel(const Grid& g, int x, int y, int step, const SvgfSettings&
   const glm::dvec3 n = glm::dvec3(g.in.surface[g.index(x, y)]);
   const double z = g.depth(x, y);
   const double l = luminance(glm::dvec3(centre));
-  const double phiL =
-      s.phiLuminance * std::sqrt(std::max(prefilteredVariance(g, x, y), 0.0)) + 1e-10;
+  const double deviation = std::sqrt(std::max(prefilteredVariance(g, x, y), 0.0));
   const double slope = std::hypot(slopeAlong(g, x, y, 1, 0), slopeAlong(g, x, y, 0, 1));
   glm::dvec3 colour(0.0);
   double variance = 0.0, weights = 0.0;
@@ -76,7 +75,11 @@ glm::vec4 filterPixel(const Grid& g, int x, int y, int step, const SvgfSettings&
         double distance = step * std::hypot(double(dx), double(dy));
         double wz = std::abs(z - g.depth(qx, qy)) / (s.phiDepth * slope * distance + 1e-3 * z);
         double wn = std::pow(std::max(glm::dot(n, nq), 0.0), double(s.phiNormal));
-        double wl = std::abs(l - luminance(glm::dvec3(c))) / phiL;
+        // SvgfLuminanceStop: the centre's deviation, or its geometric mean with the tap's.
+        double scale = s.luminanceStop == SvgfLuminanceStop::Shared
+                           ? std::sqrt(deviation * std::sqrt(std::max(c.w, 0.0)))
+                           : deviation;
+        double wl = std::abs(l - luminance(glm::dvec3(c))) / (s.phiLuminance * scale + 1e-10);
         w *= std::exp(-wz - wl) * wn;
       }
       colour += w * glm::dvec3(c);
