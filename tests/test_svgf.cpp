@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -38,7 +39,6 @@ namespace {
 using namespace test;
 
 constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
-constexpr VkFormat kRgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 // SVGF on a frame graph of its own, fed from the CPU each frame.
 class SvgfHarness {
@@ -47,7 +47,7 @@ class SvgfHarness {
               const SvgfSettings& settings = {})
       : context_(context),
         input_(denoiseInputImage(context, kRgba16f, width, height, "test.input")),
-        surface_(denoiseInputImage(context, kRgba32f, width, height, "test.surface")),
+        surface_(denoiseInputImage(context, VK_FORMAT_R32G32_UINT, width, height, "test.surface")),
         rig_(context, width, height),
         svgf_(context, rig_.gpuScene(), settings) {}
 
@@ -62,7 +62,11 @@ class SvgfHarness {
   // svgf-atrous-<iteration> alone on `input`.
   std::vector<glm::vec4> atrousStep(const SvgfAtrousInput& input, uint32_t iteration) {
     vk::uploadImage(context_, input_, halfBytes(flatten(input.colourVariance)), 8);
-    vk::uploadImage(context_, surface_, floatBytes(flatten(input.surface)), 16);
+    std::vector<glm::uvec2> packed;
+    for (const glm::vec4& s : input.surface) packed.push_back(packSvgfSurface(s));
+    std::vector<uint8_t> bytes(packed.size() * sizeof(glm::uvec2));
+    std::memcpy(bytes.data(), packed.data(), bytes.size());
+    vk::uploadImage(context_, surface_, bytes, 8);
     graph::FrameGraph& graph = rig_.beginFrame("svgf.step");
     graph::ImageHandle out = graph.createImage("svgf.step", {kRgba16f});
     svgf_.declareAtrousStep(graph, rig_.extent(), rig_.import("test.input", input_),
@@ -107,7 +111,8 @@ SvgfAtrousInput atrousInput(uint32_t w, uint32_t h, uint32_t seed) {
       // Rounded to fp16 here, so the CPU sees what the GPU reads.
       auto r = [](float v) { return glm::unpackHalf1x16(glm::packHalf1x16(v)); };
       in.colourVariance.push_back({r(c.x), r(c.y), r(c.z), r(mean * mean * (0.5f + noise(rng)))});
-      in.surface.push_back({n, z});
+      // Quantised as svgf.surface keeps it, so the CPU sees the normal the GPU reads.
+      in.surface.push_back(unpackSvgfSurface(packSvgfSurface({n, z})));
     }
   return in;
 }
@@ -135,6 +140,24 @@ TEST_F(SvgfTest, AtrousStepMatchesCpuReference) {
                   worst);
       EXPECT_LT(worst, 2e-3) << "iteration " << iteration;
     }
+}
+
+// svgf.surface's 8-byte texel: the depth kept bit for bit, the normal within 1e-4 (two snorm16
+// octahedral coordinates: about 3e-5 per unit), over random unit normals in every octant.
+TEST(SvgfSurface, PackKeepsTheDepthExactlyAndTheNormalWithinATenThousandth) {
+  std::mt19937 rng(3);
+  std::normal_distribution<float> gaussian;
+  std::uniform_real_distribution<float> depths(1e-3f, 1e4f);
+  double worst = 0.0;
+  for (int i = 0; i < 10000; ++i) {
+    glm::vec3 n = glm::normalize(glm::vec3(gaussian(rng), gaussian(rng), gaussian(rng)));
+    float z = depths(rng);
+    glm::vec4 back = unpackSvgfSurface(packSvgfSurface({n, z}));
+    ASSERT_EQ(back.w, z);
+    worst = std::max(worst, double(glm::length(glm::vec3(back) - n)));
+  }
+  std::printf("svgf.surface: largest normal error %.2e\n", worst);
+  EXPECT_LT(worst, 1e-4);
 }
 
 // Seed 002's gate: one à-trous step (step 1) on a noisy flat plane of known mean at least

@@ -16,7 +16,7 @@
 layout(local_size_x = SVGF_GROUP_SIZE, local_size_y = SVGF_GROUP_SIZE) in;
 
 layout(set = 1, binding = SVGF_ATROUS_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
-layout(set = 1, binding = SVGF_ATROUS_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
+layout(set = 1, binding = SVGF_ATROUS_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
 layout(set = 1, binding = SVGF_ATROUS_BINDING_ALBEDO, rgba16f) uniform readonly image2D albedos;
 layout(set = 1, binding = SVGF_ATROUS_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
 layout(set = 1, binding = SVGF_ATROUS_BINDING_TILES, rgba16f) uniform readonly image2D tiles;
@@ -26,7 +26,8 @@ bool tileSkipped() {
   return (pc.flags & SVGF_FLAG_TILES) != 0u && imageLoad(tiles, ivec2(gl_WorkGroupID.xy)).r == 0.0;
 }
 
-float surfaceDepth(ivec2 q) { return imageLoad(surfaces, q).w; }
+float surfaceDepth(ivec2 q) { return surfaceDepthOf(imageLoad(surfaces, q).xy); }
+vec4 surfaceAt(ivec2 q) { return unpackSurface(imageLoad(surfaces, q).xy); }
 DEFINE_DEPTH_GRADIENT(surfaceDepth)
 
 // The centre's variance blurred by a 3x3 Gaussian (1/4, 1/2, 1/4) over pixels with a surface.
@@ -35,7 +36,7 @@ float prefilteredVariance(ivec2 pixel) {
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       ivec2 q = pixel + ivec2(dx, dy);
-      if (!inImage(q) || !hasSurface(imageLoad(surfaces, q).w)) continue;
+      if (!inImage(q) || !hasSurface(surfaceDepth(q))) continue;
       float w = (dx == 0 ? 0.5 : 0.25) * (dy == 0 ? 0.5 : 0.25);
       sum += w * imageLoad(inputImage, q).a;
       weightSum += w;
@@ -47,7 +48,7 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!inImage(pixel)) return;
   vec4 centre = imageLoad(inputImage, pixel);
-  vec4 s = imageLoad(surfaces, pixel);
+  vec4 s = surfaceAt(pixel);
   // A skipped tile copies: iteration 0's copy is the colour history, and later iterations of
   // neighbouring tiles read finite values.
   if (!hasSurface(s.w) || tileSkipped()) {
@@ -70,8 +71,9 @@ void main() {
       ivec2 offset = step * ivec2(dx, dy);
       ivec2 q = pixel + offset;
       if (!inImage(q)) continue;
-      vec4 sq = imageLoad(surfaces, q);
-      if (!hasSurface(sq.w)) continue;
+      uvec2 packed = imageLoad(surfaces, q).xy;
+      if (!hasSurface(surfaceDepthOf(packed))) continue;
+      vec4 sq = unpackSurface(packed);
       vec4 c = imageLoad(inputImage, q);
       if (sharedScale) phiL = pc.phiLuminance * sqrt(deviation * sqrt(max(c.a, 0.0))) + 1e-10;
       float w = b3(dx) * b3(dy) *

@@ -23,10 +23,10 @@ layout(set = 1, binding = SVGF_TEMPORAL_BINDING_DEPTH, r32f) uniform readonly im
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_MOTION, rg16f) uniform readonly image2D motions;
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_ALBEDO, rgba16f) uniform readonly image2D albedos;
-layout(set = 1, binding = SVGF_TEMPORAL_BINDING_PREVIOUS_SURFACE, rgba32f) uniform readonly image2D previousSurface;
+layout(set = 1, binding = SVGF_TEMPORAL_BINDING_PREVIOUS_SURFACE, rg32ui) uniform readonly uimage2D previousSurface;
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_PREVIOUS_MOMENTS, rgba32f) uniform readonly image2D previousMoments;
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_PREVIOUS_ILLUMINATION, rgba16f) uniform readonly image2D previousIllumination;
-layout(set = 1, binding = SVGF_TEMPORAL_BINDING_SURFACE, rgba32f) uniform writeonly image2D surfaceOut;
+layout(set = 1, binding = SVGF_TEMPORAL_BINDING_SURFACE, rg32ui) uniform writeonly uimage2D surfaceOut;
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_MOMENTS, rgba32f) uniform writeonly image2D momentsOut;
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_ACCUMULATED, rgba16f) uniform writeonly image2D accumulatedOut;
 
@@ -41,7 +41,7 @@ vec3 loadNormal(ivec2 pixel) {
 // Whether last frame's pixel q saw this pixel's surface.
 bool consistent(ivec2 q, float z, float slope, vec3 n) {
   if (!inImage(q)) return false;
-  vec4 s = imageLoad(previousSurface, q);
+  vec4 s = unpackSurface(imageLoad(previousSurface, q).xy);
   if (!hasSurface(s.w)) return false;
   return abs(s.w - z) <= pc.depthTolerance * z + 2.0 * slope && dot(s.xyz, n) >= pc.normalTolerance;
 }
@@ -103,13 +103,13 @@ void main() {
   vec3 noisy = finiteOrZero(imageLoad(noisyImage, pixel).rgb);
   float z = imageLoad(depths, pixel).x;
   if (!hasSurface(z)) {
-    imageStore(surfaceOut, pixel, vec4(0.0));
+    imageStore(surfaceOut, pixel, uvec4(0u));
     imageStore(momentsOut, pixel, vec4(0.0));
     imageStore(accumulatedOut, pixel, vec4(noisy, 0.0));
     return;
   }
   vec3 n = loadNormal(pixel);
-  imageStore(surfaceOut, pixel, vec4(n, z));
+  imageStore(surfaceOut, pixel, uvec4(packSurface(n, z), 0u, 0u));
   vec3 signal = noisy;
   if ((pc.flags & SVGF_FLAG_ALBEDO) != 0u) signal /= safeAlbedo(imageLoad(albedos, pixel).rgb);
   float l = svgfLuminance(signal);

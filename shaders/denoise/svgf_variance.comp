@@ -15,10 +15,11 @@ layout(local_size_x = SVGF_GROUP_SIZE, local_size_y = SVGF_GROUP_SIZE) in;
 
 layout(set = 1, binding = SVGF_VARIANCE_BINDING_ACCUMULATED, rgba16f) uniform readonly image2D accumulated;
 layout(set = 1, binding = SVGF_VARIANCE_BINDING_MOMENTS, rgba32f) uniform readonly image2D moments;
-layout(set = 1, binding = SVGF_VARIANCE_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
+layout(set = 1, binding = SVGF_VARIANCE_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
 layout(set = 1, binding = SVGF_VARIANCE_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
 
-float surfaceDepth(ivec2 q) { return imageLoad(surfaces, q).w; }
+float surfaceDepth(ivec2 q) { return surfaceDepthOf(imageLoad(surfaces, q).xy); }
+vec4 surfaceAt(ivec2 q) { return unpackSurface(imageLoad(surfaces, q).xy); }
 DEFINE_DEPTH_GRADIENT(surfaceDepth)
 
 const int SPATIAL_RADIUS = 3;  // 7x7
@@ -27,7 +28,7 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!inImage(pixel)) return;
   vec3 colour = imageLoad(accumulated, pixel).rgb;
-  vec4 s = imageLoad(surfaces, pixel);
+  vec4 s = surfaceAt(pixel);
   if (!hasSurface(s.w)) {
     imageStore(outputImage, pixel, vec4(colour, 0.0));
     return;
@@ -46,8 +47,9 @@ void main() {
     for (int dx = -SPATIAL_RADIUS; dx <= SPATIAL_RADIUS; ++dx) {
       ivec2 q = pixel + ivec2(dx, dy);
       if (!inImage(q)) continue;
-      vec4 sq = imageLoad(surfaces, q);
-      if (!hasSurface(sq.w)) continue;
+      uvec2 packed = imageLoad(surfaces, q).xy;
+      if (!hasSurface(surfaceDepthOf(packed))) continue;
+      vec4 sq = unpackSurface(packed);
       // The luminance term off: phiL infinite.
       float w = edgeStopWeight(s.w, sq.w, slope, vec2(dx, dy), s.xyz, sq.xyz, 0.0, 0.0, 1.0);
       colourSum += w * imageLoad(accumulated, q).rgb;

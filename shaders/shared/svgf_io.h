@@ -12,7 +12,8 @@
 //   albedo    RGBA16F  with SVGF_FLAG_ALBEDO: the signal is divided by it before filtering and
 //                      multiplied back at the end (the filter sees irradiance, not texture)
 // Images (SVGF's own):
-//   svgf.surface       RGBA32F  (history) xyz unit normal, w view depth (0: no surface)
+//   svgf.surface       RG32UI   (history) x the view depth's bits (0: no surface), y the unit
+//                               normal, octahedral, two snorm16 (svgf_common.glsl packSurface)
 //   svgf.moments       RGBA32F  (history) x, y: running means of luminance and luminance^2,
 //                               z: history length in frames (0: none)
 //   svgf.accumulated   RGBA16F  svgf-temporal's running mean (rgb; demodulated)

@@ -1,7 +1,11 @@
 #include "denoise/svgf.h"
 
+#include <bit>
+#include <cstring>
 #include <string>
 #include <utility>
+
+#include <glm/gtc/packing.hpp>
 
 #include "core/error.h"
 
@@ -13,6 +17,8 @@ namespace {
 
 constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kRgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
+// svgf.surface: depth bits and an octahedral snorm16 normal (svgf_common.glsl packSurface).
+constexpr VkFormat kRg32ui = VK_FORMAT_R32G32_UINT;
 constexpr uint32_t kMaxIterations = 5;
 
 void dispatch(VkCommandBuffer cmd, const gpu::SvgfConstants& c) {
@@ -21,6 +27,53 @@ void dispatch(VkCommandBuffer cmd, const gpu::SvgfConstants& c) {
 }
 
 }  // namespace
+
+// As svgf_common.glsl's encodeOctahedralNormal / decodeOctahedralNormal.
+glm::uvec2 packSvgfSurface(const glm::vec4& normalDepth) {
+  glm::vec3 n = glm::vec3(normalDepth);
+  n /= std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+  glm::vec2 e(n.x, n.y);
+  if (n.z < 0.0f)
+    e = (1.0f - glm::abs(glm::vec2(n.y, n.x))) *
+        glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
+  return {std::bit_cast<uint32_t>(normalDepth.w), glm::packSnorm2x16(e)};
+}
+
+glm::vec4 unpackSvgfSurface(const glm::uvec2& texel) {
+  const glm::vec2 e = glm::unpackSnorm2x16(texel.y);
+  glm::vec3 n(e, 1.0f - std::abs(e.x) - std::abs(e.y));
+  if (n.z < 0.0f) {
+    const glm::vec2 folded = (1.0f - glm::abs(glm::vec2(n.y, n.x))) *
+                             glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
+    n.x = folded.x;
+    n.y = folded.y;
+  }
+  return {glm::normalize(n), std::bit_cast<float>(texel.x)};
+}
+
+bool isSvgfSurfaceView(const graph::DebugView& view) {
+  const std::string& r = view.resource;
+  const auto endsWith = [&r](const std::string& tail) {
+    return r.size() >= tail.size() && r.compare(r.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  return view.isImage && view.format == kRg32ui &&
+         (endsWith(".surface") || endsWith(".surface.previous"));
+}
+
+ImageRGBA32F decodeSvgfSurfaceView(const graph::DebugView& view) {
+  const size_t texels = size_t(view.width) * view.height;
+  if (view.bytes.size() < texels * sizeof(glm::uvec2))
+    fail("debug view '{}': {} bytes for a {}x{} image", view.name, view.bytes.size(), view.width,
+         view.height);
+  ImageRGBA32F out(int(view.width), int(view.height));
+  for (size_t i = 0; i < texels; ++i) {
+    glm::uvec2 texel;
+    std::memcpy(&texel, view.bytes.data() + sizeof(texel) * i, sizeof(texel));
+    const glm::vec4 surface = texel.x == 0u ? glm::vec4(0.0f) : unpackSvgfSurface(texel);
+    for (int c = 0; c < 4; ++c) out.pixels[4 * i + size_t(c)] = surface[c];
+  }
+  return out;
+}
 
 void validate(const SvgfSettings& s) {
   if (!(s.colorAlpha > 0.0f && s.colorAlpha <= 1.0f))
@@ -82,7 +135,7 @@ graph::ImageHandle Svgf::declare(graph::FrameGraph& graph, VkExtent2D resolution
 
 Svgf::Temporal Svgf::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
                                      const SvgfInputs& in) {
-  graph::HistoryImage surface = graph.createHistoryImage(name_ + ".surface", {kRgba32f});
+  graph::HistoryImage surface = graph.createHistoryImage(name_ + ".surface", {kRg32ui});
   graph::HistoryImage moments = graph.createHistoryImage(name_ + ".moments", {kRgba32f});
   graph::HistoryImage illumination = graph.createHistoryImage(name_ + ".illumination", {kRgba16f});
   graph::ImageHandle accumulated = graph.createImage(name_ + ".accumulated", {kRgba16f});

@@ -19,10 +19,13 @@
 #include <optional>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "denoise/denoise_inputs.h"
 #include "graph/frame_graph.h"
 #include "passes/image_pass.h"
 #include "shared/svgf_io.h"
+#include "tools/image_io.h"
 
 namespace bounce {
 
@@ -79,6 +82,18 @@ struct SvgfSettings {
 // Throws bounce::Error naming the field when a setting is out of its documented range.
 void validate(const SvgfSettings& settings);
 
+// svgf.surface's texel (RG32UI: the depth's bits, the normal octahedral as two snorm16; the
+// shaders' packSurface in svgf_common.glsl), for declareAtrousStep's `surface` image, and what
+// the shaders unpack from it (xyz normal as quantised, w depth): a test gives the CPU reference
+// the unpacked surface, so that both see the same normal.
+glm::uvec2 packSvgfSurface(const glm::vec4& normalDepth);
+glm::vec4 unpackSvgfSurface(const glm::uvec2& texel);
+
+// The debug view of an SVGF instance's `<name>.surface` (and `.previous`): normal and depth
+// unpacked, as the RGBA32F image it was before it was packed.
+bool isSvgfSurfaceView(const graph::DebugView& view);
+ImageRGBA32F decodeSvgfSurfaceView(const graph::DebugView& view);
+
 // What SVGF filters (denoise/denoise_inputs.h; shared/svgf_io.h has the formats).
 using SvgfInputs = DenoiseInputs;
 
@@ -114,8 +129,8 @@ class Svgf {
                       const Temporal& temporal, graph::ImageHandle output,
                       std::optional<graph::ImageHandle> tiles = std::nullopt);
   // One à-trous iteration alone (pass svgf-atrous-<iteration>), for tests against the CPU
-  // reference (denoise/svgf_reference.h): `input` RGBA16F colour + variance, `surface` RGBA32F
-  // normal + depth (svgf.surface's format); no albedo.
+  // reference (denoise/svgf_reference.h): `input` RGBA16F colour + variance, `surface` RG32UI
+  // packed normal + depth (svgf.surface's format: packSvgfSurface); no albedo.
   void declareAtrousStep(graph::FrameGraph& graph, VkExtent2D resolution, graph::ImageHandle input,
                          graph::ImageHandle surface, uint32_t iteration, graph::ImageHandle output);
 

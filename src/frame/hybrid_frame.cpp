@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "denoise/svgf.h"
 #include "di/di_debug_views.h"
 #include "gi/evolve/cache/clipmap_cache.h"
 #include "gi/evolve/cache_gi.h"
@@ -252,6 +253,7 @@ ImageRGBA32F HybridFrame::debugViewImage(const std::string& name) const {
     return diDerivedView(name, graph::debugViewImage(graph_.readDebugView(kDiInfoResource)));
   graph::DebugView view = graph_.readDebugView(name);
   if (isDiReservoirView(view)) return decodeDiReservoirView(view);
+  if (isSvgfSurfaceView(view)) return decodeSvgfSurfaceView(view);
   return graph::debugViewImage(view);
 }
 
