@@ -7,8 +7,8 @@
 // SVGF_FLAG_SHARED_LUMINANCE_STOP (the default) the geometric mean of that and the tap's standard
 // deviation, so that a tap weighs the same from either side (SvgfLuminanceStop). The variance in alpha
 // is filtered with the squared weights (Schied eq. 2), so later iterations stop at a smaller
-// luminance difference. Iteration 0 writes svgf.illumination, next frame's colour history; the
-// last multiplies the albedo back in (SVGF_FLAG_ALBEDO). Pixels without a surface pass through,
+// luminance difference. Iteration 0 (SvgfSettings::feedbackIteration) writes
+// svgf.illumination, next frame's colour history; the last multiplies the albedo back in (SVGF_FLAG_ALBEDO). Pixels without a surface pass through,
 // and so do the 8x8 tiles the hybrid denoiser does not read SVGF on (SVGF_FLAG_TILES).
 #version 460
 #include "denoise/svgf_common.glsl"
@@ -49,7 +49,7 @@ void main() {
   if (!inImage(pixel)) return;
   vec4 centre = imageLoad(inputImage, pixel);
   vec4 s = surfaceAt(pixel);
-  // A skipped tile copies: iteration 0's copy is the colour history, and later iterations of
+  // A skipped tile copies: the feedback iteration's copy is the colour history, and others of
   // neighbouring tiles read finite values.
   if (!hasSurface(s.w) || tileSkipped()) {
     imageStore(outputImage, pixel, centre);

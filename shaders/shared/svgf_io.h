@@ -18,9 +18,10 @@
 //                               z: history length in frames (0: none)
 //   svgf.accumulated   RGBA16F  svgf-temporal's running mean (rgb; demodulated)
 //   svgf.filtered-moments RGBA16F svgf-variance's output: rgb colour, a luminance variance
-//   svgf.illumination  RGBA16F  (history) svgf-atrous-0's output, the colour history of the
-//                               next frame (Schied §4.3: the first iteration is fed back)
-//   svgf.atrous-1..3   RGBA16F  svgf-atrous-1..3's outputs (rgb, a variance)
+//   svgf.illumination  RGBA16F  (history) svgf-atrous-0's output (SvgfSettings::
+//                               feedbackIteration's), the colour history of the next frame
+//                               (Schied §4.3: the first iteration is fed back; Falcor: the second)
+//   svgf.atrous-N      RGBA16F  the other iterations' outputs but the last (rgb, a variance)
 #ifndef BOUNCE_SHARED_SVGF_IO_H
 #define BOUNCE_SHARED_SVGF_IO_H
 #include "shared/compat.h"

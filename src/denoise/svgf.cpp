@@ -88,6 +88,9 @@ void validate(const SvgfSettings& s) {
   // Iteration 0 feeds the history and the last writes the output: two passes at least.
   if (s.iterations < 2 || s.iterations > kMaxIterations)
     fail("SVGF: {} à-trous iterations, expected 2 to {}", s.iterations, kMaxIterations);
+  if (s.feedbackIteration + 1 >= s.iterations)
+    fail("SVGF: feedback iteration {} must be below the last ({}), which remodulates",
+         s.feedbackIteration, s.iterations - 1);
   if (!(s.phiDepth > 0.0f) || !(s.phiNormal >= 0.0f) || !(s.phiLuminance > 0.0f))
     fail("SVGF: edge stops (depth {}, normal {}, luminance {}) must be positive", s.phiDepth,
          s.phiNormal, s.phiLuminance);
@@ -185,15 +188,16 @@ void Svgf::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution, const
                           const Temporal& temporal, graph::ImageHandle output,
                           std::optional<graph::ImageHandle> tiles) {
   const gpu::SvgfConstants c = constants(resolution, in);
-  // Iteration 0 writes the colour history; the last writes `output`.
+  // Iteration feedbackIteration writes the colour history; the last writes `output`.
   graph::ImageHandle input = temporal.filtered;
   const graph::ImageHandle albedo = in.albedo ? *in.albedo : in.noisy;
   for (uint32_t i = 0; i < settings_.iterations; ++i) {
     graph::ImageHandle target =
         i + 1 == settings_.iterations
             ? output
-            : (i == 0 ? temporal.illumination
-                      : graph.createImage(name_ + ".atrous-" + std::to_string(i), {kRgba16f}));
+            : (i == settings_.feedbackIteration
+                   ? temporal.illumination
+                   : graph.createImage(name_ + ".atrous-" + std::to_string(i), {kRgba16f}));
     declareAtrous(graph, c, input, temporal.surface, albedo, i, target, tiles);
     input = target;
   }

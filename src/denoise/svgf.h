@@ -7,8 +7,9 @@
 //   svgf-variance   the luminance variance: temporal, or a 7x7 spatial estimate while the history
 //                   is shorter than 4 frames
 //   svgf-atrous-0..4  5 edge-avoiding à-trous iterations (5x5 B3 kernel, steps 1, 2, 4, 8, 16)
-//                   with depth, normal and luminance-variance edge stops; iteration 0 is the
-//                   next frame's colour history; the last remodulates the albedo
+//                   with depth, normal and luminance-variance edge stops; iteration 0
+//                   (SvgfSettings::feedbackIteration) is the next frame's colour history;
+//                   the last remodulates the albedo
 //
 // Three compute pipelines (shaders/denoise/svgf_{temporal,variance,atrous}.comp); the five
 // à-trous passes share one, with a descriptor set each. Every image is at the frame graph's
@@ -56,8 +57,11 @@ struct SvgfSettings {
   // Below this history length (frames) svgf-variance estimates the variance over 7x7 pixels
   // (paper: 4). 0: always temporal.
   uint32_t varianceHistoryFrames = 4;
-  // À-trous iterations, steps 1, 2, 4, ... (paper: 5, a 62-pixel reach; Falcor: 4). 2 to 5.
+  // À-trous iterations, steps 1, 2, 4, ... (paper: 5, a 62-pixel reach; Falcor: 4, 30 px). 2 to 5.
   uint32_t iterations = 5;
+  // The iteration whose output is the next frame's colour history (svgf.illumination; paper:
+  // 0, Schied §4.3; Falcor's "FeedbackTap": 1). Below iterations - 1: the last remodulates.
+  uint32_t feedbackIteration = 0;
   // Edge stops (paper §4.2 eq. 3-5): sigma_z (depth, times the slope and the tap distance),
   // sigma_n (exponent of the normals' cosine), sigma_l (luminance, in standard deviations).
   // Larger: more blur across the edge kind.
@@ -68,13 +72,16 @@ struct SvgfSettings {
   SvgfLuminanceStop luminanceStop = SvgfLuminanceStop::Shared;
 
   // Falcor's SVGFPass defaults where they differ from the paper's: colour alpha 0.05 (a longer
-  // history, about 39 frames) and sigma_l 10 (a looser luminance stop). What Evolve's GI uses
-  // (RestirGiSettings::svgf): on the Cornell box it measured HDR-FLIP 0.148-0.158 (3 runs) against
-  // the paper's 0.162 (docs/denoise.md).
+  // history, about 39 frames), sigma_l 10 (a looser luminance stop), 4 iterations (a 30-pixel
+  // reach, one pass less). Not Falcor's feedback tap 1: the history from the second iteration
+  // measured worse on Evolve's GI (docs/decisions.md). What Evolve's GI, the DI denoiser and
+  // the public API use; on the Cornell box HDR-FLIP 0.148-0.158 against the paper's 0.162
+  // (docs/denoise.md).
   static SvgfSettings falcor() {
     SvgfSettings s;
     s.colorAlpha = 0.05f;
     s.phiLuminance = 10.0f;
+    s.iterations = 4;
     return s;
   }
 };
@@ -116,10 +123,11 @@ class Svgf {
   // declare() in two halves, for the hybrid denoiser, which classifies tiles between them.
   // The first declares svgf-temporal and svgf-variance, the second the à-trous iterations.
   struct Temporal {
-    graph::ImageHandle filtered;      // svgf.filtered-moments: colour, variance
-    graph::ImageHandle surface;       // svgf.surface (current)
-    graph::ImageHandle moments;       // svgf.moments (current)
-    graph::ImageHandle illumination;  // svgf.illumination (current): iteration 0 writes it
+    graph::ImageHandle filtered;  // svgf.filtered-moments: colour, variance
+    graph::ImageHandle surface;   // svgf.surface (current)
+    graph::ImageHandle moments;   // svgf.moments (current)
+    graph::ImageHandle
+        illumination;  // svgf.illumination (current): the feedback iteration writes it
   };
   Temporal declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
                            const SvgfInputs& inputs);
