@@ -111,7 +111,10 @@ SvgfAtrousInput atrousInput(uint32_t w, uint32_t h, uint32_t seed) {
       glm::vec3 c = mean * glm::vec3(noise(rng), noise(rng), noise(rng));
       // Rounded to fp16 here, so the CPU sees what the GPU reads.
       auto r = [](float v) { return glm::unpackHalf1x16(glm::packHalf1x16(v)); };
-      in.colourVariance.push_back({r(c.x), r(c.y), r(c.z), r(mean * mean * (0.5f + noise(rng)))});
+      // Sky pixels carry SVGF_NO_SURFACE_VARIANCE, as svgf-variance writes.
+      float variance =
+          z > 0.0f ? r(mean * mean * (0.5f + noise(rng))) : gpu::SVGF_NO_SURFACE_VARIANCE;
+      in.colourVariance.push_back({r(c.x), r(c.y), r(c.z), variance});
       // Quantised as svgf.surface keeps it, so the CPU sees the normal the GPU reads.
       in.surface.push_back(unpackSvgfSurface(packSvgfSurface({n, z})));
     }

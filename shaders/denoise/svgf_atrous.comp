@@ -30,15 +30,18 @@ float surfaceDepth(ivec2 q) { return surfaceDepthOf(imageLoad(surfaces, q).xy); 
 vec4 surfaceAt(ivec2 q) { return unpackSurface(imageLoad(surfaces, q).xy); }
 DEFINE_DEPTH_GRADIENT(surfaceDepth)
 
-// The centre's variance blurred by a 3x3 Gaussian (1/4, 1/2, 1/4) over pixels with a surface.
+// The centre's variance blurred by a 3x3 Gaussian (1/4, 1/2, 1/4) over pixels with a surface
+// (those without carry SVGF_NO_SURFACE_VARIANCE).
 float prefilteredVariance(ivec2 pixel) {
   float sum = 0.0, weightSum = 0.0;
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       ivec2 q = pixel + ivec2(dx, dy);
-      if (!inImage(q) || !hasSurface(surfaceDepth(q))) continue;
+      if (!inImage(q)) continue;
+      float variance = imageLoad(inputImage, q).a;
+      if (variance < 0.0) continue;
       float w = (dx == 0 ? 0.5 : 0.25) * (dy == 0 ? 0.5 : 0.25);
-      sum += w * imageLoad(inputImage, q).a;
+      sum += w * variance;
       weightSum += w;
     }
   return sum / weightSum;  // the centre has a surface: weightSum >= 1/4
@@ -52,6 +55,7 @@ void main() {
   // A skipped tile copies: the feedback iteration's copy is the colour history, and others of
   // neighbouring tiles read finite values.
   if (!hasSurface(s.w) || tileSkipped()) {
+    if (pc.lastIteration != 0u && centre.a < 0.0) centre.a = 0.0;  // SVGF_NO_SURFACE_VARIANCE
     imageStore(outputImage, pixel, centre);
     return;
   }

@@ -7,7 +7,7 @@
 //     (depth and normal edge stops; no luminance stop, which would reject the very noise being
 //     measured) and the variance is scaled by 4 / history length, as Falcor does, so that the
 //     first à-trous iterations blur a young history more.
-// Pixels without a surface pass through with variance 0.
+// Pixels without a surface pass through with variance SVGF_NO_SURFACE_VARIANCE.
 #version 460
 #include "denoise/svgf_common.glsl"
 
@@ -30,7 +30,7 @@ void main() {
   vec3 colour = imageLoad(accumulated, pixel).rgb;
   vec4 s = surfaceAt(pixel);
   if (!hasSurface(s.w)) {
-    imageStore(outputImage, pixel, vec4(colour, 0.0));
+    imageStore(outputImage, pixel, vec4(colour, SVGF_NO_SURFACE_VARIANCE));
     return;
   }
   vec4 m = imageLoad(moments, pixel);

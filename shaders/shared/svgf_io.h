@@ -57,6 +57,10 @@ BOUNCE_CONST uint SVGF_FLAG_TILES = 4u;
 // svgf-atrous-*: the luminance stop's scale is shared by the centre and the tap (the geometric
 // mean of their standard deviations, SvgfLuminanceStop::Shared) instead of the centre's alone.
 BOUNCE_CONST uint SVGF_FLAG_SHARED_LUMINANCE_STOP = 8u;
+// The variance (alpha) svgf-variance and the à-trous iterations but the last give a pixel
+// without a surface, so that svgf-atrous's 3x3 variance prefilter skips it from the signal alone
+// (without reading svgf.surface at 9 pixels); the last iteration writes 0 there.
+BOUNCE_CONST float SVGF_NO_SURFACE_VARIANCE = -1.0;
 
 // svgf-temporal
 BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_NOISY = 0u;

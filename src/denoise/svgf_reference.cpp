@@ -96,9 +96,15 @@ std::vector<glm::vec4> svgfAtrousReference(const SvgfAtrousInput& input, uint32_
   const Grid g{input};
   std::vector<glm::vec4> out(input.colourVariance);
   const int step = 1 << iteration;
+  const bool last = iteration + 1 == settings.iterations;
   for (int y = 0; y < int(input.height); ++y)
-    for (int x = 0; x < int(input.width); ++x)
-      if (g.surface(x, y)) out[g.index(x, y)] = filterPixel(g, x, y, step, settings);
+    for (int x = 0; x < int(input.width); ++x) {
+      glm::vec4& o = out[g.index(x, y)];
+      if (g.surface(x, y))
+        o = filterPixel(g, x, y, step, settings);
+      else if (last && o.w < 0.0f)  // gpu::SVGF_NO_SURFACE_VARIANCE
+        o.w = 0.0f;
+    }
   return out;
 }
 

@@ -15,12 +15,13 @@ namespace bounce {
 // An image of svgf-atrous's inputs, row-major, width x height.
 struct SvgfAtrousInput {
   uint32_t width = 0, height = 0;
-  std::vector<glm::vec4> colourVariance;  // rgb colour, a luminance variance
+  std::vector<glm::vec4> colourVariance;  // rgb colour, a luminance variance (-1: no surface)
   std::vector<glm::vec4> surface;         // xyz unit normal, w view depth (<= 0: no surface)
 };
 
 // One iteration with tap spacing 2^iteration and the settings' edge stops; returns rgb colour
-// and a variance per pixel. Pixels without a surface keep their input.
+// and a variance per pixel. Pixels without a surface keep their input (their variance
+// SVGF_NO_SURFACE_VARIANCE, the last iteration's 0).
 std::vector<glm::vec4> svgfAtrousReference(const SvgfAtrousInput& input, uint32_t iteration,
                                            const SvgfSettings& settings);
 
