@@ -95,7 +95,7 @@ DenoiserGates manylightsRuns(DiDenoiser denoiser, int runs, int frames) {
 
 // Issue 21's gates, each denoiser on the same 16 runs of 8 frames (32x24): variance at least 4x
 // lower, mean within 2 % of the raw frames'. Measured (lavapipe): SVGF 28.3x lower, mean
-// +0.80 %; ReBLUR 5.4x, +0.56 %. With the paper's luminance stop (SvgfLuminanceStop::Centre;
+// +0.80 %; ReBLUR 5.6x, +0.50 %. With the paper's luminance stop (SvgfLuminanceStop::Centre;
 // measured with 5 à-trous iterations) SVGF's mean was -5.95 % (43.8x lower): DI's one-light-sample
 // signal is as skewed as noise gets (a pixel sees its sample's light or not), and a bright pixel's
 // large variance let it take its neighbours in while they refused it (docs/denoise.md, "The
