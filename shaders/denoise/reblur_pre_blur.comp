@@ -1,9 +1,9 @@
 // reblur-pre-blur (NRD REBLUR "pre-pass"; research/gi10_lux_denoisers.md §3.2 step 3): a spatial
 // reuse of the noisy signal before it enters the temporal history, 8 Poisson taps in a disk of
-// blurRadius pixels (NRD: 30), rotated per 8x8 tile and frame, with the geometry weights of reblur_common.glsl (plane, normal; no
-// luminance weight, so the mean is kept). It also writes reblur.surface (normal, view depth),
-// which every later pass reads, and divides the signal by the albedo (REBLUR_FLAG_ALBEDO).
-// Pixels without a surface pass the signal through.
+// blurRadius pixels (NRD: 30), rotated per 8x8 tile and frame, with the geometry weights of
+// reblur_common.glsl (plane, normal; no luminance weight, so the mean is kept). It also writes
+// reblur.surface (normal, view depth), which every later pass reads, and divides the signal by
+// the albedo (REBLUR_FLAG_ALBEDO). Pixels without a surface pass the signal through.
 #version 460
 #include "denoise/reblur_common.glsl"
 

@@ -4,12 +4,13 @@
 // times the edge stops (svgf_common.glsl): depth (relative to the surface's slope), normal
 // (cos^phiNormal) and luminance, whose scale is phiLuminance standard deviations of the centre's
 // luminance, its variance first blurred by a 3x3 Gaussian (Schied eq. 5), or with
-// SVGF_FLAG_SHARED_LUMINANCE_STOP (the default) the geometric mean of that and the tap's standard
-// deviation, so that a tap weighs the same from either side (SvgfLuminanceStop). The variance in alpha
-// is filtered with the squared weights (Schied eq. 2), so later iterations stop at a smaller
-// luminance difference. Iteration 0 (SvgfSettings::feedbackIteration) writes
-// svgf.illumination, next frame's colour history; the last multiplies the albedo back in (SVGF_FLAG_ALBEDO). Pixels without a surface pass through,
-// and so do the 8x8 tiles the hybrid denoiser does not read SVGF on (SVGF_FLAG_TILES).
+// SVGF_FLAG_SHARED_LUMINANCE_STOP (the default) the geometric mean of that and the tap's
+// standard deviation, so that a tap weighs the same from either side (SvgfLuminanceStop). The
+// variance in alpha is filtered with the squared weights (Schied eq. 2), so later iterations stop
+// at a smaller luminance difference. Iteration 0 (SvgfSettings::feedbackIteration) writes
+// svgf.illumination, next frame's colour history; the last multiplies the albedo back in
+// (SVGF_FLAG_ALBEDO). Pixels without a surface pass through, and so do the 8x8 tiles the hybrid
+// denoiser does not read SVGF on (SVGF_FLAG_TILES).
 #version 460
 #include "denoise/svgf_common.glsl"
 
