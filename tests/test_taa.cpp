@@ -14,8 +14,8 @@
 //     running mean of the composite gives (disabled: not met, numbers at the test);
 //   - (d) no output has a NaN or Inf.
 // Set BOUNCE_TEST_IMAGES=DIR to write the images compared.
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
