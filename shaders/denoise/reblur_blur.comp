@@ -13,7 +13,7 @@
 layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
 
 layout(set = 1, binding = REBLUR_BLUR_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
-layout(set = 1, binding = REBLUR_BLUR_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
+layout(set = 1, binding = REBLUR_BLUR_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
 layout(set = 1, binding = REBLUR_BLUR_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
 layout(set = 1, binding = REBLUR_BLUR_BINDING_TILES, rgba16f) uniform readonly image2D tiles;
 
@@ -22,14 +22,14 @@ bool tileSkipped() {
   return (pc.flags & REBLUR_FLAG_TILES) != 0u && imageLoad(tiles, ivec2(gl_WorkGroupID.xy)).g == 0.0;
 }
 
-float surfaceDepth(ivec2 q) { return imageLoad(surfaces, q).w; }
+float surfaceDepth(ivec2 q) { return surfaceDepthOf(imageLoad(surfaces, q).xy); }
 DEFINE_REBLUR_DEPTH_SLOPE(surfaceDepth)
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!inImage(pixel)) return;
   vec4 centre = imageLoad(inputImage, pixel);
-  vec4 s = imageLoad(surfaces, pixel);
+  vec4 s = unpackSurface(imageLoad(surfaces, pixel).xy);
   // A skipped tile copies, so that neighbouring tiles' taps read finite values.
   if (!hasSurface(s.w) || tileSkipped()) {
     imageStore(outputImage, pixel, centre);
@@ -38,14 +38,16 @@ void main() {
   bool post = (pc.flags & REBLUR_FLAG_POST_BLUR) != 0u;
   float radius = max(pc.blurRadius / (1.0 + max(centre.a, 0.0)), pc.minBlurRadius) * (post ? 2.0 : 1.0);
   float slope = depthSlope(pixel, s.w);
-  mat2 rotation = tapRotation(pixel, post ? 17u : 5u);
+  // One rotation per 8x8 tile and frame, as the pre-blur's: a workgroup's taps read nearby
+  // texels together (docs/decisions.md, "ReBLUR's blurs rotated per 8x8 tile").
+  mat2 rotation = tapRotation(pixel / int(REBLUR_GROUP_SIZE), post ? 17u : 5u);
   vec3 sum = centre.rgb;
   float weightSum = 1.0;
   for (uint i = 0u; i < REBLUR_POISSON_TAPS; ++i) {
     vec2 offset = radius * (rotation * kPoisson[i]);
     ivec2 q = pixel + ivec2(round(offset));
     if (!inImage(q) || q == pixel) continue;
-    vec4 sq = imageLoad(surfaces, q);
+    vec4 sq = unpackSurface(imageLoad(surfaces, q).xy);
     float w = geometryWeight(s.w, slope, length(offset), s.xyz, sq.w, sq.xyz);
     if (w <= 0.0) continue;
     sum += w * imageLoad(inputImage, q).rgb;

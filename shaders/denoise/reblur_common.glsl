@@ -3,6 +3,7 @@
 // disocclusion tests, and the neighbourhood statistics of the clamps.
 #ifndef BOUNCE_DENOISE_REBLUR_COMMON_GLSL
 #define BOUNCE_DENOISE_REBLUR_COMMON_GLSL
+#include "denoise/packed_surface.glsl"
 #include "shared/reblur_io.h"
 
 layout(push_constant, scalar) uniform Push { ReblurConstants pc; };
@@ -64,7 +65,7 @@ float geometryWeight(float z, float slope, float distance, vec3 n, float zq, vec
     return length(vec2(oneSidedSlope(pixel, ivec2(1, 0), z), oneSidedSlope(pixel, ivec2(0, 1), z))); \
   }
 
-// Whether last frame's surface `s` (reblur.surface: normal, depth) is this pixel's.
+// Whether last frame's surface `s` (reblur.surface unpacked: normal, depth) is this pixel's.
 bool sameSurface(vec4 s, float z, float slope, vec3 n) {
   return hasSurface(s.w) && abs(s.w - z) <= pc.depthTolerance * z + 2.0 * slope &&
          dot(s.xyz, n) >= pc.normalTolerance;
@@ -82,7 +83,7 @@ bool sameSurface(vec4 s, float z, float slope, vec3 n) {
     float sum = 0.0;                                                                         \
     for (int i = 0; i < 4; ++i) {                                                            \
       ivec2 q = p0 + ivec2(i & 1, i >> 1);                                                   \
-      if (w[i] <= 0.0 || !inImage(q) || !sameSurface(imageLoad(previousSurfaceImage, q), z, slope, n)) \
+      if (w[i] <= 0.0 || !inImage(q) || !sameSurface(unpackSurface(imageLoad(previousSurfaceImage, q).xy), z, slope, n)) \
         w[i] = 0.0;                                                                          \
       sum += w[i];                                                                           \
     }                                                                                        \
@@ -100,7 +101,7 @@ bool sameSurface(vec4 s, float z, float slope, vec3 n) {
       for (int dx = -1; dx <= 1; ++dx) {                                                     \
         ivec2 q = pixel + ivec2(dx, dy);                                                     \
         if (!inImage(q)) continue;                                                           \
-        vec4 sq = imageLoad(surfaceImage, q);                                                \
+        vec4 sq = unpackSurface(imageLoad(surfaceImage, q).xy);                              \
         if (geometryWeight(z, slope, length(vec2(dx, dy)), n, sq.w, sq.xyz) <= 0.0) continue; \
         vec3 c = imageLoad(image, q).rgb;                                                    \
         m1 += c;                                                                             \

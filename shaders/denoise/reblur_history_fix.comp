@@ -20,10 +20,10 @@ layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
 
 layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
 layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_FAST, rgba16f) uniform readonly image2D fastImage;
-layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
+layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
 layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
 
-float surfaceDepth(ivec2 q) { return imageLoad(surfaces, q).w; }
+float surfaceDepth(ivec2 q) { return surfaceDepthOf(imageLoad(surfaces, q).xy); }
 DEFINE_REBLUR_DEPTH_SLOPE(surfaceDepth)
 DEFINE_REBLUR_NEIGHBOURHOOD(fastImage, surfaces)
 
@@ -38,7 +38,7 @@ vec3 fixHistory(ivec2 pixel, vec4 centre, float z, float slope, vec3 n) {
       vec2 offset = stride * vec2(dx, dy);
       ivec2 q = pixel + ivec2(round(offset));
       if (!inImage(q)) continue;
-      vec4 sq = imageLoad(surfaces, q);
+      vec4 sq = unpackSurface(imageLoad(surfaces, q).xy);
       float w = geometryWeight(z, slope, length(offset), n, sq.w, sq.xyz);
       if (w <= 0.0) continue;
       vec4 c = imageLoad(inputImage, q);
@@ -59,7 +59,7 @@ vec3 withoutFirefly(ivec2 pixel, vec3 colour, float z, float slope, vec3 n) {
       if (abs(dx) <= 1 && abs(dy) <= 1) continue;
       ivec2 q = pixel + ivec2(dx, dy);
       if (!inImage(q)) continue;
-      vec4 sq = imageLoad(surfaces, q);
+      vec4 sq = unpackSurface(imageLoad(surfaces, q).xy);
       if (geometryWeight(z, slope, length(vec2(dx, dy)), n, sq.w, sq.xyz) <= 0.0) continue;
       float l = reblurLuminance(imageLoad(inputImage, q).rgb);
       m1 += l;
@@ -78,7 +78,7 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!inImage(pixel)) return;
   vec4 centre = imageLoad(inputImage, pixel);
-  vec4 s = imageLoad(surfaces, pixel);
+  vec4 s = unpackSurface(imageLoad(surfaces, pixel).xy);
   if (!hasSurface(s.w)) {
     imageStore(outputImage, pixel, centre);
     return;

@@ -13,7 +13,7 @@ layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_NOISY, rgba16f) uniform readon
 layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_DEPTH, r32f) uniform readonly image2D depths;
 layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
 layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_ALBEDO, rgba16f) uniform readonly image2D albedos;
-layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_SURFACE, rgba32f) uniform writeonly image2D surfaceOut;
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_SURFACE, rg32ui) uniform writeonly uimage2D surfaceOut;
 layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
 
 float depthAt(ivec2 q) {
@@ -21,13 +21,6 @@ float depthAt(ivec2 q) {
   return hasSurface(z) ? z : 0.0;
 }
 DEFINE_REBLUR_DEPTH_SLOPE(depthAt)
-
-// Octahedral decoding (Cigolle et al. 2014), as Bounce's gbuffer.normals are written.
-vec3 decodeOctahedralNormal(vec2 e) {
-  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-  return normalize(n);
-}
 
 vec3 normalAt(ivec2 q) {
   vec4 n = imageLoad(normals, q);
@@ -45,12 +38,12 @@ void main() {
   if (!inImage(pixel)) return;
   float z = depthAt(pixel);
   if (!hasSurface(z)) {
-    imageStore(surfaceOut, pixel, vec4(0.0));
+    imageStore(surfaceOut, pixel, uvec4(0u));
     imageStore(outputImage, pixel, vec4(finiteOrZero(imageLoad(noisyImage, pixel).rgb), 0.0));
     return;
   }
   vec3 n = normalAt(pixel);
-  imageStore(surfaceOut, pixel, vec4(n, z));
+  imageStore(surfaceOut, pixel, uvec4(packSurface(n, z), 0u, 0u));
   float slope = depthSlope(pixel, z);
   // One rotation per 8x8 tile (and frame), not per pixel: a workgroup's taps then read nearby
   // texels together, 2.9x faster on an H200 with the same gates and Cornell FLIP

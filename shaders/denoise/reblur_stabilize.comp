@@ -13,15 +13,15 @@ layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
 
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_FAST, rgba16f) uniform readonly image2D fastImage;
-layout(set = 1, binding = REBLUR_STABILIZE_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
+layout(set = 1, binding = REBLUR_STABILIZE_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_MOTION, rg16f) uniform readonly image2D motions;
-layout(set = 1, binding = REBLUR_STABILIZE_BINDING_PREVIOUS_SURFACE, rgba32f) uniform readonly image2D previousSurface;
+layout(set = 1, binding = REBLUR_STABILIZE_BINDING_PREVIOUS_SURFACE, rg32ui) uniform readonly uimage2D previousSurface;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE, rgba16f) uniform readonly image2D previousStable;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_ALBEDO, rgba16f) uniform readonly image2D albedos;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_STABLE, rgba16f) uniform writeonly image2D stableOut;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
 
-float surfaceDepth(ivec2 q) { return imageLoad(surfaces, q).w; }
+float surfaceDepth(ivec2 q) { return surfaceDepthOf(imageLoad(surfaces, q).xy); }
 DEFINE_REBLUR_DEPTH_SLOPE(surfaceDepth)
 DEFINE_REBLUR_REPROJECT(previousSurface)
 DEFINE_REBLUR_NEIGHBOURHOOD(fastImage, surfaces)
@@ -30,7 +30,7 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!inImage(pixel)) return;
   vec4 current = finiteOrZero4(imageLoad(inputImage, pixel));
-  vec4 s = imageLoad(surfaces, pixel);
+  vec4 s = unpackSurface(imageLoad(surfaces, pixel).xy);
   if (!hasSurface(s.w)) {
     imageStore(stableOut, pixel, vec4(current.rgb, 0.0));
     imageStore(outputImage, pixel, vec4(current.rgb, 0.0));

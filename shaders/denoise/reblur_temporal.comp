@@ -17,15 +17,15 @@
 layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
 
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
-layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_SURFACE, rgba32f) uniform readonly image2D surfaces;
+layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_MOTION, rg16f) uniform readonly image2D motions;
-layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_SURFACE, rgba32f) uniform readonly image2D previousSurface;
+layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_SURFACE, rg32ui) uniform readonly uimage2D previousSurface;
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY, rgba16f) uniform readonly image2D previousHistory;
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST, rgba16f) uniform readonly image2D previousFast;
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_FAST, rgba16f) uniform writeonly image2D fastOut;
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_ACCUMULATED, rgba16f) uniform writeonly image2D accumulatedOut;
 
-float surfaceDepth(ivec2 q) { return imageLoad(surfaces, q).w; }
+float surfaceDepth(ivec2 q) { return surfaceDepthOf(imageLoad(surfaces, q).xy); }
 DEFINE_REBLUR_DEPTH_SLOPE(surfaceDepth)
 DEFINE_REBLUR_REPROJECT(previousSurface)
 
@@ -33,7 +33,7 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!inImage(pixel)) return;
   vec3 signal = finiteOrZero(imageLoad(inputImage, pixel).rgb);
-  vec4 s = imageLoad(surfaces, pixel);
+  vec4 s = unpackSurface(imageLoad(surfaces, pixel).xy);
   if (!hasSurface(s.w)) {
     imageStore(fastOut, pixel, vec4(signal, 0.0));
     imageStore(accumulatedOut, pixel, vec4(signal, 0.0));

@@ -3,6 +3,7 @@
 // src/denoise/svgf_reference.cpp is the same arithmetic on the CPU.
 #ifndef BOUNCE_DENOISE_SVGF_COMMON_GLSL
 #define BOUNCE_DENOISE_SVGF_COMMON_GLSL
+#include "denoise/packed_surface.glsl"
 #include "shared/svgf_io.h"
 
 layout(push_constant, scalar) uniform Push { SvgfConstants pc; };
@@ -17,31 +18,6 @@ bool hasSurface(float depth) { return depth > 0.0 && isFiniteValue(depth); }
 
 bool inImage(ivec2 p) { return all(greaterThanEqual(p, ivec2(0))) && all(lessThan(p, ivec2(pc.resolution))); }
 
-// Octahedral decoding (Cigolle et al. 2014), as Bounce's gbuffer.normals are written.
-vec3 decodeOctahedralNormal(vec2 e) {
-  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-  return normalize(n);
-}
-
-// Octahedral encoding, decodeOctahedralNormal's inverse.
-vec2 encodeOctahedralNormal(vec3 n) {
-  n /= abs(n.x) + abs(n.y) + abs(n.z);
-  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-  return n.xy;
-}
-
-// svgf.surface keeps a pixel's surface in 8 bytes (RG32UI): x the view depth's bits (0: none), y
-// the unit normal, octahedral, as two snorm16. svgf-atrous reads it at every tap, where
-// RGBA32F's 16 bytes were a third of the pass's time (docs/decisions.md). Unpacked as
-// vec4(normal, depth).
-uvec2 packSurface(vec3 n, float depth) {
-  return uvec2(floatBitsToUint(depth), packSnorm2x16(encodeOctahedralNormal(n)));
-}
-vec4 unpackSurface(uvec2 packed) {
-  return vec4(decodeOctahedralNormal(unpackSnorm2x16(packed.y)), uintBitsToFloat(packed.x));
-}
-float surfaceDepthOf(uvec2 packed) { return uintBitsToFloat(packed.x); }
 
 // The albedo the signal is divided by: never below 1/1000, so black texels do not blow it up
 // (their remodulated value is ~0 anyway).

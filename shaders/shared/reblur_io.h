@@ -7,7 +7,8 @@
 //
 // Images (the caller's): noisy, depth, normals, motion, albedo as SVGF's (shared/svgf_io.h).
 // Images (ReBLUR's own):
-//   reblur.surface      RGBA32F  (history) xyz unit normal, w view depth (0: no surface)
+//   reblur.surface      RG32UI   (history) view depth bits (0: no surface), unit normal octahedral
+//                                as two snorm16 (denoise/packed_surface.glsl)
 //   reblur.pre-blurred  RGBA16F  reblur-pre-blur's output (rgb; demodulated)
 //   reblur.fast         RGBA16F  (history) rgb the fast history (few frames), a its length
 //   reblur.accumulated  RGBA16F  (history) reblur-temporal's slow history: rgb, a its length in

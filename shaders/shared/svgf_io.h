@@ -13,7 +13,8 @@
 //                      multiplied back at the end (the filter sees irradiance, not texture)
 // Images (SVGF's own):
 //   svgf.surface       RG32UI   (history) x the view depth's bits (0: no surface), y the unit
-//                               normal, octahedral, two snorm16 (svgf_common.glsl packSurface)
+//                               normal, octahedral, two snorm16 (denoise/packed_surface.glsl
+//                               packSurface)
 //   svgf.moments       RGBA32F  (history) x, y: running means of luminance and luminance^2,
 //                               z: history length in frames (0: none)
 //   svgf.accumulated   RGBA16F  svgf-temporal's running mean (rgb; demodulated)

@@ -12,7 +12,8 @@ using graph::Access;
 namespace {
 
 constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
-constexpr VkFormat kRgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
+// reblur.surface: depth bits and an octahedral snorm16 normal (denoise/packed_surface.glsl).
+constexpr VkFormat kRg32ui = VK_FORMAT_R32G32_UINT;
 
 void dispatch(VkCommandBuffer cmd, const gpu::ReblurConstants& c) {
   vk::ComputePipeline::dispatchCovering(cmd, c.resolution.x, c.resolution.y, gpu::REBLUR_GROUP_SIZE,
@@ -112,7 +113,7 @@ void Reblur::declare(graph::FrameGraph& graph, VkExtent2D resolution, const Deno
 
 Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
                                          const DenoiseInputs& in) {
-  graph::HistoryImage surface = graph.createHistoryImage(name_ + ".surface", {kRgba32f});
+  graph::HistoryImage surface = graph.createHistoryImage(name_ + ".surface", {kRg32ui});
   graph::HistoryImage fast = graph.createHistoryImage(name_ + ".fast", {kRgba16f});
   graph::HistoryImage history = graph.createHistoryImage(name_ + ".accumulated", {kRgba16f});
   const graph::ImageHandle accumulated = history.current;

@@ -17,7 +17,8 @@ namespace {
 
 constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
 constexpr VkFormat kRgba32f = VK_FORMAT_R32G32B32A32_SFLOAT;
-// svgf.surface: depth bits and an octahedral snorm16 normal (svgf_common.glsl packSurface).
+// svgf.surface: depth bits and an octahedral snorm16 normal (denoise/packed_surface.glsl
+// packSurface).
 constexpr VkFormat kRg32ui = VK_FORMAT_R32G32_UINT;
 constexpr uint32_t kMaxIterations = 5;
 
@@ -28,7 +29,7 @@ void dispatch(VkCommandBuffer cmd, const gpu::SvgfConstants& c) {
 
 }  // namespace
 
-// As svgf_common.glsl's encodeOctahedralNormal / decodeOctahedralNormal.
+// As packed_surface.glsl's encodeOctahedralNormal / decodeOctahedralNormal.
 glm::uvec2 packSvgfSurface(const glm::vec4& normalDepth) {
   glm::vec3 n = glm::vec3(normalDepth);
   n /= std::abs(n.x) + std::abs(n.y) + std::abs(n.z);

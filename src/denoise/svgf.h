@@ -90,14 +90,14 @@ struct SvgfSettings {
 void validate(const SvgfSettings& settings);
 
 // svgf.surface's texel (RG32UI: the depth's bits, the normal octahedral as two snorm16; the
-// shaders' packSurface in svgf_common.glsl), for declareAtrousStep's `surface` image, and what
-// the shaders unpack from it (xyz normal as quantised, w depth): a test gives the CPU reference
-// the unpacked surface, so that both see the same normal.
+// shaders' packSurface in denoise/packed_surface.glsl), for declareAtrousStep's `surface` image,
+// and what the shaders unpack from it (xyz normal as quantised, w depth): a test gives the CPU
+// reference the unpacked surface, so that both see the same normal.
 glm::uvec2 packSvgfSurface(const glm::vec4& normalDepth);
 glm::vec4 unpackSvgfSurface(const glm::uvec2& texel);
 
-// The debug view of an SVGF instance's `<name>.surface` (and `.previous`): normal and depth
-// unpacked, as the RGBA32F image it was before it was packed.
+// The debug view of a denoiser's packed `<name>.surface` (and `.previous`; SVGF's and ReBLUR's,
+// both RG32UI): normal and depth unpacked, as the RGBA32F image it was before it was packed.
 bool isSvgfSurfaceView(const graph::DebugView& view);
 ImageRGBA32F decodeSvgfSurfaceView(const graph::DebugView& view);
 
