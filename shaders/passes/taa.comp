@@ -69,40 +69,48 @@ struct Neighbourhood {
 };
 
 // Variance clipping (Salvi 2016): the box mean +- clipSigma standard deviations of the 3x3
-// neighbourhood in the perceptual space, stretched to take in the neighbourhood's mean radiance
-// (averaged in linear radiance, then mapped). Why the stretch: at an edge against a bright
-// emitter the converged history is the pixel's linear average, half emitter, which the curve
-// maps near the emitter's own value, far above a box of mapped samples; clipped there every
-// frame, the edge lost a third of its light (Cornell: 4 % of the image's). Not intersected with
-// the min/max box (Karis 2014): on the noisy composite that clips a converged history whenever
-// nine samples happen to lie on one side of their mean.
+// neighbourhood in the perceptual space, stretched to take in the means of the four 2x2 quads
+// around the pixel (averaged in linear radiance, then mapped). Why the stretch: a converged
+// history is the linear average of the pixel's footprint, which at an edge lies within the
+// range of those quads' averages; at the edge of a bright emitter the curve maps it next to the
+// emitter's own value, far above a box of mapped samples, and the clip cut it every frame
+// (Cornell: the lamp's ring lost a third of its light, 4 % of the image's; docs/frame.md). Not
+// intersected with the min/max box (Karis 2014): on the noisy composite that clips a converged
+// history whenever nine samples happen to lie on one side of their mean.
 Neighbourhood neighbourhood(FrameConstants f, ivec2 pixel, float exposure) {
   Neighbourhood n;
   n.centre = vec3(0.0);
-  vec3 sum = vec3(0.0), sumSq = vec3(0.0), radianceSum = vec3(0.0);
+  vec3 sum = vec3(0.0), sumSq = vec3(0.0);
+  vec4 samples[9];  // linear radiance, w 1 where the sample counts
   float count = 0.0;
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx) {
-      ivec2 q = pixel + ivec2(dx, dy);
-      if (!inside(f, q)) continue;
-      vec3 c = imageLoad(hdr, q).rgb;
-      if (!isFiniteColor(c)) continue;
-      if (dx == 0 && dy == 0) n.centre = c;
-      vec3 p = toPerceptual(c, exposure);
-      radianceSum += c;
-      sum += p;
-      sumSq += p * p;
-      count += 1.0;
-    }
+  for (int k = 0; k < 9; ++k) {
+    ivec2 q = pixel + ivec2(k % 3, k / 3) - 1;
+    vec3 c = inside(f, q) ? imageLoad(hdr, q).rgb : vec3(0.0);
+    bool valid = inside(f, q) && isFiniteColor(c);
+    samples[k] = valid ? vec4(c, 1.0) : vec4(0.0);
+    if (!valid) continue;
+    if (k == 4) n.centre = c;
+    vec3 p = toPerceptual(c, exposure);
+    sum += p;
+    sumSq += p * p;
+    count += 1.0;
+  }
   if (count == 0.0) {
     n.low = n.high = vec3(0.0);
     return n;
   }
   vec3 mean = sum / count;
   vec3 sigma = sqrt(max(sumSq / count - mean * mean, vec3(0.0)));
-  vec3 meanRadiance = toPerceptual(radianceSum / count, exposure);
-  n.low = min(mean - pc.clipSigma * sigma, meanRadiance);
-  n.high = max(mean + pc.clipSigma * sigma, meanRadiance);
+  n.low = mean - pc.clipSigma * sigma;
+  n.high = mean + pc.clipSigma * sigma;
+  for (int corner = 0; corner < 4; ++corner) {  // the quad's top-left sample: 0, 1, 3, 4
+    int k = corner + corner / 2;
+    vec4 quad = samples[k] + samples[k + 1] + samples[k + 3] + samples[k + 4];
+    if (quad.w == 0.0) continue;
+    vec3 p = toPerceptual(quad.rgb / quad.w, exposure);
+    n.low = min(n.low, p);
+    n.high = max(n.high, p);
+  }
   return n;
 }
 
