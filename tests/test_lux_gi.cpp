@@ -291,11 +291,14 @@ TEST(LuxGi, CornellBoxAgreesWithCycles) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
-// Two hundred animated frames (sunroom: its animated instances, a swaying camera, a turning
-// sun) without a NaN or Inf in the composite or Lux's candidates, validation layers silent.
+// 1,000 animated frames (issue 23; sunroom: its animated instances, a swaying camera, a
+// turning sun) without a NaN or Inf in the composite or Lux's candidates, validation layers
+// silent. As RestirGi.LongAnimatedRunStaysFinite, the cache's pool holds 1,024 cells (the cells,
+// not the 256 pixels, set the time on lavapipe), so lookups also take the pool-dry path.
 TEST(LuxGi, AnimatedRunStaysFinite) {
-  AnimatedRun run =
-      runAnimated("sunroom", luxSettings(16, 16), 200, {"composite", "lux-resolve-candidates"});
+  HybridSettings settings = luxSettings(16, 16);
+  settings.cache.maxLiveCells = 1024;
+  AnimatedRun run = runAnimated("sunroom", settings, 1000, {"composite", "lux-resolve-candidates"});
   EXPECT_EQ(run.nonFinite, 0u);
   EXPECT_EQ(run.validationErrors, 0u);
 }
