@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "harness.h"
+#include "restir_gi_common.h"
 
 #include "frame/hybrid_frame.h"
 #include "frame/presets.h"
@@ -220,6 +221,30 @@ TEST(Gi10, AnimatedRunStaysFinite) {
   EXPECT_EQ(nonFinite, 0u);
   EXPECT_EQ(statistic(run.frame->giStatistics(), "gi10_cache_overflow"), 0.0);
   EXPECT_EQ(run.context.validationErrorCount(), 0u);
+}
+
+// Issue 23's comparison after a sun jump, run as RestirGi.DISABLED_SunJumpRecoversWithinTenFrames
+// runs Evolve (test::runSunJump: 48 frames under the mirrored sun, the jump back, the composite's
+// relMSE against a 2,048-spp reference of the final light; 64x48, the desktop preset), with the
+// same bound: within 1.5x of converged (frames 49-64) by frames 8-10. DISABLED: not met. Measured
+// 2.19x (frames 8-10 0.215 against 0.098; before the jump 0.567), and the error still falls at
+// frame 64 (0.092): a lighting cut restarts the probes, the cache and the accumulation, so
+// GI-1.0 converges from cold. Evolve in the same harness: 1.58x (0.052 against 0.033); Lux 1.52x.
+// docs/gi/comparison.md.
+TEST(Gi10, DISABLED_SunJumpRecoversWithinTenFrames) {
+  const uint32_t width = 64, height = 48;
+  Scene scene = loadScene("sunroom");
+  Camera camera = effectiveCamera(scene);
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  const ImageRGBA32F reference =
+      test::storedReferenceImage(context, gpuScene, scene, camera, width, height, 2048);
+  const test::SunJumpRun run =
+      test::runSunJump(context, gpuScene, scene, camera, gi10Settings(width, height), reference);
+  test::printSunJump(run, false);
+  EXPECT_GT(run.before, 3.0 * run.converged());  // the jump is a real change: the test has teeth
+  EXPECT_LE(run.recovered(), 1.5 * run.converged());
+  EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
 }  // namespace

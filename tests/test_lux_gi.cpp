@@ -303,5 +303,27 @@ TEST(LuxGi, AnimatedRunStaysFinite) {
   EXPECT_EQ(run.validationErrors, 0u);
 }
 
+// Issue 23's comparison after a sun jump, run as RestirGi.DISABLED_SunJumpRecoversWithinTenFrames
+// runs Evolve (test::runSunJump: 48 frames under the mirrored sun, the jump back, the composite's
+// relMSE against a 2,048-spp reference of the final light; 64x48, the desktop preset), with the
+// same bound: within 1.5x of converged (frames 49-64) by frames 8-10. DISABLED: not met.
+// Measured 1.52x (frames 8-10 0.110 against 0.072; before the jump 0.553). Evolve in the same
+// harness: 1.58x (0.052 against 0.033); GI-1.0 2.19x. docs/gi/comparison.md.
+TEST(LuxGi, DISABLED_SunJumpRecoversWithinTenFrames) {
+  const uint32_t width = 64, height = 48;
+  Scene scene = loadScene("sunroom");
+  Camera camera = effectiveCamera(scene);
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  const ImageRGBA32F reference =
+      test::storedReferenceImage(context, gpuScene, scene, camera, width, height, 2048);
+  const test::SunJumpRun run =
+      test::runSunJump(context, gpuScene, scene, camera, luxSettings(width, height), reference);
+  test::printSunJump(run, false);
+  EXPECT_GT(run.before, 3.0 * run.converged());  // the jump is a real change: the test has teeth
+  EXPECT_LE(run.recovered(), 1.5 * run.converged());
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+}
+
 }  // namespace
 }  // namespace bounce
