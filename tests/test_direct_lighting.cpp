@@ -4,8 +4,10 @@
 // with hard and with soft sun shadows, shadows at full and at the presets' half resolution.
 // What is left over is known: half-resolution shadows are upsampled, so shadow edges move by up
 // to a pixel; soft penumbrae come from a 16-frame running mean of one cone sample per frame.
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -15,6 +17,7 @@
 #include "frame/hybrid_frame.h"
 #include "reference/path_tracer.h"
 #include "rt/gpu_scene.h"
+#include "scene/animation.h"
 #include "scene/load.h"
 #include "scene/scene_options.h"
 #include "tools/flip.h"
@@ -166,6 +169,91 @@ TEST(DirectLighting, SoftShadowsMatchReference) {
   c = compareDirectLight(foliage);
   EXPECT_LT(c.relMse, 1.5 * c.referenceNoiseRelMse);
   EXPECT_NEAR(c.meanRatio, 1.0, 0.03);
+}
+
+}  // namespace
+}  // namespace bounce
+
+namespace bounce {
+namespace {
+
+// The sun's visibility (`shadows-denoise`'s) after a camera move, against a still camera at the
+// move's last pose: the desktop preset (soft shadows at half resolution), sunroom at 120x68, 48
+// frames each. The view and the sun are still, so a temporal filter that follows the motion
+// gives the still run's image; one that lags drags old light and shadow beside every edge.
+std::vector<float> shadowVisibility(vk::Context& context, GpuScene& gpuScene, const Scene& scene,
+                                    const CameraPath* path, const Camera& still) {
+  HybridSettings settings = presetSettings(Preset::Desktop);
+  settings.width = 120;
+  settings.height = 68;
+  HybridFrame frame(context, gpuScene, scene, settings);
+  frame.requestDebugView("shadows-denoise");
+  for (int i = 0; i < 48; ++i)
+    frame.render(path ? evaluateCameraPath(*path, float(i) / 30.0f) : still);
+  const ImageRGBA32F image = frame.debugViewImage("shadows-denoise");
+  std::vector<float> visibility(image.pixelCount());
+  for (size_t i = 0; i < visibility.size(); ++i) visibility[i] = image.pixels[4 * i];
+  return visibility;
+}
+
+// A linear dolly and pan through sunroom over 48 frames at 30 fps (0.5 px a frame on average at
+// 120x68; scripts/device/gi_path.json is the same path).
+CameraPath sunroomDolly() {
+  CameraKeyframe start;
+  start.position = {7.7f, 1.7f, 5.7f};
+  start.target = {2.5f, 0.6f, 2.4f};
+  start.verticalFovDegrees = 65.0f;
+  CameraKeyframe end = start;
+  end.time = 47.0f / 30.0f;
+  end.position = {6.4f, 1.45f, 4.9f};
+  end.target = {2.5f, 0.7f, 3.7f};
+  CameraPath path;
+  path.catmullRom = false;
+  path.keys = {start, end};
+  return path;
+}
+
+// After the dolly, the visibility away from the still image's shadow edges (pixels whose 5x5
+// neighbourhood there is uniform within 0.05: 73 % of the view) differs from the still run's by
+// at most 0.001 on average: no trail. Within 2 pixels of an edge, reprojecting a point-sampled
+// hard edge blurs it by a pixel whatever the filter; that is reported, not gated. Measured:
+// away from edges 0.0000 (0.0059 before the motion clamp, whose nearest-texel history trailed
+// each edge by several pixels), the whole image 0.0195 (0.0401); docs/frame.md.
+TEST(Shadows, CameraDollyLeavesNoTrail) {
+  Scene scene = loadScene("sunroom");
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  const CameraPath path = sunroomDolly();
+  const Camera last = evaluateCameraPath(path, path.duration());
+  const std::vector<float> moved = shadowVisibility(context, gpuScene, scene, &path, last);
+  const std::vector<float> still = shadowVisibility(context, gpuScene, scene, nullptr, last);
+  const int w = 120, h = 68;
+  double awaySum = 0.0, allSum = 0.0;
+  size_t away = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = size_t(y) * w + x;
+      const double difference = std::abs(double(moved[i]) - double(still[i]));
+      allSum += difference;
+      if (x < 2 || y < 2 || x >= w - 2 || y >= h - 2) continue;
+      float lo = 1.0f, hi = 0.0f;
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx) {
+          const float v = still[size_t(y + dy) * w + size_t(x + dx)];
+          lo = std::min(lo, v);
+          hi = std::max(hi, v);
+        }
+      if (hi - lo > 0.05f) continue;
+      awaySum += difference;
+      ++away;
+    }
+  std::printf(
+      "sunroom 120x68, 48 frames of a dolly against a still camera at its end: sun visibility "
+      "mean |difference| %.4f away from shadow edges (%zu px), %.4f over the image\n",
+      awaySum / double(away), away, allSum / double(moved.size()));
+  EXPECT_GT(away, moved.size() / 2);
+  EXPECT_LE(awaySum / double(away), 0.001);
+  EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
 }  // namespace

@@ -4,9 +4,15 @@
 //      this pixel's (distance to this pixel's tangent plane, normal similarity), so shadows do
 //      not bleed across depth or orientation edges.
 //   2. Temporal accumulation: the pixel's position last frame (velocity) is looked up in last
-//      frame's result; where last frame saw the same surface there (view depth agrees) the new
-//      value joins a running mean of up to shadowMaxHistory frames, else the history restarts.
-//      Nothing non-finite is ever stored.
+//      frame's result, bilinearly over the four texels there that saw the same surface (view
+//      depth agrees); the new value joins a running mean of up to shadowMaxHistory frames, or
+//      the history restarts where no texel agrees.
+//      Where the view moved, the history is first clamped to the range of this frame's
+//      upsampled visibility in the 3x3 pixels around (a workgroup's tile of it in shared
+//      memory): reprojection resamples a point-sampled shadow edge, and over a long history
+//      the error piled up into a trail of old light beside every edge (sunroom, a 48-frame
+//      dolly: 28x the error of no accumulation; docs/frame.md). A still view is not clamped,
+//      so a noisy soft penumbra keeps its running mean. Nothing non-finite is ever stored.
 #version 460
 #include "passes/hybrid_frame.glsl"
 
@@ -27,6 +33,8 @@ layout(set = 1, binding = SHADOWS_DENOISE_BINDING_CURRENT, rg16f) uniform writeo
 const float PLANE_TOLERANCE = 0.01;
 const float HISTORY_DEPTH_TOLERANCE = 0.03;
 const float NORMAL_POWER = 8.0;
+// Below this screen motion (pixels a frame) the view counts as still: no motion clamp.
+const float STILL_PIXELS = 0.01;
 
 struct GSample {
   vec3 position;
@@ -79,21 +87,66 @@ float upsampledVisibility(FrameConstants f, ivec2 pixel, GSample here) {
   return weightSum > 1e-4 ? sum / weightSum : nearestValue;
 }
 
-// Last frame's (visibility, frames) where it saw this surface, else (0, 0).
+// Last frame's (visibility, frames) where it saw this surface, else (0, 0): bilinear over the
+// four texels around the reprojected position whose view depth agrees, renormalised.
 vec2 reprojectedHistory(FrameConstants f, ivec2 pixel, GSample here) {
   if (pc.historyValid == 0u) return vec2(0.0);
-  vec2 previousPosition = vec2(pixel) + 0.5 - imageLoad(velocities, pixel).xy;
-  ivec2 p = ivec2(floor(previousPosition));
-  if (any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(f.resolution)))) return vec2(0.0);
+  vec2 base = vec2(pixel) - imageLoad(velocities, pixel).xy;  // the position minus half a texel
   float expectedDepth = (f.previousViewProjection * vec4(here.position, 1.0)).w;
-  float previousDepth = imageLoad(previousDepths, p).x;
-  if (abs(previousDepth - expectedDepth) > HISTORY_DEPTH_TOLERANCE * expectedDepth) return vec2(0.0);
-  vec2 history = imageLoad(previous, p).xy;
-  return isFiniteValue(history.x) && isFiniteValue(history.y) ? history : vec2(0.0);
+  ivec2 p0 = ivec2(floor(base));
+  vec2 t = base - vec2(p0);
+  vec2 sum = vec2(0.0);
+  float weightSum = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    ivec2 offset = ivec2(k & 1, k >> 1);
+    ivec2 p = p0 + offset;
+    float w = (offset.x == 1 ? t.x : 1.0 - t.x) * (offset.y == 1 ? t.y : 1.0 - t.y);
+    if (w <= 0.0 || any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(f.resolution)))) continue;
+    float previousDepth = imageLoad(previousDepths, p).x;
+    if (abs(previousDepth - expectedDepth) > HISTORY_DEPTH_TOLERANCE * expectedDepth) continue;
+    vec2 history = imageLoad(previous, p).xy;
+    if (!isFiniteValue(history.x) || !isFiniteValue(history.y)) continue;
+    sum += w * history;
+    weightSum += w;
+  }
+  return weightSum > 1e-3 ? sum / weightSum : vec2(0.0);
+}
+
+// This frame's upsampled visibility of the workgroup's 8x8 pixels and a 1-pixel apron (-1: no
+// surface or outside the image), for the motion clamp.
+const int TILE = int(HYBRID_GROUP_SIZE) + 2;
+shared float tileVisibility[TILE * TILE];
+
+// Every invocation of the workgroup calls this (it ends in a barrier), before any return.
+void upsampleTile(FrameConstants f) {
+  ivec2 origin = ivec2(gl_WorkGroupID.xy) * int(HYBRID_GROUP_SIZE) - 1;
+  for (uint i = gl_LocalInvocationIndex; i < uint(TILE * TILE); i += HYBRID_GROUP_SIZE * HYBRID_GROUP_SIZE) {
+    ivec2 q = origin + ivec2(int(i) % TILE, int(i) / TILE);
+    float v = -1.0;
+    if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(f.resolution)))) {
+      GSample s = loadGSample(f, q);
+      if (s.surface) v = upsampledVisibility(f, q, s);
+      if (!isFiniteValue(v)) v = 0.0;
+    }
+    tileVisibility[i] = v;
+  }
+  barrier();
+}
+
+// The range of the tile's visibility in the 3x3 pixels around this one (surfaces only).
+vec2 neighbourhoodRange() {
+  ivec2 local = ivec2(gl_LocalInvocationID.xy) + 1;
+  vec2 range = vec2(1.0, 0.0);
+  for (int k = 0; k < 9; ++k) {
+    float v = tileVisibility[(local.y + k / 3 - 1) * TILE + local.x + k % 3 - 1];
+    if (v >= 0.0) range = vec2(min(range.x, v), max(range.y, v));
+  }
+  return range;
 }
 
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
+  upsampleTile(f);
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
   GSample here = loadGSample(f, pixel);
@@ -101,9 +154,13 @@ void main() {
     imageStore(current, pixel, vec4(1.0, 0.0, 0.0, 0.0));
     return;
   }
-  float visibility = upsampledVisibility(f, pixel, here);
-  if (!isFiniteValue(visibility)) visibility = 0.0;
+  ivec2 local = ivec2(gl_LocalInvocationID.xy) + 1;
+  float visibility = tileVisibility[local.y * TILE + local.x];
   vec2 history = reprojectedHistory(f, pixel, here);
+  if (length(imageLoad(velocities, pixel).xy) > STILL_PIXELS) {
+    vec2 range = neighbourhoodRange();
+    history.x = clamp(history.x, range.x, range.y);
+  }
   float frames = min(history.y + 1.0, max(f.shadowMaxHistory, 1.0));
   float accumulated = mix(history.x, visibility, 1.0 / frames);
   imageStore(current, pixel, vec4(clamp(accumulated, 0.0, 1.0), frames, 0.0, 0.0));
