@@ -261,6 +261,20 @@ void printSunJump(const SunJumpRun& run, bool everyFrame) {
               run.firstCutLuminance, run.settledCutLuminance);
 }
 
+SunroomSunJump runSunroomSunJump(const HybridSettings& settings) {
+  Scene scene = loadScene("sunroom");
+  const Camera camera = effectiveCamera(scene);
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  const ImageRGBA32F reference =
+      storedReferenceImage(context, gpuScene, scene, camera, settings.width, settings.height, 2048);
+  SunroomSunJump jump;
+  jump.run = runSunJump(context, gpuScene, scene, camera, settings, reference);
+  printSunJump(jump.run, false);
+  jump.validationErrors = context.validationErrorCount();
+  return jump;
+}
+
 AnimatedRun runAnimated(const std::string& sceneName, HybridSettings settings, int frames,
                         const std::vector<std::string>& views) {
   Scene scene = loadScene(sceneName);

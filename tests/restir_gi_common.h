@@ -111,6 +111,15 @@ void printFurnace(const char* label, const HybridSettings& settings, const Furna
 // the camera cut's luminances.
 void printSunJump(const SunJumpRun& run, bool everyFrame);
 
+// The sun-jump tests' run (Evolve's, GI-1.0's and Lux's): runSunJump on `sunroom`'s own camera
+// at the settings' size against its stored 2,048-spp reference, printed; `validationErrors` is
+// the run's context's count.
+struct SunroomSunJump {
+  SunJumpRun run;
+  uint32_t validationErrors = 0;
+};
+SunroomSunJump runSunroomSunJump(const HybridSettings& settings);
+
 // The long animated runs (RestirGi.LongAnimatedRunStaysFinite, LuxGi.AnimatedRunStaysFinite):
 // `frames` frames of `sceneName` at 30 frames a second with its scripted motion, the camera
 // swaying (20 degrees, 0.3 dolly, 8 s) and the sun turning (0.5 rad/s), the Vulkan validation

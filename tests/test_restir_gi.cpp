@@ -386,20 +386,11 @@ RestirGiSettings jumpingLightSettings() {
 // owns the fix; `restir-gi-diag --res 64x48 --jump-config validation3 --trace` prints each
 // frame's error and each stage's mean (docs/tools.md).
 TEST(RestirGi, DISABLED_SunJumpRecoversWithinTenFrames) {
-  const uint32_t width = 64, height = 48;
-  Scene scene = loadScene("sunroom");
-  Camera camera = effectiveCamera(scene);
-  vk::Context context(vk::contextOptionsFromEnvironment());
-  GpuScene gpuScene(context, scene);
-  const ImageRGBA32F reference =
-      storedReferenceImage(context, gpuScene, scene, camera, width, height, 2048);
-  const test::SunJumpRun run =
-      test::runSunJump(context, gpuScene, scene, camera,
-                       giSettings(width, height, jumpingLightSettings()), reference);
-  test::printSunJump(run, false);
-  EXPECT_GT(run.before, 3.0 * run.converged());  // the jump is a real change: the test has teeth
-  EXPECT_LE(run.recovered(), 1.5 * run.converged());
-  EXPECT_EQ(context.validationErrorCount(), 0u);
+  const test::SunroomSunJump jump =
+      test::runSunroomSunJump(giSettings(64, 48, jumpingLightSettings()));
+  EXPECT_GT(jump.run.before, 3.0 * jump.run.converged());  // a real change: the test has teeth
+  EXPECT_LE(jump.run.recovered(), 1.5 * jump.run.converged());
+  EXPECT_EQ(jump.validationErrors, 0u);
 }
 
 // A camera cut (resetHistory, a closer view) after 24 converged frames: the first frame after
