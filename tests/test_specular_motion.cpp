@@ -3,13 +3,13 @@
 //   - no ghost trail: after a glossy steel ball rolls over the floor and stops, or after the
 //     camera dollies over the floor and stops, each frame's error against the static converged
 //     image of the final view must be back within 1.5x of the static error within 8 frames.
-//     Measured on the reflection signal (reflections-upsample), GI off: the reflection chain's
-//     histories (reservoirs, the denoiser's slow and fast histories) are under test, not the
-//     GI's. The converged image comes from a static run at the final state, the static error
-//     from a second, independent one (another noise seed); the ball's error is measured around
-//     its path. Each run also checks that its metric sees a ghost: the same frames with 15 % of
-//     a frame from the middle of the motion blended in must fail the bound. Each measure is the
-//     mean of several independent runs;
+//     Measured on the reflection signal (`reflections`, what composite reads), GI off: the
+//     reflection chain's histories (reservoirs, the denoiser's slow and fast histories) are under
+//     test, not the GI's. The converged image comes from a static run at the final state, the
+//     static error from a second, independent one (another noise seed); the ball's error is
+//     measured around its path. Each run also checks that its metric sees a ghost: the same frames
+//     with 15 % of a frame from the middle of the motion blended in must fail the bound. Each
+//     measure is the mean of several independent runs;
 //   - no trail while moving: the last frame of a camera dolly, over independent runs, against
 //     static runs of the final view, block by block in units of the standard error; the motion
 //     parallax tests of the reuse and the denoiser must cut that at least tenfold;
@@ -86,7 +86,7 @@ using StateAt = std::function<Camera(HybridFrame& frame, float s)>;
 // multiplies by the split-sum reflectance), so that the diffuse GI's own lag after a camera move
 // (its camera-centred cache re-converging: docs/reflections.md, "Motion") does not decide a test
 // of the reflections.
-constexpr const char* kMeasuredView = "reflections-upsample";
+constexpr const char* kMeasuredView = "reflections";
 
 // The ghost tests' GI: none. The reflection chain (trace, reuse, denoise, upsample) is what they
 // test; with a GI mode the reflection hits add the clipmap cache's light, and the

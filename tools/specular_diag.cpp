@@ -87,6 +87,8 @@ HybridSettings configurationSettings(const std::string& name, uint32_t width, ui
       settings.skyAmbientStrength = number("ambient");
     } else if (part == "full-mip") {
       settings.reflections.materialTextureSide = 0;
+    } else if (part == "shared-mirrors") {
+      settings.reflections.mirrorsAtFullResolution = false;
     } else if (part == "no-reuse") {
       settings.reflections.reuse = false;
     } else if (part == "no-denoise") {

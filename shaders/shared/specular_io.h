@@ -6,7 +6,9 @@
 //                                ray per pixel (rgb, see below), hit distance in w
 //                                (REFLECTION_NO_SAMPLE: no ray, the pixel is sky or too rough
 //                                to trace; REFLECTION_MISS_DISTANCE: the ray left the scene)
-//   reflections         RGBA16F  the same signal at render resolution (reflections-upsample)
+//   reflections         RGBA16F  the same signal at render resolution (reflections-upsample;
+//                                mirrors' own rays from reflections-trace-mirrors), w = 1
+//                                where set
 //
 // The reflection signal is demodulated: the radiance L arriving along a direction l drawn from
 // the GGX lobe's visible normals, times the sample's Fresnel-free weight G2(l, v) / G1(v)
@@ -32,8 +34,8 @@ struct CompositeConstants {
 };
 BOUNCE_CHECK_SIZE(CompositeConstants, 24);
 
-// Push constants of reflections-trace and reflections-upsample (ReflectionSettings documents
-// the thresholds; src/passes/reflections_trace.h).
+// Push constants of reflections-trace, reflections-trace-mirrors and reflections-upsample
+// (ReflectionSettings documents the thresholds; src/passes/reflections_trace.h).
 struct ReflectionPassConstants {
   DeviceAddress frame;           // FrameConstants
   DeviceAddress specularAlbedo;  // the split-sum table
@@ -46,8 +48,12 @@ struct ReflectionPassConstants {
   uint materialTextureSide;      // textures at the hit read at mips at most this wide; 0 = full
   uint seed;                     // mixed into the random numbers (ReflectionSettings::seed)
   float hitRegularization;       // the hit's lobe for light samples >= this x the pixel's alpha
+  // reflections-trace-mirrors: a mirror pixel traces its own ray unless the traced rays it is
+  // upsampled from reflect within this angle's cosine of its own mirror direction
+  float mirrorDirectionCosine;
+  uint pad0;
 };
-BOUNCE_CHECK_SIZE(ReflectionPassConstants, 64);
+BOUNCE_CHECK_SIZE(ReflectionPassConstants, 72);
 
 BOUNCE_CONST float REFLECTION_NO_SAMPLE = -1.0f;     // reflections.traced w: no ray here
 BOUNCE_CONST float REFLECTION_MISS_DISTANCE = 1e4f;  // reflections.traced w: the ray left
@@ -65,6 +71,14 @@ BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_TRACED = 4u;
 // of one candidate (shared/reflections_reuse_io.h), for the reuse passes
 BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_CANDIDATE = 5u;
 BOUNCE_CONST uint REFLECTIONS_TRACE_BINDING_COUNT = 9u;
+
+BOUNCE_CONST uint REFLECTIONS_TRACE_MIRRORS_BINDING_NORMALS = 0u;
+BOUNCE_CONST uint REFLECTIONS_TRACE_MIRRORS_BINDING_DEPTH = 1u;
+BOUNCE_CONST uint REFLECTIONS_TRACE_MIRRORS_BINDING_EMISSIVE = 2u;
+BOUNCE_CONST uint REFLECTIONS_TRACE_MIRRORS_BINDING_FLAGS = 3u;
+BOUNCE_CONST uint REFLECTIONS_TRACE_MIRRORS_BINDING_REFLECTIONS = 4u;  // read-modify-write
+BOUNCE_CONST uint REFLECTIONS_TRACE_MIRRORS_BINDING_TRACED = 5u;       // what the upsample read
+BOUNCE_CONST uint REFLECTIONS_TRACE_MIRRORS_BINDING_COUNT = 6u;
 
 BOUNCE_CONST uint REFLECTIONS_UPSAMPLE_BINDING_TRACED = 0u;
 BOUNCE_CONST uint REFLECTIONS_UPSAMPLE_BINDING_NORMALS = 1u;

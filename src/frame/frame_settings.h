@@ -37,8 +37,8 @@ struct HybridSettings {
   // Render resolution in pixels. Presets: mobile 1170x540, desktop 1920x1080 (seed 000).
   uint32_t width = 1920;
   uint32_t height = 1080;
-  ShadowSettings shadows;                       // shadows-trace, shadows-denoise
-  ReflectionSettings reflections;               // reflections-trace, reflections-upsample
+  ShadowSettings shadows;          // shadows-trace, shadows-denoise
+  ReflectionSettings reflections;  // reflections-trace, the reuse passes, -trace-mirrors
   ReflectionDenoiseSettings reflectionDenoise;  // reflections-denoise-temporal, -spatial
   // Exposure before the tone curve. Automatic (the default, both presets): metered from each
   // frame's luminance histogram and adapted over frames (passes/auto_exposure.h, settings in

@@ -111,6 +111,7 @@ HybridFrame::HybridFrame(vk::Context& context, GpuScene& gpuScene, const Scene& 
   if (settings.taa.enabled) taa_.emplace(context, gpuScene, settings.taa);
   if (settings.reflections.reuseEnabled())
     reflectionsReuse_.emplace(context, gpuScene, specularAlbedo_, settings.reflections);
+  if (settings.reflections.mirrorPassEnabled()) reflectionsTraceMirrors_.emplace(context, gpuScene);
 
   LightTable lights = buildLightTable(scene, gpuScene.bvh());
   punctualLightCount_ = uint32_t(lights.punctualLights.size());
@@ -315,7 +316,8 @@ void HybridFrame::recordFrame() {
 
 // reflections-trace (which looks the GI's radiance cache up at its hits when it has one), the
 // reuse passes (reflections-temporal, -spatial, -resolve; unless ReflectionSettings::reuse is
-// off), reflections-denoise-temporal and -spatial (unless turned off) and reflections-upsample;
+// off), reflections-denoise-temporal and -spatial (unless turned off), reflections-upsample and
+// reflections-trace-mirrors (curved mirrors' own rays at render resolution, unless turned off);
 // without reflection rays (divisor 0) composite takes every surface's specular light from the
 // diffuse GI and reads a zero `reflections`.
 void HybridFrame::declareReflections(const FrameContext& frame, const GBuffer& gbuffer,
@@ -337,8 +339,12 @@ void HybridFrame::declareReflections(const FrameContext& frame, const GBuffer& g
   if (reflectionsReuse_) traced = reflectionsReuse_->declare(graph_, frame, gbuffer, traced);
   if (settings_.reflectionDenoise.enabled)
     traced = reflectionsDenoise_.declare(graph_, frame, gbuffer, traced, constants);
-  indirect.reflections =
-      reflectionsUpsample_.declare(graph_, frame, gbuffer, traced, constants).radiance;
+  const Reflections reflections =
+      reflectionsUpsample_.declare(graph_, frame, gbuffer, traced, constants);
+  if (reflectionsTraceMirrors_)
+    reflectionsTraceMirrors_->declare(graph_, frame, gbuffer, cache, constants, traced,
+                                      reflections);
+  indirect.reflections = reflections.radiance;
   indirect.reflectionMaxRoughness = settings_.reflections.maxTracedRoughness;
 }
 

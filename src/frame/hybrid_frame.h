@@ -36,6 +36,7 @@
 #include "passes/reflections_denoise.h"
 #include "passes/reflections_reuse.h"
 #include "passes/reflections_trace.h"
+#include "passes/reflections_trace_mirrors.h"
 #include "passes/reflections_upsample.h"
 #include "passes/scene_update.h"
 #include "passes/shadows_denoise.h"
@@ -177,6 +178,8 @@ class HybridFrame {
   std::optional<ReflectionsReuse> reflectionsReuse_;  // settings.reflections.reuseEnabled()
   ReflectionsDenoisePass reflectionsDenoise_;
   ReflectionsUpsamplePass reflectionsUpsample_;
+  // settings.reflections.mirrorPassEnabled()
+  std::optional<ReflectionsTraceMirrorsPass> reflectionsTraceMirrors_;
   CompositePass composite_;
   std::optional<AutoExposure> autoExposure_;  // settings.autoExposure
   std::optional<TaaPass> taa_;                // settings.taa.enabled

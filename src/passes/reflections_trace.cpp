@@ -20,6 +20,9 @@ void validate(const ReflectionSettings& s) {
          s.mirrorRoughness, s.maxTracedRoughness);
   if (!(s.hitRegularization >= 0.0f && s.hitRegularization <= 16.0f))
     fail("reflection hit regularization {}: expected 0 (none) to 16", s.hitRegularization);
+  if (!(s.mirrorDirectionToleranceDegrees >= 0.0f && s.mirrorDirectionToleranceDegrees <= 180.0f))
+    fail("reflection mirror direction tolerance {} degrees: expected 0 to 180",
+         s.mirrorDirectionToleranceDegrees);
   if (s.materialTextureSide > 16384)
     fail("reflection material texture side {}: expected 0 (full resolution) to 16384",
          s.materialTextureSide);
@@ -65,6 +68,8 @@ gpu::ReflectionPassConstants ReflectionsTracePass::constants(const FrameContext&
   c.materialTextureSide = settings_.materialTextureSide;
   c.seed = settings_.seed;
   c.hitRegularization = settings_.hitRegularization;
+  c.mirrorDirectionCosine =
+      std::cos(settings_.mirrorDirectionToleranceDegrees * float(M_PI) / 180.0f);
   return c;
 }
 

@@ -32,6 +32,19 @@ struct ReflectionSettings {
   // GGX sample: the lobe is then narrower than a pixel's footprint, so sampling it only adds
   // noise (roughness 0.05 is a lobe of about 0.3 degrees). 0 = always sample the lobe.
   float mirrorRoughness = 0.05f;
+  // Mirrors (roughness below mirrorRoughness) trace their own ray at a render pixel
+  // (reflections-trace-mirrors) where the traced rays reflections-upsample reads there reflect
+  // more than mirrorDirectionToleranceDegrees away from the pixel's own mirror direction. A
+  // mirror shows what its exact direction sees, and on a curved mirror that direction turns by
+  // twice the normal's turn per pixel: a shared ray shows the neighbour's view (on `spheres` at
+  // 96x54 the roughness-0.02 balls' lower halves showed the lit floor where the dark floor
+  // under the ball belongs). A flat mirror's pixels reflect nearly parallel rays, so a window
+  // keeps its shared, denoised rays. Own rays skip reuse and the denoiser (a mirror's one
+  // direction has no lobe noise; what is left is the hit's light samples, which TAA averages).
+  // false: mirrors are upsampled like every other surface. Tolerance 0 = every mirror pixel
+  // traces its own ray; 0 to 180. Default true, 1 degree (both presets).
+  bool mirrorsAtFullResolution = true;
+  float mirrorDirectionToleranceDegrees = 1.0f;
   // Perceptual roughness above which no ray is traced and the specular light is the diffuse
   // GI's irradiance / pi, the cosine-weighted mean of incident light: a lobe that wide sees
   // nearly what the diffuse lobe sees, and one ray per pixel of it would be as noisy as diffuse
@@ -92,6 +105,8 @@ struct ReflectionSettings {
 
   bool enabled() const { return divisor != 0; }
   bool reuseEnabled() const { return enabled() && reuse; }
+  // Whether reflections-trace-mirrors runs (at divisor 1 every pixel has its own ray anyway).
+  bool mirrorPassEnabled() const { return mirrorsAtFullResolution && divisor > 1; }
   // The traced image's size for a render resolution.
   VkExtent2D resolution(VkExtent2D render) const {
     return graph::ImageSize::dividedRes(divisor).resolve(render);
