@@ -19,7 +19,15 @@ layout(local_size_x = DI_GROUP_SIZE, local_size_y = DI_GROUP_SIZE) in;
 layout(set = 1, binding = DI_SPATIAL_BINDING_INPUT, rgba32ui) uniform readonly uimage2D reservoirs;
 layout(set = 1, binding = DI_SPATIAL_BINDING_OUTPUT, rgba32ui) uniform writeonly uimage2D reservoirOut;
 
+layout(constant_id = DI_SPEC_SPATIAL_TRACED_CORRECTION) const uint SPEC_TRACED_CORRECTION = DI_SPEC_ANY;
+
 const uint MAX_DI_SPATIAL_SAMPLES = 8u;
+
+// Whether the bias correction traces a shadow ray per neighbour (DI_FLAG_UNBIASED).
+bool tracedCorrection(DiConstants di) {
+  if (SPEC_TRACED_CORRECTION != DI_SPEC_ANY) return SPEC_TRACED_CORRECTION != 0u;
+  return (di.flags & DI_FLAG_UNBIASED) != 0u;
+}
 
 // A pixel uniformly in the disc around `pixel` (never the pixel itself).
 ivec2 neighbourPixel(ivec2 pixel, float radius, vec2 u) {
@@ -30,22 +38,39 @@ ivec2 neighbourPixel(ivec2 pixel, float radius, vec2 u) {
   return pixel + offset;
 }
 
+// The i-th neighbour the stream drew and its reservoir's M (0 where its surface is not similar
+// to s's): a pure function of the random key, so that normalisation() finds the same neighbours
+// again instead of keeping them in arrays (which went to local memory).
+ivec2 drawNeighbour(FrameConstants f, DiConstants di, DiSurface s, ivec2 pixel, inout uvec4 key, out vec4 u, out DiSurface q,
+                    out DiReservoir n) {
+  u = diRandom(key);
+  ivec2 neighbour = neighbourPixel(pixel, di.spatialRadius, u.xy);
+  q = loadDiSurface(f, neighbour);
+  n = emptyDiReservoir();
+  if (q.valid && diSimilarSurface(di, s.depth, s.normal, q.depth, q.normal)) n = unpackDiReservoir(imageLoad(reservoirs, neighbour));
+  return neighbour;
+}
+
 // Z of the kept sample: the M of every input whose target at its own pixel is positive for it.
 // The input the sample came from (`kept`, -1: this pixel's own) needs no evaluation in the basic
 // correction: its reservoir holds the sample with W > 0, so its target there was positive.
-float normalisation(FrameConstants f, DiConstants di, DiReservoir r, float ownM, ivec2 neighbours[MAX_DI_SPATIAL_SAMPLES],
-                    float neighbourM[MAX_DI_SPATIAL_SAMPLES], uint count, int kept) {
+// `key`: the random key as it was before the first neighbour was drawn.
+float normalisation(FrameConstants f, DiConstants di, DiSurface s, DiReservoir r, float ownM, ivec2 pixel, uvec4 key, uint count,
+                    int kept) {
   float Z = ownM;
-  bool traced = (di.flags & DI_FLAG_UNBIASED) != 0u;
+  bool traced = tracedCorrection(di);
   [[dont_unroll]] for (uint i = 0u; i < count; ++i) {
-    if (!(neighbourM[i] > 0.0)) continue;
+    vec4 u;
+    DiSurface q;
+    DiReservoir n;
+    drawNeighbour(f, di, s, pixel, key, u, q, n);
+    if (!(n.M > 0.0)) continue;
     if (!traced && int(i) == kept) {
-      Z += neighbourM[i];
+      Z += n.M;
       continue;
     }
-    DiSurface q = loadDiSurface(f, neighbours[i]);
     DiLight l = evaluateDiLight(q, r.light, r.u);
-    if (diTarget(l) > 0.0 && (!traced || diVisible(q, l))) Z += neighbourM[i];
+    if (diTarget(l) > 0.0 && (!traced || diVisible(q, l))) Z += n.M;
   }
   return Z;
 }
@@ -68,23 +93,20 @@ void main() {
       target = ownTarget;
     uint count = own.M < di.disocclusionM ? di.disocclusionSamples : di.spatialSamples;
     count = min(count, MAX_DI_SPATIAL_SAMPLES);
-    ivec2 neighbours[MAX_DI_SPATIAL_SAMPLES];
-    float neighbourM[MAX_DI_SPATIAL_SAMPLES];
+    uvec4 neighboursKey = key;
     [[dont_unroll]] for (uint i = 0u; i < count; ++i) {
-      vec4 u = diRandom(key);
-      neighbours[i] = neighbourPixel(pixel, di.spatialRadius, u.xy);
-      neighbourM[i] = 0.0;
-      DiSurface q = loadDiSurface(f, neighbours[i]);
-      if (!q.valid || !diSimilarSurface(di, s.depth, s.normal, q.depth, q.normal)) continue;
-      DiReservoir n = unpackDiReservoir(imageLoad(reservoirs, neighbours[i]));
-      neighbourM[i] = n.M;
+      vec4 u;
+      DiSurface q;
+      DiReservoir n;
+      drawNeighbour(f, di, s, pixel, key, u, q, n);
+      if (!(n.M > 0.0)) continue;
       float t = diTarget(evaluateDiLight(s, n.light, n.u));
       if (diStream(r, weightSum, n.light, n.u, t * n.W * n.M, n.M, u.z)) {
         target = t;
         kept = int(i);
       }
     }
-    float Z = r.light == DI_NO_LIGHT ? 0.0 : normalisation(f, di, r, own.M, neighbours, neighbourM, count, kept);
+    float Z = r.light == DI_NO_LIGHT ? 0.0 : normalisation(f, di, s, r, own.M, pixel, neighboursKey, count, kept);
     r.W = diContributionWeight(weightSum, target, Z);
   }
   imageStore(reservoirOut, pixel, packDiReservoir(r));

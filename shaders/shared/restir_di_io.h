@@ -84,6 +84,10 @@ BOUNCE_CONST uint DI_CANDIDATES_BINDING_COUNT = 6u;
 // DI_SPEC_ANY (a pipeline created without it) reads DiConstants.
 BOUNCE_CONST uint DI_SPEC_BRDF_CANDIDATE = 1u;
 BOUNCE_CONST uint DI_SPEC_ANY = 2u;
+// Specialization constant of di-spatial (PASS_SPEC_FIRST): 1 with the ray-traced bias
+// correction (DI_FLAG_UNBIASED), 0 without, so that the driver drops its traversal (whose stack
+// spilled to local memory with the neighbours' arrays); DI_SPEC_ANY reads DiConstants.
+BOUNCE_CONST uint DI_SPEC_SPATIAL_TRACED_CORRECTION = 1u;
 // di-trace-candidate-visibility's groups: tiles of this many pixels squared, whose rays it bins
 // by direction (rt/ray_bins.glsl)
 BOUNCE_CONST uint DI_VISIBILITY_GROUP_SIDE = 16u;

@@ -4,8 +4,17 @@ namespace bounce {
 
 using graph::Access;
 
-DiSpatialPass::DiSpatialPass(vk::Context& context, const GpuScene& scene)
-    : pass_(context, scene, "di/di_spatial", gpu::DI_SPATIAL_BINDING_COUNT) {}
+namespace {
+
+std::array<uint32_t, 1> correctionSpecialization(bool tracedCorrection) {
+  return {tracedCorrection ? 1u : 0u};
+}
+
+}  // namespace
+
+DiSpatialPass::DiSpatialPass(vk::Context& context, const GpuScene& scene, bool tracedCorrection)
+    : pass_(context, scene, "di/di_spatial", gpu::DI_SPATIAL_BINDING_COUNT,
+            correctionSpecialization(tracedCorrection)) {}
 
 graph::ImageHandle DiSpatialPass::declare(graph::FrameGraph& graph, const DiFrame& f,
                                           graph::ImageHandle reservoirs) {

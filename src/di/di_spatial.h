@@ -8,7 +8,9 @@ namespace bounce {
 
 class DiSpatialPass {
  public:
-  DiSpatialPass(vk::Context& context, const GpuScene& scene);
+  // `tracedCorrection`: whether DiConstants::flags has DI_FLAG_UNBIASED (the ray-traced bias
+  // correction; DI_SPEC_SPATIAL_TRACED_CORRECTION).
+  DiSpatialPass(vk::Context& context, const GpuScene& scene, bool tracedCorrection);
   // di.spatial: the reservoirs after spatial reuse.
   graph::ImageHandle declare(graph::FrameGraph& graph, const DiFrame& f,
                              graph::ImageHandle reservoirs);

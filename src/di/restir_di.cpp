@@ -61,7 +61,8 @@ RestirDi::RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& 
                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "di.constants");
   if (settings.reuses()) {
     temporal_.emplace(context, gpuScene);
-    if (c.flags & gpu::DI_FLAG_SPATIAL) spatial_.emplace(context, gpuScene);
+    if (c.flags & gpu::DI_FLAG_SPATIAL)
+      spatial_.emplace(context, gpuScene, (c.flags & gpu::DI_FLAG_UNBIASED) != 0);
   }
   if (settings.denoiser != DiDenoiser::None) denoise_.emplace(context, gpuScene, settings.denoiser);
 }
