@@ -32,6 +32,15 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) coherent buffer Gi1
   Gi10Counters v;
 };
 
+// Adds one to the statistics counter `field` of Gi10Counters for every lane that runs it, with
+// one atomic per subgroup: a per-lane atomic on one address from every probe ray serialised
+// (`k` is the including pass's Gi10Constants).
+#define GI10_COUNT(k, field)                                                    \
+  {                                                                             \
+    uint lanes_ = subgroupBallotBitCount(subgroupBallot(true));                 \
+    if (subgroupElect()) atomicAdd(Gi10CountersRef(k.counters).v.field, lanes_); \
+  }
+
 // ---- the probe's hemisphere ------------------------------------------------------------------
 // Capsaicin maps a probe's hemisphere hemi-octahedrally (§1.3). Here the 8x8 cells are equal
 // in solid angle instead (2 pi / 64 each): Shirley & Chiu's concentric square-to-disk map, then

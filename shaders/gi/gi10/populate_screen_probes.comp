@@ -133,7 +133,7 @@ void main() {
     direct = directLight(f, s, -rayDir, seed.yzwx, alphaTest);
     albedo = indirectHitReflectance(f.specularAlbedo, s.brdf, s.shadingNormal, -rayDir);
     if (feedback(f, k, s.position, s.geometricNormal, indirect)) {
-      atomicAdd(Gi10CountersRef(k.counters).v.feedbackHits, 1u);
+      GI10_COUNT(k, feedbackHits)
       break;
     }
     rayOrigin = offsetRayOrigin(s.position, s.geometricNormal);
@@ -146,15 +146,15 @@ void main() {
     uint slot = gi10FindOrInsertCell(cache, key);
     if (slot != GI10_NO_CELL) {
       gi10AddCellSample(cache, slot, hitSample, k.frame);
-      atomicAdd(Gi10CountersRef(k.counters).v.cacheInserts, 1u);
+      GI10_COUNT(k, cacheInserts)
     } else {
-      atomicAdd(Gi10CountersRef(k.counters).v.cacheOverflow, 1u);
+      GI10_COUNT(k, cacheOverflow)
     }
     if (slot == GI10_NO_CELL || ray.hitDistance < key.size) ray.radiance += hitSample;
     else ray.cell = slot;
   }
   uint rayIndex = spawnIndex * GI10_PROBE_CELLS + cellIndex;
   Gi10RaysRef(k.rays).v[rayIndex] = ray;
-  atomicAdd(Gi10CountersRef(k.counters).v.probeRays, 1u);
-  if (cellIndex == 0u) atomicAdd(Gi10CountersRef(k.counters).v.spawnedProbes, 1u);
+  GI10_COUNT(k, probeRays)
+  if (cellIndex == 0u) GI10_COUNT(k, spawnedProbes)
 }

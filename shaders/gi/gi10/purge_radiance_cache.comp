@@ -21,5 +21,5 @@ void main() {
     cache.v[slot].scratch = uvec4(0u);
     return;
   }
-  atomicAdd(Gi10CountersRef(k.counters).v.liveCells, 1u);
+  GI10_COUNT(k, liveCells)
 }

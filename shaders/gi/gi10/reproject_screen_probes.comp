@@ -83,7 +83,7 @@ void main() {
   if (!spawned && !reprojected) {
     if (lane == 0u) {
       probes.v[tileIndex].flags = 0u;
-      if (anySurface != 0u) atomicAdd(Gi10CountersRef(k.counters).v.emptyTiles, 1u);
+      if (anySurface != 0u) GI10_COUNT(k, emptyTiles)
     }
     return;
   }
@@ -99,7 +99,7 @@ void main() {
     p.depth = anchorDepth;
     p.flags = GI10_PROBE_VALID | (reprojected ? GI10_PROBE_HISTORY : 0u) | (spawned ? GI10_PROBE_SPAWNED : 0u);
     probes.v[tileIndex] = p;
-    if (reprojected) atomicAdd(Gi10CountersRef(k.counters).v.reprojectedProbes, 1u);
+    if (reprojected) GI10_COUNT(k, reprojectedProbes)
   }
   if (!reprojected) return;
 
