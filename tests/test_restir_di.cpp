@@ -26,6 +26,7 @@
 #include "rt/gpu_scene.h"
 #include "scene/animation.h"
 #include "scene/load.h"
+#include "scene/procedural/mesh_builder.h"
 #include "scene/scene_options.h"
 #include "tools/image_io.h"
 #include "tools/metrics.h"
@@ -122,6 +123,83 @@ TEST(RestirDi, FinalVisibilityDropsHiddenLightsFromTheHistory) {
   EXPECT_GT(visibleHeld, 0u);
   EXPECT_EQ(visiblePassedOn, visibleHeld);
   EXPECT_EQ(context.validationErrorCount(), 0u);
+}
+
+// A wall that moves between the point light and the floor's right half: the floor there stays
+// lit in di-shade's output for as long as its pixels take their kept sample's visibility from
+// an earlier final shadow ray (DiSettings::finalVisibilityMaxAge frames, RTXDI's
+// reuseFinalVisibility), and is dark after that. With the reuse off it is dark in the first
+// frame after the move; with it on, the first frame still shows most of the light (the reuse
+// is in effect), and frame maxAge + 1 none. The mean of di-shade's radiance over the right
+// half, against its level before the move.
+struct OccluderMove {
+  double before = 0.0;
+  std::vector<double> after;  // frames 1, 2, ... after the wall moved in
+};
+
+OccluderMove moveWallIn(uint32_t finalVisibilityMaxAge) {
+  using namespace procedural;
+  constexpr uint32_t kWidth = 48, kHeight = 32;
+  // wallScene's floor, light and camera; its wall as an instance of its own, first parked
+  // under the floor.
+  Scene scene = wallScene();
+  scene.instances.clear();
+  scene.meshes.clear();
+  const uint32_t white = 0;
+  MeshBuilder floorMesh;
+  addBox(floorMesh.geometry(white), Aabb{{-4.0f, -0.1f, -4.0f}, {4.0f, 0.0f, 4.0f}});
+  addMeshInstance(scene, floorMesh.build("floor"));
+  MeshBuilder wallMesh;
+  addBox(wallMesh.geometry(white), Aabb{{-0.05f, 0.0f, -4.0f}, {0.05f, 2.0f, 4.0f}});
+  const uint32_t wall = addMeshInstance(scene, wallMesh.build("moving_wall"));
+  std::vector<glm::mat4> transforms(scene.instances.size(), glm::mat4(1.0f));
+  transforms[wall] = translation({0.0f, -5.0f, 0.0f});
+  const Camera camera = effectiveCamera(scene);
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  DiSettings di;
+  di.finalVisibilityMaxAge = finalVisibilityMaxAge;
+  HybridFrame frame(context, gpuScene, scene, diSettings(kWidth, kHeight, di));
+  frame.requestDebugView("di-shade");
+  auto rightHalfMean = [&] {
+    const ImageRGBA32F image = frame.debugViewImage("di-shade");
+    EXPECT_EQ(countNonFinitePixels(image), 0u);
+    double sum = 0.0;
+    int n = 0;
+    for (uint32_t y = 0; y < kHeight; ++y)
+      for (uint32_t x = kWidth / 2 + 8; x < kWidth; ++x, ++n)
+        sum += luminance(glm::vec3(image.at(int(x), int(y))));
+    return sum / n;
+  };
+  OccluderMove out;
+  frame.setInstanceTransforms(transforms);
+  for (int i = 0; i < 16; ++i) frame.render(camera);
+  out.before = rightHalfMean();
+  transforms[wall] = glm::mat4(1.0f);
+  frame.setInstanceTransforms(transforms);
+  for (int i = 0; i < 8; ++i) {
+    frame.render(camera);
+    out.after.push_back(rightHalfMean());
+  }
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+  return out;
+}
+
+TEST(RestirDi, ReusedFinalVisibilityFollowsAMovingOccluderWithinItsMaxAge) {
+  constexpr uint32_t kMaxAge = 4;
+  const OccluderMove traced = moveWallIn(0), reused = moveWallIn(kMaxAge);
+  std::printf("right half's DI before the wall moved in: %.4f; after, frames 1-8:\n",
+              traced.before);
+  for (const OccluderMove* run : {&traced, &reused}) {
+    std::printf("  %s:", run == &traced ? "always traced" : "reused up to 4 frames");
+    for (double v : run->after) std::printf(" %.4f", v / run->before);
+    std::printf("\n");
+  }
+  ASSERT_GT(traced.before, 0.0);
+  EXPECT_LT(traced.after[0], 0.01 * traced.before);
+  EXPECT_GT(reused.after[0], 0.5 * reused.before) << "the reuse is not in effect";
+  for (size_t k = kMaxAge; k < reused.after.size(); ++k)
+    EXPECT_LT(reused.after[k], 0.01 * reused.before) << "frame " << k + 1 << " after the move";
 }
 
 // Issue 20, "unbiased": the unbiased configuration's estimate of direct light, the mean of 64

@@ -81,6 +81,9 @@ struct DiReservoir {
   vec2 u;      // the light's primary sample
   float W;     // unbiased contribution weight
   float M;     // confidence
+  // Frames since di-shade's final shadow ray found this sample visible from this pixel;
+  // DI_VISIBILITY_UNKNOWN: never (a new candidate, a neighbour's sample)
+  uint visibleAge;
 };
 
 DiReservoir emptyDiReservoir() {
@@ -89,17 +92,25 @@ DiReservoir emptyDiReservoir() {
   r.u = vec2(0.0);
   r.W = 0.0;
   r.M = 0.0;
+  r.visibleAge = DI_VISIBILITY_UNKNOWN;
   return r;
 }
 
 uvec4 packDiReservoir(DiReservoir r) {
-  return uvec4(r.light, packUnorm2x16(r.u), floatBitsToUint(r.W), floatBitsToUint(r.M));
+  uint light = r.light == DI_NO_LIGHT ? DI_NO_LIGHT : r.light | (min(r.visibleAge, DI_VISIBILITY_UNKNOWN) << DI_VISIBLE_AGE_SHIFT);
+  return uvec4(light, packUnorm2x16(r.u), floatBitsToUint(r.W), floatBitsToUint(r.M));
+}
+
+// The sample of a packed reservoir, without its visibility age: equal for the same point y.
+uvec2 packedDiSample(uvec4 packed) {
+  return uvec2(packed.x == DI_NO_LIGHT ? DI_NO_LIGHT : packed.x & ~DI_VISIBLE_AGE_MASK, packed.y);
 }
 
 // Anything non-finite or negative reads as an empty reservoir: NaN never enters history.
 DiReservoir unpackDiReservoir(uvec4 v) {
   DiReservoir r;
-  r.light = v.x;
+  r.light = v.x == DI_NO_LIGHT ? DI_NO_LIGHT : v.x & ~DI_VISIBLE_AGE_MASK;
+  r.visibleAge = v.x == DI_NO_LIGHT ? DI_VISIBILITY_UNKNOWN : (v.x & DI_VISIBLE_AGE_MASK) >> DI_VISIBLE_AGE_SHIFT;
   r.u = unpackUnorm2x16(v.y);
   r.W = uintBitsToFloat(v.z);
   r.M = uintBitsToFloat(v.w);
@@ -110,6 +121,8 @@ DiReservoir unpackDiReservoir(uvec4 v) {
 
 // Weighted reservoir sampling (Chao 1982; Bitterli et al. 2020, Alg. 2): keeps `light`, `u` with
 // probability w / (sum of w so far); true when it is kept.
+// The kept sample's visibility is unknown from here on; a caller that keeps one whose age it
+// knows (the pixel's own history) sets visibleAge after.
 bool diStream(inout DiReservoir r, inout float weightSum, uint light, vec2 u, float w, float M, float random) {
   r.M += M;
   if (!(w > 0.0)) return false;
@@ -117,6 +130,7 @@ bool diStream(inout DiReservoir r, inout float weightSum, uint light, vec2 u, fl
   if (random * weightSum >= w) return false;
   r.light = light;
   r.u = u;
+  r.visibleAge = DI_VISIBILITY_UNKNOWN;
   return true;
 }
 

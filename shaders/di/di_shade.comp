@@ -9,7 +9,10 @@
 // shaded and the final shadow ray found it blocked (RTXDI stores the final visibility in the
 // reservoir and discards invisible samples). So no later frame reuses a light this pixel was
 // seen not to see, even where the candidates had no shadow ray of their own
-// (DiSettings::candidateVisibility). W V(y) is an unbiased contribution weight of the
+// (DiSettings::candidateVisibility). Where the ray found it visible, the history notes so
+// (the reservoir's visibility age, 0), and for finalVisibilityMaxAge frames di-shade takes that
+// sample as visible without a ray (RTXDI's reuseFinalVisibility); a shadow cast by a moving
+// object on a kept sample then lags by up to that many frames. W V(y) is an unbiased contribution weight of the
 // visible integrand whenever it is applied. The spatial output is not what is fed back: its
 // "basic" bias correction would then compound frame over frame (docs/di.md).
 #version 460
@@ -47,10 +50,15 @@ void main() {
   DiReservoir r = unpackDiReservoir(shaded);
   vec3 radiance = vec3(0.0);
   float visibility = -1.0;
+  bool traced = false;
   if (s.valid && r.W > 0.0) {
     DiLight l = evaluateDiLightExact(s, r.light, r.u);
     if (any(greaterThan(l.contribution, vec3(0.0)))) {
-      bool visible = diVisible(s, l);
+      // RTXDI's final visibility reuse: a sample this pixel's own ray found visible fewer than
+      // finalVisibilityMaxAge frames ago is taken as visible (a hidden one was dropped then).
+      bool known = r.visibleAge < di.finalVisibilityMaxAge;
+      traced = !known;
+      bool visible = known || diVisible(s, l);
       visibility = visible ? 1.0 : 0.0;
       radiance = visible ? l.contribution * r.W : vec3(0.0);
     }
@@ -58,7 +66,10 @@ void main() {
   // The same light and u are the same point y, whichever pixel's reservoir it came through.
   uvec4 continued = imageLoad(temporalReservoirs, pixel);
   DiReservoir history = unpackDiReservoir(continued);
-  if (visibility == 0.0 && continued.xy == shaded.xy) history.W = 0.0;
+  if (traced && packedDiSample(continued) == packedDiSample(shaded)) {
+    if (visibility == 0.0) history.W = 0.0;
+    else history.visibleAge = 0u;
+  }
   imageStore(finalReservoirOut, pixel, packDiReservoir(history));
   // Nothing non-finite leaves the pass (composite and later temporal passes read it).
   if (any(isnan(radiance)) || any(isinf(radiance))) radiance = vec3(0.0);

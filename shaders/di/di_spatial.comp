@@ -89,8 +89,10 @@ void main() {
     float weightSum = 0.0, target = 0.0;
     int kept = -1;
     float ownTarget = diTarget(evaluateDiLight(s, own.light, own.u));
-    if (diStream(r, weightSum, own.light, own.u, ownTarget * own.W * own.M, own.M, diRandom(key).x))
+    if (diStream(r, weightSum, own.light, own.u, ownTarget * own.W * own.M, own.M, diRandom(key).x)) {
       target = ownTarget;
+      r.visibleAge = own.visibleAge;  // this pixel's own sample: its final visibility holds
+    }
     uint count = own.M < di.disocclusionM ? di.disocclusionSamples : di.spatialSamples;
     count = min(count, MAX_DI_SPATIAL_SAMPLES);
     uvec4 neighboursKey = key;

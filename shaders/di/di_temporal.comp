@@ -52,8 +52,11 @@ void main() {
       target = candidateTarget;
     float historyTarget = history.M > 0.0 ? diTarget(evaluateDiLight(s, history.light, history.u)) : 0.0;
     if (diStream(r, weightSum, history.light, history.u, historyTarget * history.W * history.M, history.M,
-                 diRandom(key).x))
+                 diRandom(key).x)) {
       target = historyTarget;
+      // Its final visibility (di-shade) is a frame older.
+      r.visibleAge = min(history.visibleAge + 1u, DI_VISIBILITY_UNKNOWN);
+    }
     r.W = diContributionWeight(weightSum, target, r.M);
   }
   imageStore(reservoirOut, pixel, packDiReservoir(r));

@@ -17,9 +17,11 @@
 // The target function is p_hat = luminance(contribution) without visibility (RTXDI's choice:
 // visibility enters through the initial and final visibility rays).
 //
-// Reservoir (one RGBA32UI texel, 16 bytes): x light (DI_NO_LIGHT: none), y u as two unorm16,
-// z W (float bits; the unbiased contribution weight, 1/pdf in u-space x selection), w M (float
-// bits; the confidence, candidates' reservoirs have M = 1).
+// Reservoir (one RGBA32UI texel, 16 bytes): x light (DI_NO_LIGHT: none; the index in the low
+// 24 bits, DI_LIGHT_DISTANT, and in bits 24-30 the frames since di-shade's final shadow ray
+// found the sample visible from this pixel, DI_VISIBILITY_UNKNOWN where it never did), y u as
+// two unorm16, z W (float bits; the unbiased contribution weight, 1/pdf in u-space x
+// selection), w M (float bits; the confidence, candidates' reservoirs have M = 1).
 #ifndef BOUNCE_SHARED_RESTIR_DI_IO_H
 #define BOUNCE_SHARED_RESTIR_DI_IO_H
 #include "shared/compat.h"
@@ -28,6 +30,10 @@ BOUNCE_BEGIN_SHARED
 
 BOUNCE_CONST uint DI_NO_LIGHT = 0xFFFFFFFFu;
 BOUNCE_CONST uint DI_LIGHT_DISTANT = 0x80000000u;  // bit of a distant light's index
+BOUNCE_CONST uint DI_MAX_LIGHTS = 0x01000000u;     // local and distant lights each below this
+BOUNCE_CONST uint DI_VISIBLE_AGE_SHIFT = 24u;      // the reservoir's visibility age, 7 bits
+BOUNCE_CONST uint DI_VISIBLE_AGE_MASK = 0x7F000000u;
+BOUNCE_CONST uint DI_VISIBILITY_UNKNOWN = 127u;
 
 BOUNCE_CONST uint DI_FLAG_TEMPORAL = 1u;  // di-temporal merges the reprojected history
 BOUNCE_CONST uint DI_FLAG_SPATIAL = 2u;   // di-spatial merges neighbours
@@ -52,8 +58,12 @@ struct DiConstants {
   float spatialRadius;      // pixels
   uint seed;                // mixed into every random number of the chain
   DeviceAddress lightGrid;  // DiLightGrid (shared/di_light_grid_io.h); 0: no grid
+  // di-shade takes a sample's visibility as its final shadow ray found it (visible) up to this
+  // many frames ago instead of tracing again; 0: always traces
+  uint finalVisibilityMaxAge;
+  uint pad0;
 };
-BOUNCE_CHECK_SIZE(DiConstants, 72);
+BOUNCE_CHECK_SIZE(DiConstants, 80);
 
 // Push constants of every DI pass.
 struct DiPassConstants {

@@ -84,7 +84,9 @@ ImageRGBA32F decodeDiReservoirView(const graph::DebugView& view) {
   for (size_t i = 0; i < texels; ++i) {
     uint32_t t[4];
     std::memcpy(t, view.bytes.data() + 16 * i, sizeof(t));
-    out.pixels[4 * i] = t[0] == gpu::DI_NO_LIGHT ? -1.0f : float(t[0] & ~gpu::DI_LIGHT_DISTANT);
+    out.pixels[4 * i] = t[0] == gpu::DI_NO_LIGHT
+                            ? -1.0f
+                            : float(t[0] & ~(gpu::DI_LIGHT_DISTANT | gpu::DI_VISIBLE_AGE_MASK));
     out.pixels[4 * i + 1] = std::bit_cast<float>(t[3]);
     out.pixels[4 * i + 2] = std::bit_cast<float>(t[2]);
     out.pixels[4 * i + 3] = 0.0f;

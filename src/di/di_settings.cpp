@@ -84,6 +84,9 @@ void validate(const DiSettings& s) {
         "DI light grid candidates {}: at most {} (one of the {} light candidates stays the alias "
         "table's)",
         s.lightGridCandidates, s.lightCandidates - 1, s.lightCandidates);
+  if (s.finalVisibilityMaxAge > 64)
+    fail("DI final visibility max age {}: expected 0 (always trace) to 64 frames",
+         s.finalVisibilityMaxAge);
   if (s.unbiased && s.candidateVisibility != DiCandidateVisibility::On)
     fail(
         "DI unbiased configuration without candidate visibility: the ray-traced correction "

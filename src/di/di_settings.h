@@ -105,6 +105,14 @@ struct DiSettings {
   // which reaches every light, so the estimate stays unbiased where the cell's bound misses one
   // (ReGIR's fallback; light_grid.glsl). At least one candidate always stays the alias table's.
   uint32_t lightGridCandidates = 6;
+  // di-shade's final shadow ray is not traced again for a sample that this pixel's own final
+  // ray found visible fewer than this many frames ago (RTXDI's reuseFinalVisibility and
+  // finalVisibilityMaxAge): the sample is kept through di-temporal and taken as visible (a
+  // hidden one was dropped when its ray found it hidden). Saves most final rays on a steady
+  // view; a shadow that a moving object casts on a kept sample lags by up to this many frames
+  // (moved or switched lights drop the reservoirs anyway). 0 = always trace (the unbiased
+  // configuration's). 0 to 64. Default 4.
+  uint32_t finalVisibilityMaxAge = 4;
   // Ray-traced bias correction in di-spatial (--di-unbiased): a shadow ray per neighbour to
   // count only the neighbours that could have produced the kept sample (Bitterli et al. 2020,
   // Alg. 6). Off (default, RTXDI's "basic"): no rays; slightly dark near shadow edges.
@@ -133,6 +141,7 @@ struct DiSettings {
     DiSettings s;
     s.unbiased = true;
     s.candidateVisibility = DiCandidateVisibility::On;
+    s.finalVisibilityMaxAge = 0;
     return s;
   }
 };

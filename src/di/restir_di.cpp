@@ -37,6 +37,7 @@ gpu::DiConstants makeConstants(const DiSettings& s, const GpuLightTables& lights
   c.disocclusionM = s.disocclusionM;
   c.spatialRadius = s.spatialRadius;
   c.seed = s.seed;
+  c.finalVisibilityMaxAge = s.unbiased ? 0u : s.finalVisibilityMaxAge;
   return c;
 }
 
@@ -51,6 +52,11 @@ RestirDi::RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& 
   const glm::vec3 extent = gpuScene.bounds().empty() ? glm::vec3(1.0f) : gpuScene.bounds().extent();
   dropDistance_ = kDropMove * std::max({extent.x, extent.y, extent.z});
   if (lights_.localLightCount() == 0 && lights_.distantLightCount() == 0) return;
+  // A reservoir keeps the light's index in 24 bits (shared/restir_di_io.h).
+  if (lights_.localLightCount() >= gpu::DI_MAX_LIGHTS ||
+      lights_.distantLightCount() >= gpu::DI_MAX_LIGHTS)
+    fail("ReSTIR DI: {} local and {} distant lights: at most {} of each", lights_.localLightCount(),
+         lights_.distantLightCount(), gpu::DI_MAX_LIGHTS - 1);
   if (lights_.localLightCount() >= settings.lightGridThreshold)
     grid_.emplace(context, gpuScene, settings, gpuScene.bounds());
   const gpu::DiConstants c = makeConstants(settings, lights_, grid_ ? grid_->address() : 0);
