@@ -31,7 +31,7 @@ const uint RANDOM_REFLECTION_MIRROR_HIT = 0x52460004u;
 
 #include "passes/reflection_hit.glsl"
 
-// Whether the pixel is a mirror that reflections-trace left to this pass (its rule).
+// Whether the pixel is a mirror (reflections-trace's rule: below mirrorRoughness, not Lambert).
 bool isMirror(FrameConstants f, ivec2 pixel) {
   if ((imageLoad(flags, pixel).x & GBUFFER_FLAG_SURFACE) == 0u) return false;
   if ((f.flags & FRAME_FLAG_LAMBERT) != 0u) return false;
@@ -87,10 +87,12 @@ vec3 mirrorRadiance(FrameConstants f, ivec2 pixel) {
   float alpha = makeBrdfMaterial(vec3(1.0), 0.0, imageLoad(emissives, pixel).w, false).alpha;
   uint seed = f.frameIndex ^ (pc.seed * 0x9E3779B9u);
   uvec4 key = pcg4d(uvec4(pixel, seed, RANDOM_REFLECTION_MIRROR_HIT));
+  // incomingRadiance also describes the hit as a reservoir sample, which only the reuse passes
+  // of reflections-trace's rays need.
   float hitDistance;
-  Reservoir unused = emptyReservoir();
-  unused.origin = offsetRayOrigin(position, ng);
-  return incomingRadiance(f, unused.origin, dir, alpha, key, hitDistance, unused);
+  Reservoir ignoredSample = emptyReservoir();
+  ignoredSample.origin = offsetRayOrigin(position, ng);
+  return incomingRadiance(f, ignoredSample.origin, dir, alpha, key, hitDistance, ignoredSample);
 }
 
 void main() {
