@@ -369,13 +369,13 @@ double rowMeanRatio(const SpheresComparison& c, int row) {
 
 // Issue 19's static test: relMSE at most 0.05 (less the reference's own noise share, measured
 // from its batches), the image's mean within 3 %, each metal row's mean within 5 %. Disabled:
-// it fails. Measured (lavapipe, 96x54): relMSE 0.566 (reference noise share 0.0035), mean
-// 0.998, metal rows 1.068 / 1.021. Four pixels of one sun glint on the roughness-0.2 white
+// it fails. Measured (lavapipe, 96x54): relMSE 0.514 (reference noise share 0.0035), mean
+// 0.999, metal rows 1.067 / 1.023. Four pixels of one sun glint on the roughness-0.2 white
 // metal ball hold 0.31 (67-146 against 5-11: half-resolution glossy rays upsampled across a
-// normal that turns ~12 degrees a pixel; gone at divisor 1), a mirror ball's reflection of
-// another mirror ball 0.05 (the cache's irradiance at the second mirror). Before mirrors traced
-// their own rays (reflections-trace-mirrors): 1.208. docs/reflections.md, "`spheres` against
-// the reference". 29 s on a quiet machine.
+// normal that turns ~12 degrees a pixel; gone at divisor 1). Before mirrors traced their own
+// rays (reflections-trace-mirrors): 1.208; before a mirror seen in a mirror was followed by one
+// more ray: 0.566. docs/reflections.md, "`spheres` against the reference". 26-29 s on a quiet
+// machine.
 TEST(SpecularSpheres, DISABLED_StaticFramesMatchTheReference) {
   const SpheresComparison c = compareSpheres();
   EXPECT_EQ(c.validationErrors, 0u);

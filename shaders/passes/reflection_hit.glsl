@@ -39,41 +39,68 @@ vec3 hitDirectLight(FrameConstants f, Surface s, vec3 wo, uvec4 key, float minAl
   return sum;
 }
 
-// Light from the 3rd vertex on, reflected at x2 (seed 000, "Clipmap for 3rd+ vertices"): the
-// cache's irradiance / pi, reflected by both lobes of x2 with the split-sum albedo, as composite
-// reflects the diffuse light on rough surfaces. The diffuse lobe alone (what the GI's cache
-// bounce uses) would make every metal seen in a reflection black but for its direct highlights:
-// on `spheres` the metal rows came out 6 % and 10 % darker than the reference that way.
-vec3 hitCacheLight(Surface s, vec3 wo, uint seed) {
-  if (pc.cache == 0ul) return vec3(0.0);
+// Light from the 3rd vertex on, leaving x2 towards x1 (seed 000, "Clipmap for 3rd+ vertices"):
+// both lobes of x2 reflect through their split-sum reflectances, the diffuse one the cache's
+// irradiance / pi, the specular one `specular` (the same irradiance, as composite reflects the
+// diffuse light on rough surfaces, or for a mirror what its mirror direction brings). The
+// diffuse lobe alone (what the GI's cache bounce uses) would make every metal seen in a
+// reflection black but for its direct highlights: on `spheres` the metal rows came out 6 % and
+// 10 % darker than the reference that way.
+vec3 hitReflectedLight(Surface s, vec3 wo, vec3 irradianceOverPi, vec3 specular, out vec3 specularWeight) {
   SpecularAlbedo albedo = specularAlbedo(pc.specularAlbedo, max(dot(s.shadingNormal, wo), 0.0), s.brdf.alpha);
-  vec3 reflectance = diffuseReflectance(albedo, s.brdf) + specularReflectance(albedo, s.brdf);
-  return reflectance * cacheLookupIrradiance(clipmapCacheView(pc.cache), s.position, s.geometricNormal, seed);
+  specularWeight = specularReflectance(albedo, s.brdf);
+  return diffuseReflectance(albedo, s.brdf) * irradianceOverPi + specularWeight * specular;
 }
 
 // Radiance arriving at x1 along `dir`; `hitDistance` is set to the hit's distance (or the miss
 // distance), `hitSample` to the hit x2 as a reservoir sample (position, kind, normal facing x1).
-// `alpha`: the reflecting lobe's, which sets the hit's regularization.
+// `alpha`: the reflecting lobe's, which sets the hit's regularization. Where x2 is itself a
+// mirror (roughness below mirrorRoughness), its specular lobe is followed by one more ray
+// along its mirror direction instead of being lit by the cache's irradiance, a cosine-weighted
+// average that showed a mirror ball's mirror image of its neighbours far too bright
+// (docs/reflections.md, "Mirrors at render resolution"); the cache still lights x2's diffuse
+// lobe and x3.
 vec3 incomingRadiance(FrameConstants f, vec3 origin, vec3 dir, float alpha, uvec4 key,
                       out float hitDistance, inout Reservoir hitSample) {
-  TraceHit hit = traceClosest(origin, dir, 0.0, NO_HIT, true);
-  if (!traceHitFound(hit)) {
-    hitDistance = REFLECTION_MISS_DISTANCE;
-    // A sample at infinity: its direction, stored as a far point (restir_gi_io.h).
-    hitSample.kind = RESTIR_GI_KIND_SKY;
-    hitSample.samplePosition = hitSample.origin + dir * RESTIR_GI_SKY_DISTANCE;
-    return skyRadianceToward(f, dir);
-  }
   bool lambert = (f.flags & FRAME_FLAG_LAMBERT) != 0u;
-  Surface s = loadSurfaceAtCoarseMip(hit, dir, lambert, pc.materialTextureSide);
-  hitDistance = distance(origin, s.position);
-  hitSample.kind = RESTIR_GI_KIND_SURFACE;
-  hitSample.samplePosition = s.position;
-  hitSample.sampleNormal = s.geometricNormal;  // on the side of the incoming ray: facing x1
-  // ReSTIR DI lights x1 from the emitters the light tables sample, specular lobe included
-  // (FRAME_FLAG_DI_LIGHTS): their emission seen in a reflection would count twice.
-  bool diLit = (f.flags & FRAME_FLAG_DI_LIGHTS) != 0u && lightTablesSampleMaterial(s.material);
-  return (diLit ? vec3(0.0) : s.emission) + hitDirectLight(f, s, -dir, key, pc.hitRegularization * alpha) + hitCacheLight(s, -dir, key.x ^ RANDOM_REFLECTION_CACHE);
+  float mirrorAlpha = pc.mirrorRoughness * pc.mirrorRoughness;
+  vec3 sum = vec3(0.0), throughput = vec3(1.0);
+  hitDistance = REFLECTION_MISS_DISTANCE;
+  // One traceClosest call in a loop: a CPU driver compiles each inlined copy (docs/startup.md).
+  for (uint bounce = 0u; bounce < 2u; ++bounce) {
+    TraceHit hit = traceClosest(origin, dir, 0.0, NO_HIT, true);
+    if (!traceHitFound(hit)) {
+      if (bounce == 0u) {
+        // A sample at infinity: its direction, stored as a far point (restir_gi_io.h).
+        hitSample.kind = RESTIR_GI_KIND_SKY;
+        hitSample.samplePosition = hitSample.origin + dir * RESTIR_GI_SKY_DISTANCE;
+      }
+      sum += throughput * skyRadianceToward(f, dir);
+      break;
+    }
+    Surface s = loadSurfaceAtCoarseMip(hit, dir, lambert, pc.materialTextureSide);
+    vec3 emission = s.emission;
+    if (bounce == 0u) {
+      hitDistance = distance(origin, s.position);
+      hitSample.kind = RESTIR_GI_KIND_SURFACE;
+      hitSample.samplePosition = s.position;
+      hitSample.sampleNormal = s.geometricNormal;  // on the side of the incoming ray: facing x1
+      // ReSTIR DI lights x1 from the emitters the light tables sample, specular lobe included
+      // (FRAME_FLAG_DI_LIGHTS): their emission seen in a reflection would count twice.
+      if ((f.flags & FRAME_FLAG_DI_LIGHTS) != 0u && lightTablesSampleMaterial(s.material)) emission = vec3(0.0);
+    }
+    sum += throughput * (emission + hitDirectLight(f, s, -dir, key, pc.hitRegularization * alpha));
+    vec3 irradianceOverPi = pc.cache != 0ul ? cacheLookupIrradiance(clipmapCacheView(pc.cache), s.position, s.geometricNormal, key.x ^ RANDOM_REFLECTION_CACHE) : vec3(0.0);
+    vec3 nextDir = reflect(dir, s.shadingNormal);
+    bool followMirror = bounce == 0u && !lambert && s.brdf.alpha < mirrorAlpha && dot(nextDir, s.geometricNormal) > 0.0;
+    vec3 specularWeight;
+    sum += throughput * hitReflectedLight(s, -dir, irradianceOverPi, followMirror ? vec3(0.0) : irradianceOverPi, specularWeight);
+    if (!followMirror) break;
+    throughput *= specularWeight;
+    origin = offsetRayOrigin(s.position, s.geometricNormal);
+    dir = nextDir;
+  }
+  return sum;
 }
 
 #endif
