@@ -57,6 +57,7 @@ struct RenderOptions {
   bool restirUnbiased = false;
   std::optional<int64_t> restirValidationPeriod;
   std::optional<int64_t> restirMaxSampleAge;
+  std::optional<int64_t> giDenoiseHistory;
   std::optional<float> restirHistoryBrightening;
   bool noGiDenoise = false;
   std::string denoiser;  // evolve|svgf|reblur|hybrid|none; empty: the settings' (evolve)
@@ -91,6 +92,7 @@ const std::vector<std::string>& restirOptions() {
                                                  "--restir-validation-period",
                                                  "--restir-history-brightening",
                                                  "--no-gi-denoise",
+                                                 "--gi-denoise-history",
                                                  "--denoiser",
                                                  "--no-occluder-visibility"};
   return names;
@@ -271,6 +273,11 @@ void applyRestirOptions(const RenderOptions& o, HybridSettings& settings) {
     applyOption(
         settings, "--restir-history-brightening", *o.restirHistoryBrightening,
         [&](HybridSettings& s) { s.restirGi.historyBrightening = *o.restirHistoryBrightening; });
+  if (o.giDenoiseHistory)
+    applyOption(settings, "--gi-denoise-history", *o.giDenoiseHistory, [&](HybridSettings& s) {
+      s.restirGi.denoiseMaxHistory =
+          float(wholeNumber("--gi-denoise-history", *o.giDenoiseHistory));
+    });
   if (o.noGiDenoise) gi.temporalDenoise = gi.spatialDenoise = false;
   if (o.denoiser == "svgf") gi.denoiser = GiDenoiser::Svgf;
   if (o.denoiser == "none") gi.denoiser = GiDenoiser::None;
@@ -577,6 +584,9 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
                   "than their running mean by this ratio (0: off, the default; 1.3 with "
                   "--restir-validation-period 3 for jumping light: see docs/gi/restir-gi.md)");
   cmd->add_flag("--no-gi-denoise", options->noGiDenoise, "Turn the GI denoisers off");
+  cmd->add_option("--gi-denoise-history", options->giDenoiseHistory,
+                  "Longest history of gi-temporal-denoise in frames, 1 to 1024 (default 64; a "
+                  "static view keeps converging that long: docs/gi/restir-gi.md)");
   cmd->add_option("--denoiser", options->denoiser,
                   "Denoiser of the diffuse GI: evolve (gi-temporal/spatial-denoise, the "
                   "default), svgf (SVGF), reblur (ReBLUR-style), hybrid (SVGF or ReBLUR per "

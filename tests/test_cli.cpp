@@ -244,6 +244,8 @@ TEST(Cli, OutOfRangeValuesAreRefusedNamingTheFlag) {
       "--restir-max-sample-age -3",
       "--restir-validation-period -1",
       "--gi-texture-side 5000",
+      "--gi-denoise-history 0",
+      "--gi-denoise-history 2000",
   };
   for (const std::string& c : cases) {
     test::CommandResult r = runCommand(bounceExe() + " render --res 8x8 " + c, 30);

@@ -90,7 +90,7 @@ struct RestirGiConstants {
   // packed as rankA | rankB << 16, for gi-prepare-diffuse-rays' ray directions
   DeviceAddress blueNoise;
   uint maxSampleAge;  // temporal: history samples older than this many frames are dropped (0 = off)
-  uint pad1;
+  float spatialWideMaxM;  // gi-restir-spatial-0 skips reservoirs with at least this M (0 = none)
 };
 BOUNCE_CHECK_SIZE(RestirGiConstants, 144);
 

@@ -70,9 +70,10 @@ void main() {
   PrimaryVertex x1 = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
   Reservoir own = loadReservoir(g);
   Reservoir result = own;
-  if (own.M > 0.0) {
+  uint variant = min(pc.variant, 1u);
+  bool wideSkipped = variant == 0u && gi.spatialWideMaxM > 0.0 && own.M >= gi.spatialWideMaxM;
+  if (own.M > 0.0 && !wideSkipped) {
     ReservoirStream s = beginStream(x1, own);
-    uint variant = min(pc.variant, 1u);
     uint n = min(gi.spatialSamples[variant], RESTIR_GI_MAX_SPATIAL_SAMPLES);
     vec2 u0 = random2(uvec2(g), f.frameIndex, RANDOM_GI_SPATIAL + variant);
     float rotation = 2.0 * PI * u0.x;

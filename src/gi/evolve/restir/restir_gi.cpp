@@ -1,6 +1,7 @@
 #include "gi/evolve/restir/restir_gi.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <span>
 #include <vector>
@@ -53,6 +54,13 @@ void validate(const RestirGiSettings& s) {
   if (s.maxSampleAge > 100000)
     fail("ReSTIR GI: maximum sample age {}: expected 0 (no limit) to 100000 frames",
          s.maxSampleAge);
+  // The history length travels in a half float (exact integers up to 2048), doubled where the
+  // spatial occlusion validity is low.
+  if (!(s.denoiseMaxHistory >= 1.0f && s.denoiseMaxHistory <= 1024.0f))
+    fail("ReSTIR GI: denoise history {} frames: expected 1 to 1024", s.denoiseMaxHistory);
+  if (!(s.spatialWideMaxM >= 0.0f) || !std::isfinite(s.spatialWideMaxM))
+    fail("ReSTIR GI: spatial wide-pass M limit {}: expected 0 (every reservoir) or more",
+         s.spatialWideMaxM);
   if (s.materialTextureSide > 2048)
     fail("ReSTIR GI: material texture side {}: expected 0 (full resolution) to 2048 texels",
          s.materialTextureSide);
@@ -101,6 +109,7 @@ gpu::RestirGiConstants restirGiConstants(const RestirGiSettings& s, VkExtent2D g
   c.maxPathBounces = s.maxBounces;
   c.temporalMaxM = s.temporalMaxM;
   c.maxSampleAge = s.maxSampleAge;
+  c.spatialWideMaxM = s.spatialWideMaxM;
   c.planeTolerance = s.planeTolerance;
   c.normalTolerance = s.normalTolerance;
   c.maxJacobian = s.maxJacobian;

@@ -140,6 +140,15 @@ struct RestirGiSettings {
   // variance where the home alone carries the samples its neighbours refuse (with Lux's cap of
   // 2 most of those near the pixel: LuxSettings::unbiasedReuse).
   bool canonicalResolve = true;
+  // gi-restir-spatial-0, the wide pass (24 GI pixels), runs only for reservoirs whose
+  // confidence M after temporal reuse is below spatialWideMaxM: disocclusions and the frames
+  // after a reset or a lighting cut, where seed 000's wide reuse spreads light fast; the others
+  // pass through it unchanged to gi-restir-spatial-1. Where history has converged the wide
+  // pass added bias more than it removed noise: its neighbours' samples are reused without a
+  // visibility test, and the floor in the umbra in front of Cornell's short box came out 30-50 %
+  // too bright (docs/decisions.md, "The wide spatial pass only for young reservoirs").
+  // 0: every reservoir (seed 000).
+  float spatialWideMaxM = 3.0f;
   uint32_t spatialSamples[2] = {8, 5};
   float spatialRadius[2] = {24.0f, 6.0f};
   float spatialMinRadius = 1.0f;
@@ -159,7 +168,10 @@ struct RestirGiSettings {
   float resolveRadius = 2.0f;
   // gi-temporal-denoise: running mean of up to denoiseMaxHistory frames with the history clipped
   // to mean +- denoiseClipSigma standard deviations of the 3x3 neighbourhood. More frames or a
-  // wider box: smoother, more ghosting after a change. Off for unbiased measurements.
+  // wider box: smoother, more ghosting after a change. Off for unbiased measurements. 64 (NRD's
+  // REBLUR allows 63): a static view keeps converging while the anti-lag and the fast history's
+  // clip still follow a change within a few frames (16 before session 27: docs/decisions.md,
+  // "A 64-frame GI history").
   // After a reset (the first frames) or a lighting cut, while the cache rebuilds its light
   // (ClipmapCacheSettings::fullRefreshFrames), the stored radiance of every history is that of
   // a darker (or otherwise different) cache: for settleFrames frames temporalMaxM is scaled by
@@ -178,7 +190,7 @@ struct RestirGiSettings {
   ReblurSettings reblur;         // with GiDenoiser::Reblur (NRD's defaults)
   HybridDenoiseSettings hybrid;  // with GiDenoiser::Hybrid
   bool temporalDenoise = true;
-  float denoiseMaxHistory = 16.0f;
+  float denoiseMaxHistory = 64.0f;
   float denoiseClipSigma = 2.0f;
   // Anti-firefly (as NRD's denoisers have): before accumulating, gi-temporal-denoise clamps
   // the resolved value to fireflyRatio times the brightest of 8 values two GI pixels away
