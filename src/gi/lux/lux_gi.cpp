@@ -37,7 +37,7 @@ void validate(const LuxSettings& s) {
 
 RestirGiSettings LuxGi::reuseSettings(RestirGiSettings s, const LuxSettings& lux) {
   s.maxJacobian = lux.maxJacobian;
-  s.temporalProducerNormalisation = lux.unbiasedReuse;
+  s.temporalProducerNormalisation = true;
   s.canonicalResolve = lux.unbiasedReuse;
   s.secondVertex = RestirGiSecondVertex::Cache;  // the probe field at the hit
   s.validationPeriod = 0;                        // lux-candidates traces no validation rays

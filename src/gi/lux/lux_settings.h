@@ -20,11 +20,12 @@ struct LuxSettings {
   // sample seen from much nearer: corners, contact) become rare, bright outliers; on cornell the
   // resolved estimate's variance falls 2.7x from 10 to 2 (docs/gi/lux.md). At least 1.
   float maxJacobian = 2.0f;
-  // RestirGiSettings::temporalProducerNormalisation and canonicalResolve for Lux. Off: with the
-  // cap of 2 most samples near a pixel reach it through few reservoirs, and weighing them
-  // without bias cost the 4x variance gate (cornell's resolved estimate 5.5x lower variance
-  // than uniform sampling -> 3.6x with 1/Z in the temporal pass, 1.9x with both); the price is
-  // energy: the white furnace 8 % dark (docs/gi/restir-gi.md, "Energy").
+  // RestirGiSettings::canonicalResolve for Lux (its temporal pass always normalises by 1/Z).
+  // Off: gi-restir-resolve averages the reservoirs whose shift to the pixel is accepted, so the
+  // shifts the cap of 2 refuses cost no energy, but those it would accept with a larger
+  // Jacobian are missing: the white furnace 4.6 % dark. On: unbiased over the refused shifts
+  // (the furnace within 0.5 %), but the home reservoir then carries most of the weight and the
+  // seed's 4x variance gate fails (2.6x on cornell; docs/gi/lux.md, "Measurements").
   bool unbiasedReuse = false;
   // SVGF (denoise/svgf.h, Falcor's settings) on the resolved GI (Lux's "Spatial"/"Hybrid"
   // denoisers are SVGF in §2.3(d)); off: the resolved estimate as it is.

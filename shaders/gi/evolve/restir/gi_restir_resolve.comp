@@ -24,9 +24,9 @@
 // pixel by a direction shift (homeSample), never refused; a neighbour's accepted sample
 // weighs 1/n (n: the reservoirs on this surface) and the home's sample 1 - k/n, k the
 // neighbours whose shift of it would be accepted (couldProduce, one Jacobian each: no target
-// is evaluated). Without it the plain mean of the n, a refused shift counting as zero, which
-// darkened by the share of refused shifts (Lux's cap of 2: 17 %; docs/gi/restir-gi.md,
-// "Energy").
+// is evaluated). Without it the mean of the reservoirs whose shift is accepted (Lux): a refused
+// shift counted as zero until session 27, which darkened by the share of refused shifts (Lux's
+// cap of 2: 17 %; docs/gi/lux.md, "Measurements").
 #version 460
 #include "gi/evolve/restir/restir_gi_common.glsl"
 #include "common/random.glsl"
@@ -149,7 +149,9 @@ void main() {
     bool valid = shiftedSample(x, r, gi.maxJacobian, direction, lw);
     float planeDistance = abs(dot(x.geometricNormal, r.origin - x.position)) / max(x.depth, 1e-6);
     if (same) {
-      count += 1.0;
+      // Canonical: n counts every reservoir on this surface. Otherwise the mean is over the
+      // reservoirs whose shift is accepted: a refused shift leaves it rather than counting as zero.
+      if (canonical || valid) count += 1.0;
       if (home.M > 0.0 && couldProduce(r.origin, r.originNormal, x, home, gi.maxJacobian))
         homeProducers += 1.0;
       if (!valid || !(r.W > 0.0) || (hidden & (1u << i)) != 0u) continue;

@@ -135,10 +135,11 @@ struct RestirGiSettings {
   // gi-restir-resolve's weights: the pixel's home reservoir as the canonical one (a direction
   // shift, never refused, weighted 1 - k/n where k of the n reservoirs on the surface could
   // produce its sample; each neighbour's accepted sample 1/n: unbiased over the refused
-  // shifts), or, when false, the plain mean of the n, a refused shift counting as zero (darker
-  // by the share of refused shifts: Lux 17 %, Evolve 5 % in the white furnace). True costs
-  // variance where the home alone carries the samples its neighbours refuse (with Lux's cap of
-  // 2 most of those near the pixel: LuxSettings::unbiasedReuse).
+  // shifts), or, when false, the mean of the reservoirs whose shift is accepted (until session
+  // 27 a refused shift counted as zero, darker by the share of refused shifts: Lux 17 %, Evolve
+  // 5 % in the white furnace; now only the shifts the Jacobian cap leaves out are missing).
+  // True costs variance where the home alone carries the samples its neighbours refuse (with
+  // Lux's cap of 2 most of those near the pixel: LuxSettings::unbiasedReuse).
   bool canonicalResolve = true;
   // gi-restir-spatial-0, the wide pass (24 GI pixels), runs only for reservoirs whose
   // confidence M after temporal reuse is below spatialWideMaxM: disocclusions and the frames
