@@ -7,6 +7,9 @@
 // sample is shifted to this pixel's x1 by reconnection, its weight carrying the Jacobian (Eq. 11,
 // reconnectionJacobian). No visibility is tested here (gi-trace-spatial-validation-rays tests the
 // final sample), so the result is biased and NOT fed back into next frame's temporal reuse.
+// Pass 0 passes a reservoir through unchanged once its M reaches gi.spatialWideMaxM: the wide
+// reuse is for young histories (disocclusions, the frames after a cut); on converged ones its
+// far neighbours' unoccluded samples brightened occluded corners (docs/decisions.md).
 #version 460
 #include "gi/evolve/restir/restir_gi_common.glsl"
 #include "common/random.glsl"
