@@ -18,6 +18,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "harness.h"
 #include "restir_gi_common.h"
@@ -324,6 +325,49 @@ TEST(RestirGi, MaxSampleAgeBoundsHowLongSamplesLive) {
   EXPECT_LE(limited, 7u);
   EXPECT_GT(free, 12u);
   EXPECT_LT(meanLimited, meanFree);
+}
+
+// The history cap follows the motion (RestirGiSettings::movingTemporalMaxM): `sunroom`, 32x24,
+// desktop preset. After 24 still frames (past the settling frames) some reservoirs hold more
+// confidence than a moving pixel may (M up to temporalMaxM + the frame's candidate, 11); with
+// the camera then turning 4 degrees a frame (about 2 pixels of motion everywhere, above
+// movingPixels), no reservoir holds more than movingTemporalMaxM + 1 (3) after 6 frames. M is
+// the alpha of gi.reservoir.radiance, what gi-restir-temporal stores as history.
+TEST(RestirGi, HistoryCapIsLowerWhereThePixelMoves) {
+  const uint32_t width = 32, height = 24;
+  Scene scene = loadScene("sunroom");
+  Camera camera = effectiveCamera(scene);
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  const RestirGiSettings gi = presetSettings(Preset::Desktop).restirGi;
+  ASSERT_LT(gi.movingTemporalMaxM + 1.0f, gi.temporalMaxM);  // else the test cannot tell them apart
+  HybridFrame frame(context, gpuScene, scene, giSettings(width, height, gi));
+  frame.requestDebugView("gi.reservoir.radiance");
+  auto largestM = [&] {
+    ImageRGBA32F reservoirs = frame.debugViewImage("gi.reservoir.radiance");
+    float largest = 0.0f;
+    for (size_t k = 0; k < reservoirs.pixelCount(); ++k)
+      largest = std::max(largest, reservoirs.pixels[4 * k + 3]);
+    return largest;
+  };
+  for (int i = 0; i < 24; ++i) frame.render(camera);
+  const float still = largestM();
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  for (int i = 0; i < 6; ++i) {
+    glm::vec3 view = camera.target - camera.position;
+    camera.target =
+        camera.position +
+        glm::vec3(glm::rotate(glm::mat4(1.0f), glm::radians(4.0f), up) * glm::vec4(view, 0.0f));
+    frame.render(camera);
+  }
+  const float moving = largestM();
+  std::printf("sunroom %ux%u: largest history M %.2f still, %.2f turning (caps %.0f and %.0f)\n",
+              width, height, still, moving, gi.temporalMaxM, gi.movingTemporalMaxM);
+  EXPECT_GT(still, gi.movingTemporalMaxM + 1.5f);
+  EXPECT_LE(still, gi.temporalMaxM + 1.0f + 1e-3f);
+  EXPECT_GT(moving, 0.0f);
+  EXPECT_LE(moving, gi.movingTemporalMaxM + 1.0f + 1e-3f);
+  EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
 // The stored references' staleness check (docs/testing.md) has power and size: against a

@@ -101,7 +101,10 @@ RestirGiSettings diagnosticSettings(const std::string& name) {
   if (has("no-sdenoise")) gi.spatialDenoise = false;
   if (has("resolve1")) gi.resolveSamples = 1;
   if (has("noclip")) gi.denoiseClipSigma = 1e4f;
-  if (has("maxm10")) gi.temporalMaxM = 10.0f;
+  for (int m : {1, 2, 3, 4, 5, 10, 20})
+    if (has(fmt::format("maxm{}-", m).c_str()) || base.ends_with(fmt::format("maxm{}", m)))
+      gi.temporalMaxM = gi.movingTemporalMaxM = float(m);
+  if (has("still-cap")) gi.movingTemporalMaxM = gi.temporalMaxM;  // no lower cap in motion
   if (has("history2")) gi.denoiseMaxHistory = 2.0f;
   if (has("history32")) gi.denoiseMaxHistory = 32.0f;
   if (has("history64")) gi.denoiseMaxHistory = 64.0f;

@@ -90,9 +90,11 @@ struct RestirGiConstants {
   // packed as rankA | rankB << 16, for gi-prepare-diffuse-rays' ray directions
   DeviceAddress blueNoise;
   uint maxSampleAge;  // temporal: history samples older than this many frames are dropped (0 = off)
-  float spatialWideMaxM;  // gi-restir-spatial-0 skips reservoirs with at least this M (0 = none)
+  float spatialWideMaxM;     // gi-restir-spatial-0 skips reservoirs with at least this M (0 = none)
+  float movingTemporalMaxM;  // M cap of the history where the pixel moves movingPixels or more
+  float movingPixels;        // render pixels per frame
 };
-BOUNCE_CHECK_SIZE(RestirGiConstants, 144);
+BOUNCE_CHECK_SIZE(RestirGiConstants, 152);
 
 // Side of the tiled blue-noise map (64: 4,096 distinct values per channel, 16 KiB).
 BOUNCE_CONST uint RESTIR_GI_BLUE_NOISE_SIDE = 64u;

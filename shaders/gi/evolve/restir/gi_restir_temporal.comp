@@ -2,10 +2,10 @@
 // candidate reservoir is merged with last frame's reservoir of the same surface: the pixel is
 // reprojected with gbuffer.velocity, and last frame's reservoir counts only when its primary
 // vertex lies on this pixel's tangent plane (relative plane distance) with a similar normal.
-// History M is capped at temporalMaxM (the cap bounds how long stale samples persist). The
-// history sample is shifted to this frame's primary vertex by reconnection, so its weight
-// carries the Jacobian (restir_gi_common.glsl); shifts with a Jacobian above maxJacobian are
-// rejected (they come from grazing or near-contact geometry and would be fireflies). The merged
+// History M is capped at temporalMaxM, movingTemporalMaxM where the pixel moves (the cap bounds
+// how long stale samples persist). The history sample is shifted to this frame's primary
+// vertex by reconnection, so its weight carries the Jacobian (restir_gi_common.glsl); shifts
+// with a Jacobian above maxJacobian are rejected (they come from grazing or near-contact geometry and would be fireflies). The merged
 // reservoir is normalised by the confidence of the reservoirs that could have produced its
 // sample (1/Z, Bitterli et al. 2020, Alg. 6, as the spatial passes do: couldProduce), not by
 // all of theirs (ReSTIR GI's 1/M): a reservoir whose shift of that sample would be refused
@@ -229,13 +229,22 @@ Reservoir capped(RestirGiConstants gi, Reservoir r, float candidateM) {
   return r;
 }
 
+// The history cap at `pixel`: temporalMaxM where its surface stands still on screen,
+// movingTemporalMaxM from a motion of movingPixels per frame on (RestirGiSettings says why).
+float historyCap(RestirGiConstants gi, ivec2 pixel) {
+  float motion = length(imageLoad(velocities, pixel).xy);
+  bool finite = !isnan(motion) && !isinf(motion);
+  float moving = finite ? clamp(motion / gi.movingPixels, 0.0, 1.0) : 1.0;
+  return mix(gi.temporalMaxM, gi.movingTemporalMaxM, moving);
+}
+
 void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
-  gi.temporalMaxM = max(gi.temporalMaxM * pc.historyScale, 1.0);  // shorter while light settles
   ivec2 g = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(g), gi.giResolution))) return;
   ivec2 pixel = giRepresentativePixel(f, gi, g);
+  gi.temporalMaxM = max(historyCap(gi, pixel) * pc.historyScale, 1.0);  // shorter while light settles
   PrimaryVertex x1 = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
   Reservoir candidate = unpackReservoir(imageLoad(candidateSample, g), imageLoad(candidateRadiance, g),
                                         imageLoad(candidateOrigin, g), imageLoad(candidateNormals, g));

@@ -61,6 +61,12 @@ void validate(const RestirGiSettings& s) {
   if (!(s.spatialWideMaxM >= 0.0f) || !std::isfinite(s.spatialWideMaxM))
     fail("ReSTIR GI: spatial wide-pass M limit {}: expected 0 (every reservoir) or more",
          s.spatialWideMaxM);
+  if (!(s.temporalMaxM >= 1.0f && s.temporalMaxM <= 1000.0f))
+    fail("ReSTIR GI: temporal max M {}: expected 1 to 1000", s.temporalMaxM);
+  if (!(s.movingTemporalMaxM >= 1.0f && s.movingTemporalMaxM <= 1000.0f))
+    fail("ReSTIR GI: moving temporal max M {}: expected 1 to 1000", s.movingTemporalMaxM);
+  if (!(s.movingPixels > 0.0f && s.movingPixels <= 1000.0f))
+    fail("ReSTIR GI: moving pixels {}: expected more than 0, at most 1000", s.movingPixels);
   if (s.materialTextureSide > 2048)
     fail("ReSTIR GI: material texture side {}: expected 0 (full resolution) to 2048 texels",
          s.materialTextureSide);
@@ -108,6 +114,8 @@ gpu::RestirGiConstants restirGiConstants(const RestirGiSettings& s, VkExtent2D g
       (s.spatialReuse && s.spatialValidation && s.patchReservoir ? gpu::RESTIR_GI_FLAG_PATCH : 0u);
   c.maxPathBounces = s.maxBounces;
   c.temporalMaxM = s.temporalMaxM;
+  c.movingTemporalMaxM = s.movingTemporalMaxM;
+  c.movingPixels = s.movingPixels;
   c.maxSampleAge = s.maxSampleAge;
   c.spatialWideMaxM = s.spatialWideMaxM;
   c.planeTolerance = s.planeTolerance;

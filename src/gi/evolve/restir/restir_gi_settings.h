@@ -54,6 +54,16 @@ struct RestirGiSettings {
   // multi-bounce light is still building up for many frames, so a long-lived sample holds it
   // back (docs/decisions.md).
   float temporalMaxM = 10.0f;
+  // The cap where the pixel's surface moves on screen: movingTemporalMaxM from a motion of
+  // movingPixels render pixels per frame on, blended linearly from temporalMaxM below it (the
+  // motion vectors: camera and object motion, not the TAA jitter). In motion the denoiser's
+  // reprojected history already averages what the reservoirs would, and samples carried along
+  // from other primary vertices for 10 frames showed as blotches that trail: along a camera
+  // path over sunroom (480x270, H200) HDR-FLIP 0.19 -> 0.17 from frame 16 on with 2. On a still
+  // view the cap of 10 flickers less (frame-to-frame FLIP 0.016 against 0.021 with 2;
+  // docs/decisions.md, "A lower temporal cap in motion"). Equal to temporalMaxM: no adaptation.
+  float movingTemporalMaxM = 2.0f;
+  float movingPixels = 0.5f;
   // History reservoirs gi-restir-temporal may merge (seed 000: up to 5): the reprojected one
   // (sub-pixel-aware, Area ReSTIR) and up to 4 more by permutation sampling around it, until
   // the confidence reaches temporalMaxM. More: disocclusions fill in within a frame or two
@@ -148,7 +158,8 @@ struct RestirGiSettings {
   // pass added bias more than it removed noise: its neighbours' samples are reused without a
   // visibility test, and the floor in the umbra in front of Cornell's short box came out 30-50 %
   // too bright (docs/decisions.md, "The wide spatial pass only for young reservoirs").
-  // 0: every reservoir (seed 000).
+  // 0: every reservoir (seed 000). 3 is also a full history in motion (movingTemporalMaxM, 2,
+  // plus this frame's candidate).
   float spatialWideMaxM = 3.0f;
   uint32_t spatialSamples[2] = {8, 5};
   float spatialRadius[2] = {24.0f, 6.0f};
@@ -243,6 +254,7 @@ struct RestirGiSettings {
     s.spatialReuse = false;
     s.spatialValidation = false;
     s.temporalHistorySamples = 1;
+    s.movingTemporalMaxM = s.temporalMaxM;
     s.patchReservoir = false;
     s.historyBrightening = 0.0f;  // history confidence from neighbours' candidates
     s.fireflyRatio = 0.0f;
