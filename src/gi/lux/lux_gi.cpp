@@ -37,8 +37,6 @@ void validate(const LuxSettings& s) {
 
 RestirGiSettings LuxGi::reuseSettings(RestirGiSettings s, const LuxSettings& lux) {
   s.maxJacobian = lux.maxJacobian;
-  // One temporal cap, still or moving: Lux's variance gate and furnace were measured with it.
-  s.movingTemporalMaxM = s.temporalMaxM;
   s.temporalProducerNormalisation = true;
   s.canonicalResolve = lux.unbiasedReuse;
   s.secondVertex = RestirGiSecondVertex::Cache;  // the probe field at the hit

@@ -229,12 +229,17 @@ Reservoir capped(RestirGiConstants gi, Reservoir r, float candidateM) {
   return r;
 }
 
+// Motion below this many pixels a frame counts as none: a still view's motion vectors hold
+// rounding noise (~1e-4 pixels), which must not move the cap off its whole number.
+const float STILL_MOTION = 1.0 / 32.0;
+
 // The history cap at `pixel`: temporalMaxM where its surface stands still on screen,
 // movingTemporalMaxM from a motion of movingPixels per frame on (RestirGiSettings says why).
 float historyCap(RestirGiConstants gi, ivec2 pixel) {
   float motion = length(imageLoad(velocities, pixel).xy);
   bool finite = !isnan(motion) && !isinf(motion);
-  float moving = finite ? clamp(motion / gi.movingPixels, 0.0, 1.0) : 1.0;
+  float ramp = max(gi.movingPixels - STILL_MOTION, 1e-6);
+  float moving = finite ? clamp((motion - STILL_MOTION) / ramp, 0.0, 1.0) : 1.0;
   return mix(gi.temporalMaxM, gi.movingTemporalMaxM, moving);
 }
 

@@ -55,8 +55,9 @@ struct RestirGiSettings {
   // back (docs/decisions.md).
   float temporalMaxM = 10.0f;
   // The cap where the pixel's surface moves on screen: movingTemporalMaxM from a motion of
-  // movingPixels render pixels per frame on, blended linearly from temporalMaxM below it (the
-  // motion vectors: camera and object motion, not the TAA jitter). In motion the denoiser's
+  // movingPixels render pixels per frame on, blended linearly from temporalMaxM below it, and
+  // temporalMaxM below 1/32 pixel (the motion vectors: camera and object motion, not the TAA
+  // jitter). In motion the denoiser's
   // reprojected history already averages what the reservoirs would, and samples carried along
   // from other primary vertices for 10 frames showed as blotches that trail: along a camera
   // path over sunroom (480x270, H200) HDR-FLIP 0.19 -> 0.17 from frame 16 on with 2. On a still
