@@ -2,15 +2,15 @@
 // candidate reservoir is merged with last frame's reservoir of the same surface: the pixel is
 // reprojected with gbuffer.velocity, and last frame's reservoir counts only when its primary
 // vertex lies on this pixel's tangent plane (relative plane distance) with a similar normal.
-// History M is capped at temporalMaxM, movingTemporalMaxM where the pixel moves (the cap bounds
-// how long stale samples persist). The history sample is shifted to this frame's primary
-// vertex by reconnection, so its weight carries the Jacobian (restir_gi_common.glsl); shifts
-// with a Jacobian above maxJacobian are rejected (they come from grazing or near-contact geometry and would be fireflies). The merged
-// reservoir is normalised by the confidence of the reservoirs that could have produced its
-// sample (1/Z, Bitterli et al. 2020, Alg. 6, as the spatial passes do: couldProduce), not by
-// all of theirs (ReSTIR GI's 1/M): a reservoir whose shift of that sample would be refused
-// adds nothing to the weights for it, so counting its M darkened wherever shifts are refused
-// (docs/gi/restir-gi.md, "Energy").
+// History M is capped at temporalMaxM, movingTemporalMaxM where the pixel moves (the cap bounds how
+// long stale samples persist). The history sample is shifted to this frame's primary vertex by
+// reconnection, so its weight carries the Jacobian (restir_gi_common.glsl); shifts with a Jacobian
+// above maxJacobian are rejected (they come from grazing or near-contact geometry and would be
+// fireflies). The merged reservoir is normalised by the confidence of the reservoirs that could
+// have produced its sample (1/Z, Bitterli et al. 2020, Alg. 6, as the spatial passes do:
+// couldProduce), not by all of theirs (ReSTIR GI's 1/M): a reservoir whose shift of that sample
+// would be refused adds nothing to the weights for it, so counting its M darkened wherever shifts
+// are refused (docs/gi/restir-gi.md, "Energy").
 // The merged reservoir is this frame's history (the only reservoir fed back). Where the
 // candidate is a validated history reservoir (gi-resolve-diffuse-rays), it replaces history
 // without a merge (merging would count that history twice).
@@ -249,7 +249,8 @@ void main() {
   ivec2 g = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(g), gi.giResolution))) return;
   ivec2 pixel = giRepresentativePixel(f, gi, g);
-  gi.temporalMaxM = max(historyCap(gi, pixel) * pc.historyScale, 1.0);  // shorter while light settles
+  // Shorter while the light settles.
+  gi.temporalMaxM = max(historyCap(gi, pixel) * pc.historyScale, 1.0);
   PrimaryVertex x1 = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
   Reservoir candidate = unpackReservoir(imageLoad(candidateSample, g), imageLoad(candidateRadiance, g),
                                         imageLoad(candidateOrigin, g), imageLoad(candidateNormals, g));

@@ -57,12 +57,12 @@ struct RestirGiSettings {
   // The cap where the pixel's surface moves on screen: movingTemporalMaxM from a motion of
   // movingPixels render pixels per frame on, blended linearly from temporalMaxM below it, and
   // temporalMaxM below 1/32 pixel (the motion vectors: camera and object motion, not the TAA
-  // jitter). In motion the denoiser's
-  // reprojected history already averages what the reservoirs would, and samples carried along
-  // from other primary vertices for 10 frames showed as blotches that trail: along a camera
-  // path over sunroom (480x270, H200) HDR-FLIP 0.19 -> 0.17 from frame 16 on with 2. On a still
-  // view the cap of 10 flickers less (frame-to-frame FLIP 0.016 against 0.021 with 2;
-  // docs/decisions.md, "A lower temporal cap in motion"). Equal to temporalMaxM: no adaptation.
+  // jitter). In motion the denoiser's reprojected history already averages what the
+  // reservoirs would, and samples carried along from other primary vertices for 10 frames
+  // showed as blotches that trail: along a camera path over sunroom (480x270, H200) HDR-FLIP
+  // 0.19 -> 0.17 from frame 16 on with 2. On a still view the cap of 10 flickers less
+  // (frame-to-frame FLIP 0.016 against 0.021 with 2; docs/decisions.md, "A lower temporal cap
+  // in motion"). Equal to temporalMaxM: no adaptation.
   float movingTemporalMaxM = 2.0f;
   float movingPixels = 0.5f;
   // History reservoirs gi-restir-temporal may merge (seed 000: up to 5): the reprojected one
