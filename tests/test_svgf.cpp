@@ -49,6 +49,7 @@ class SvgfHarness {
       : context_(context),
         input_(denoiseInputImage(context, kRgba16f, width, height, "test.input")),
         surface_(denoiseInputImage(context, VK_FORMAT_R32G32_UINT, width, height, "test.surface")),
+        slope_(denoiseInputImage(context, VK_FORMAT_R32_SFLOAT, width, height, "test.slope")),
         rig_(context, width, height),
         svgf_(context, rig_.gpuScene(), settings) {}
 
@@ -68,17 +69,22 @@ class SvgfHarness {
     std::vector<uint8_t> bytes(packed.size() * sizeof(glm::uvec2));
     std::memcpy(bytes.data(), packed.data(), bytes.size());
     vk::uploadImage(context_, surface_, bytes, 8);
+    std::vector<float> slopes = svgfDepthSlopes(input);
+    std::vector<uint8_t> slopeBytes(slopes.size() * sizeof(float));
+    std::memcpy(slopeBytes.data(), slopes.data(), slopeBytes.size());
+    vk::uploadImage(context_, slope_, slopeBytes, 4);
     graph::FrameGraph& graph = rig_.beginFrame("svgf.step");
     graph::ImageHandle out = graph.createImage("svgf.step", {kRgba16f});
     svgf_.declareAtrousStep(graph, rig_.extent(), rig_.import("test.input", input_),
-                            rig_.import("test.surface", surface_), iteration, out);
+                            rig_.import("test.surface", surface_),
+                            rig_.import("test.slope", slope_), iteration, out);
     return rig_.run("svgf.step");
   }
 
  private:
   vk::Context& context_;
-  vk::Image input_, surface_;  // the atrous step's inputs
-  DenoiseRig rig_;             // after what its graph imports: destroyed first
+  vk::Image input_, surface_, slope_;  // the atrous step's inputs
+  DenoiseRig rig_;                     // after what its graph imports: destroyed first
   Svgf svgf_;
 };
 
@@ -125,25 +131,32 @@ TEST_F(SvgfTest, AtrousStepMatchesCpuReference) {
   // Not a multiple of 8: svgf_atrous.comp's lattices of 8 x 8 pixels `step` apart end part-way.
   constexpr uint32_t w = 50, h = 37;
   const SvgfAtrousInput in = atrousInput(w, h, 7);
-  for (SvgfLuminanceStop stop : {SvgfLuminanceStop::Shared, SvgfLuminanceStop::Centre})
-    for (uint32_t iteration : {0u, 2u, 4u}) {
-      SvgfSettings settings;
-      settings.luminanceStop = stop;
-      SvgfHarness harness(context_, w, h, settings);
-      std::vector<glm::vec4> gpu = harness.atrousStep(in, iteration);
-      std::vector<glm::vec4> cpu = svgfAtrousReference(in, iteration, settings);
-      double worst = 0.0;
-      for (size_t i = 0; i < gpu.size(); ++i)
-        for (int c = 0; c < 4; ++c) {
-          // fp16 output: relative 2^-11, plus float vs double in the weights.
-          double scale = std::max(1.0, std::abs(double(cpu[i][c])));
-          worst = std::max(worst, std::abs(double(gpu[i][c]) - double(cpu[i][c])) / scale);
+  for (SvgfKernel kernel : {SvgfKernel::BSpline5x5, SvgfKernel::Gaussian3x3})
+    for (bool prefilterEveryIteration : {true, false})
+      for (SvgfLuminanceStop stop : {SvgfLuminanceStop::Shared, SvgfLuminanceStop::Centre})
+        for (uint32_t iteration : {0u, 2u, 4u}) {
+          SvgfSettings settings;
+          settings.luminanceStop = stop;
+          settings.kernel = kernel;
+          settings.prefilterEveryIteration = prefilterEveryIteration;
+          SvgfHarness harness(context_, w, h, settings);
+          std::vector<glm::vec4> gpu = harness.atrousStep(in, iteration);
+          std::vector<glm::vec4> cpu = svgfAtrousReference(in, iteration, settings);
+          double worst = 0.0;
+          for (size_t i = 0; i < gpu.size(); ++i)
+            for (int c = 0; c < 4; ++c) {
+              // fp16 output: relative 2^-11, plus float vs double in the weights.
+              double scale = std::max(1.0, std::abs(double(cpu[i][c])));
+              worst = std::max(worst, std::abs(double(gpu[i][c]) - double(cpu[i][c])) / scale);
+            }
+          std::printf(
+              "à-trous step %u, %s kernel, variance prefiltered %s, %s luminance stop: "
+              "max |GPU - CPU| / max(1, |CPU|) = %.2e\n",
+              1u << iteration, kernel == SvgfKernel::Gaussian3x3 ? "3x3" : "5x5",
+              prefilterEveryIteration ? "every iteration" : "first only",
+              stop == SvgfLuminanceStop::Shared ? "shared" : "centre's", worst);
+          EXPECT_LT(worst, 2e-3) << "iteration " << iteration;
         }
-      std::printf("à-trous step %u, %s luminance stop: max |GPU - CPU| / max(1, |CPU|) = %.2e\n",
-                  1u << iteration, stop == SvgfLuminanceStop::Shared ? "shared" : "centre's",
-                  worst);
-      EXPECT_LT(worst, 2e-3) << "iteration " << iteration;
-    }
 }
 
 // svgf.surface's 8-byte texel: the depth kept bit for bit, the normal within 1e-4 (two snorm16
@@ -166,7 +179,7 @@ TEST(SvgfSurface, PackKeepsTheDepthExactlyAndTheNormalWithinATenThousandth) {
 
 // Seed 002's gate: one à-trous step (step 1) on a noisy flat plane of known mean at least
 // halves the variance. The variance alpha is the noise's true variance, as svgf-variance gives.
-TEST(SvgfReference, AtrousStepHalvesVariance) {
+void expectAtrousStepHalvesVariance(SvgfKernel kernel) {
   constexpr uint32_t w = 64, h = 64;
   SvgfAtrousInput in{w, h, {}, {}};
   std::mt19937 rng(11);
@@ -176,7 +189,9 @@ TEST(SvgfReference, AtrousStepHalvesVariance) {
     in.colourVariance.push_back({v, v, v, 1.0f});
     in.surface.push_back({0.0f, 0.0f, 1.0f, 3.0f});
   }
-  std::vector<glm::vec4> out = svgfAtrousReference(in, 0, SvgfSettings{});
+  SvgfSettings settings;
+  settings.kernel = kernel;
+  std::vector<glm::vec4> out = svgfAtrousReference(in, 0, settings);
   double meanIn = 0, meanOut = 0, varIn = 0, varOut = 0;
   for (uint32_t i = 0; i < w * h; ++i) {
     meanIn += in.colourVariance[i].x;
@@ -191,6 +206,13 @@ TEST(SvgfReference, AtrousStepHalvesVariance) {
   std::printf("one à-trous step: variance %.4f -> %.4f (%.1fx lower), mean %.4f -> %.4f\n",
               varIn / (w * h), varOut / (w * h), varIn / varOut, meanIn, meanOut);
   EXPECT_GE(varIn / varOut, 2.0);
+}
+
+TEST(SvgfReference, AtrousStepHalvesVariance) {
+  expectAtrousStepHalvesVariance(SvgfKernel::BSpline5x5);
+}
+TEST(SvgfReference, GaussianAtrousStepHalvesVariance) {
+  expectAtrousStepHalvesVariance(SvgfKernel::Gaussian3x3);
 }
 
 // ---- the whole filter on noisy inputs of known mean -------------------------------------------
@@ -228,9 +250,18 @@ TEST_F(SvgfTest, DISABLED_MovingPlanesEdgesKept) {
   expectEdgesKept(twoPlanesGates(context_, SvgfSettings{}, 3));
 }
 
-// The configuration Evolve's GI uses (SvgfSettings::falcor()).
+// Falcor's settings (SvgfSettings::falcor(), what Evolve's GI used until session 29).
 TEST_F(SvgfTest, TwoPlanesFalcorSettings) {
   Gates g = twoPlanesGates(context_, SvgfSettings::falcor());
+  expectMeanKept(g, true);
+  expectVarianceLower(g);
+  expectEdgesKept(g);
+}
+
+// What Bounce uses (SvgfSettings::relaxAtrous(): RELAX's 3x3 à-trous). Lavapipe: mean -1.01 %
+// (known), squared error 5488x lower, edges 1.26x (Falcor's 5x5: -1.05 %, 6160x, 1.00x).
+TEST_F(SvgfTest, TwoPlanesRelaxAtrous) {
+  Gates g = twoPlanesGates(context_, SvgfSettings::relaxAtrous());
   expectMeanKept(g, true);
   expectVarianceLower(g);
   expectEdgesKept(g);
@@ -283,6 +314,18 @@ TEST_F(SvgfTest, DISABLED_SunroomGiFalcorSettings) {
   expectEdgesKept(g);
 }
 
+// Lavapipe: mean -1.76 % of the inputs', squared error 7.0x lower (Falcor's 5x5: -2.10 %, 6.3x).
+TEST_F(SvgfTest, SunroomGiRelaxAtrous) {
+  Gates g = giGates(context_, "sunroom", SvgfSettings::relaxAtrous());
+  expectMeanKept(g, false);
+  expectVarianceLower(g);
+}
+// Not met (lavapipe): pixels beside a depth edge err 1.80x the rest (Falcor's 5x5: 1.84x; the 16
+// inputs' plain mean 1.42x already).
+TEST_F(SvgfTest, DISABLED_SunroomGiRelaxAtrousEdgesKept) {
+  expectEdgesKept(giGates(context_, "sunroom", SvgfSettings::relaxAtrous()));
+}
+
 TEST_F(SvgfTest, SunroomGiMeanKept) {
   expectMeanKept(giGates(context_, "sunroom"), false);
 }
@@ -307,6 +350,7 @@ TEST(SvgfSettingsTest, RejectsBadValues) {
   EXPECT_THROW(validate(s), Error);
   EXPECT_NO_THROW(validate(SvgfSettings{}));
   EXPECT_NO_THROW(validate(SvgfSettings::falcor()));
+  EXPECT_NO_THROW(validate(SvgfSettings::relaxAtrous()));
 }
 
 // Issue 21's permutation budget: the pipelines SVGF creates.

@@ -36,6 +36,7 @@ namespace bounce::api {
 
 enum class DenoiserKind {
   Svgf,    // spatiotemporal variance-guided filtering (Schied et al. 2017), Falcor's parameters
+           // with NRD RELAX's 3x3 à-trous
   Reblur,  // ReBLUR-style: NRD REBLUR_DIFFUSE's passes and defaults
   Hybrid,  // SVGF or ReBLUR per pixel, from history length, motion and variance
 };

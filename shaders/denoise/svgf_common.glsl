@@ -29,6 +29,9 @@ float b3(int offset) {
   return a == 0 ? SVGF_KERNEL_0 : a == 1 ? SVGF_KERNEL_1 : SVGF_KERNEL_2;
 }
 
+// RELAX's 3x3 Gaussian weight at offset -1..1 (SvgfKernel::Gaussian3x3).
+float gaussian3(int offset) { return offset == 0 ? SVGF_GAUSSIAN_0 : SVGF_GAUSSIAN_1; }
+
 // Per-pixel view-depth change along x and y: of the two one-sided differences the smaller one
 // (a difference across a depth edge is not the surface's slope); 0 where no neighbour has a
 // surface. `depthAt` returns 0 for no surface.

@@ -29,6 +29,7 @@ layout(set = 1, binding = SVGF_TEMPORAL_BINDING_PREVIOUS_ILLUMINATION, rgba16f) 
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_SURFACE, rg32ui) uniform writeonly uimage2D surfaceOut;
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_MOMENTS, rgba32f) uniform writeonly image2D momentsOut;
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_ACCUMULATED, rgba16f) uniform writeonly image2D accumulatedOut;
+layout(set = 1, binding = SVGF_TEMPORAL_BINDING_SLOPE, r32f) uniform writeonly image2D slopeOut;
 
 float currentDepth(ivec2 q) { return imageLoad(depths, q).x; }
 DEFINE_DEPTH_GRADIENT(currentDepth)
@@ -61,10 +62,9 @@ History addTap(History h, ivec2 q, float w) {
 }
 
 // Last frame's colour, moments and history length at this pixel's surface (length 0: none).
-History reproject(ivec2 pixel, float z, vec3 n) {
+History reproject(ivec2 pixel, float z, float slope, vec3 n) {
   History none = History(vec3(0.0), vec2(0.0), 0.0);
   if (pc.historyValid == 0u) return none;
-  float slope = depthSlope(pixel, z);
   vec2 previous = vec2(pixel) + 0.5 - imageLoad(motions, pixel).xy;
   if (!isFiniteValue(previous.x) || !isFiniteValue(previous.y)) return none;
   vec2 base = previous - 0.5;
@@ -106,14 +106,19 @@ void main() {
     imageStore(surfaceOut, pixel, uvec4(0u));
     imageStore(momentsOut, pixel, vec4(0.0));
     imageStore(accumulatedOut, pixel, vec4(noisy, 0.0));
+    imageStore(slopeOut, pixel, vec4(0.0));
     return;
   }
   vec3 n = loadNormal(pixel);
   imageStore(surfaceOut, pixel, uvec4(packSurface(n, z), 0u, 0u));
+  // The à-trous iterations read the slope from here: 4 bytes a pixel instead of 4 neighbours'
+  // 8-byte surfaces in each iteration.
+  float slope = depthSlope(pixel, z);
+  imageStore(slopeOut, pixel, vec4(slope));
   vec3 signal = noisy;
   if ((pc.flags & SVGF_FLAG_ALBEDO) != 0u) signal /= safeAlbedo(imageLoad(albedos, pixel).rgb);
   float l = svgfLuminance(signal);
-  History h = reproject(pixel, z, n);
+  History h = reproject(pixel, z, slope, n);
   float frames = min(h.frames + 1.0, pc.maxHistory);
   float colourAlpha = max(pc.colorAlpha, 1.0 / frames);
   float momentsAlpha = max(pc.momentsAlpha, 1.0 / frames);

@@ -17,10 +17,9 @@ layout(set = 1, binding = SVGF_VARIANCE_BINDING_ACCUMULATED, rgba16f) uniform re
 layout(set = 1, binding = SVGF_VARIANCE_BINDING_MOMENTS, rgba32f) uniform readonly image2D moments;
 layout(set = 1, binding = SVGF_VARIANCE_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
 layout(set = 1, binding = SVGF_VARIANCE_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+layout(set = 1, binding = SVGF_VARIANCE_BINDING_SLOPE, r32f) uniform readonly image2D slopes;
 
-float surfaceDepth(ivec2 q) { return surfaceDepthOf(imageLoad(surfaces, q).xy); }
 vec4 surfaceAt(ivec2 q) { return unpackSurface(imageLoad(surfaces, q).xy); }
-DEFINE_DEPTH_GRADIENT(surfaceDepth)
 
 const int SPATIAL_RADIUS = 3;  // 7x7
 
@@ -39,7 +38,7 @@ void main() {
     imageStore(outputImage, pixel, vec4(colour, max(m.y - m.x * m.x, 0.0)));
     return;
   }
-  float slope = depthSlope(pixel, s.w);
+  float slope = imageLoad(slopes, pixel).r;  // svgf-temporal's depthSlope
   vec3 colourSum = vec3(0.0);
   vec2 momentSum = vec2(0.0);
   float weightSum = 0.0;

@@ -58,6 +58,11 @@ BOUNCE_CONST uint SVGF_FLAG_TILES = 4u;
 // svgf-atrous-*: the luminance stop's scale is shared by the centre and the tap (the geometric
 // mean of their standard deviations, SvgfLuminanceStop::Shared) instead of the centre's alone.
 BOUNCE_CONST uint SVGF_FLAG_SHARED_LUMINANCE_STOP = 8u;
+// svgf-atrous-*: the 3x3 kernel (SvgfKernel::Gaussian3x3) instead of the 5x5 B3 spline.
+BOUNCE_CONST uint SVGF_FLAG_KERNEL_3X3 = 16u;
+// svgf-atrous-*: the centre's variance is 3x3-prefiltered on the first iteration only (RELAX);
+// later ones take it as the previous iteration filtered it (SvgfSettings::prefilterEveryIteration).
+BOUNCE_CONST uint SVGF_FLAG_PREFILTER_FIRST_ONLY = 32u;
 // The variance (alpha) svgf-variance and the à-trous iterations but the last give a pixel
 // without a surface, so that svgf-atrous's 3x3 variance prefilter skips it from the signal alone
 // (without reading svgf.surface at 9 pixels); the last iteration writes 0 there.
@@ -75,14 +80,16 @@ BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_PREVIOUS_ILLUMINATION = 7u;
 BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_SURFACE = 8u;       // svgf.surface (current)
 BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_MOMENTS = 9u;       // svgf.moments (current)
 BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_ACCUMULATED = 10u;  // svgf.accumulated
-BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_COUNT = 11u;
+BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_SLOPE = 11u;        // svgf.slope
+BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_COUNT = 12u;
 
 // svgf-variance
 BOUNCE_CONST uint SVGF_VARIANCE_BINDING_ACCUMULATED = 0u;
 BOUNCE_CONST uint SVGF_VARIANCE_BINDING_MOMENTS = 1u;
 BOUNCE_CONST uint SVGF_VARIANCE_BINDING_SURFACE = 2u;
 BOUNCE_CONST uint SVGF_VARIANCE_BINDING_OUTPUT = 3u;  // svgf.filtered-moments
-BOUNCE_CONST uint SVGF_VARIANCE_BINDING_COUNT = 4u;
+BOUNCE_CONST uint SVGF_VARIANCE_BINDING_SLOPE = 4u;   // svgf.slope
+BOUNCE_CONST uint SVGF_VARIANCE_BINDING_COUNT = 5u;
 
 // svgf-atrous-N
 BOUNCE_CONST uint SVGF_ATROUS_BINDING_INPUT = 0u;    // rgb colour, a variance
@@ -90,7 +97,8 @@ BOUNCE_CONST uint SVGF_ATROUS_BINDING_SURFACE = 1u;  // svgf.surface (current)
 BOUNCE_CONST uint SVGF_ATROUS_BINDING_ALBEDO = 2u;   // read on the last iteration with the flag
 BOUNCE_CONST uint SVGF_ATROUS_BINDING_OUTPUT = 3u;
 BOUNCE_CONST uint SVGF_ATROUS_BINDING_TILES = 4u;  // hybrid.tiles with SVGF_FLAG_TILES
-BOUNCE_CONST uint SVGF_ATROUS_BINDING_COUNT = 5u;
+BOUNCE_CONST uint SVGF_ATROUS_BINDING_SLOPE = 5u;  // svgf.slope
+BOUNCE_CONST uint SVGF_ATROUS_BINDING_COUNT = 6u;
 
 // Rec. 709 luminance, the moments' and the edge stop's measure.
 BOUNCE_CONST float SVGF_LUMINANCE_R = 0.2126f;
@@ -100,6 +108,10 @@ BOUNCE_CONST float SVGF_LUMINANCE_B = 0.0722f;
 BOUNCE_CONST float SVGF_KERNEL_0 = 3.0f / 8.0f;
 BOUNCE_CONST float SVGF_KERNEL_1 = 1.0f / 4.0f;
 BOUNCE_CONST float SVGF_KERNEL_2 = 1.0f / 16.0f;
+// SvgfKernel::Gaussian3x3: NRD RELAX's 3x3 à-trous kernel, a sampled Gaussian whose 1-D weights
+// at offsets 0 and +-1 sum to 1 (research/gi10_lux_denoisers.md §3.3).
+BOUNCE_CONST float SVGF_GAUSSIAN_0 = 0.44198f;
+BOUNCE_CONST float SVGF_GAUSSIAN_1 = 0.27901f;
 
 BOUNCE_END_SHARED
 

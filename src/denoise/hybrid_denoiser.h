@@ -22,7 +22,7 @@
 namespace bounce {
 
 struct HybridDenoiseSettings {
-  SvgfSettings svgf = SvgfSettings::falcor();
+  SvgfSettings svgf = SvgfSettings::relaxAtrous();
   ReblurSettings reblur;
   // The spatial weight w (1: SVGF alone, 0: ReBLUR alone) is the largest of three linear ramps:
   // history length in frames from historySpatial (w 1; SVGF's own threshold of a young history,

@@ -19,7 +19,7 @@ const char* denoiserName(DenoiserKind kind);  // "svgf", "reblur", "hybrid"
 // Every kind's settings; only the chosen kind's are read (the hybrid's carry their own SVGF and
 // ReBLUR settings).
 struct LibraryDenoiserSettings {
-  SvgfSettings svgf = SvgfSettings::falcor();
+  SvgfSettings svgf = SvgfSettings::relaxAtrous();
   ReblurSettings reblur;
   HybridDenoiseSettings hybrid;
 };

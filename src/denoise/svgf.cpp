@@ -117,7 +117,9 @@ gpu::SvgfConstants Svgf::constants(VkExtent2D resolution, const SvgfInputs& in) 
   c.flags =
       (in.octahedralNormals ? gpu::SVGF_FLAG_OCTAHEDRAL_NORMALS : 0u) |
       (in.albedo ? gpu::SVGF_FLAG_ALBEDO : 0u) |
-      (s.luminanceStop == SvgfLuminanceStop::Shared ? gpu::SVGF_FLAG_SHARED_LUMINANCE_STOP : 0u);
+      (s.luminanceStop == SvgfLuminanceStop::Shared ? gpu::SVGF_FLAG_SHARED_LUMINANCE_STOP : 0u) |
+      (s.kernel == SvgfKernel::Gaussian3x3 ? gpu::SVGF_FLAG_KERNEL_3X3 : 0u) |
+      (s.prefilterEveryIteration ? 0u : gpu::SVGF_FLAG_PREFILTER_FIRST_ONLY);
   c.colorAlpha = s.colorAlpha;
   c.momentsAlpha = s.momentsAlpha;
   c.depthTolerance = s.depthTolerance;
@@ -144,6 +146,7 @@ Svgf::Temporal Svgf::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolu
   graph::HistoryImage illumination = graph.createHistoryImage(name_ + ".illumination", {kRgba16f});
   graph::ImageHandle accumulated = graph.createImage(name_ + ".accumulated", {kRgba16f});
   graph::ImageHandle filtered = graph.createImage(name_ + ".filtered-moments", {kRgba16f});
+  graph::ImageHandle slope = graph.createImage(name_ + ".slope", {VK_FORMAT_R32_SFLOAT});
   const gpu::SvgfConstants c = constants(resolution, in);
 
   graph::PassBuilder t = graph.addPass(name_ + "-temporal", graph::QueueKind::Compute);
@@ -157,7 +160,8 @@ Svgf::Temporal Svgf::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolu
             gpu::SVGF_TEMPORAL_BINDING_PREVIOUS_ILLUMINATION)
       .write(surface.current, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_SURFACE)
       .write(moments.current, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_MOMENTS)
-      .write(accumulated, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_ACCUMULATED);
+      .write(accumulated, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_ACCUMULATED)
+      .write(slope, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_SLOPE);
   if (in.albedo)
     t.read(*in.albedo, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_ALBEDO);
   else
@@ -176,13 +180,14 @@ Svgf::Temporal Svgf::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolu
       .read(accumulated, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_ACCUMULATED)
       .read(moments.current, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_MOMENTS)
       .read(surface.current, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_SURFACE)
+      .read(slope, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_SLOPE)
       .write(filtered, Access::StorageWrite, gpu::SVGF_VARIANCE_BINDING_OUTPUT)
       .record([this, c](VkCommandBuffer cmd, const graph::PassResources& r) {
         variance_.bind(cmd, c, r);
         dispatch(cmd, c);
       });
 
-  return {filtered, surface.current, moments.current, illumination.current};
+  return {filtered, surface.current, slope, moments.current, illumination.current};
 }
 
 void Svgf::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution, const SvgfInputs& in,
@@ -199,15 +204,15 @@ void Svgf::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution, const
             : (i == settings_.feedbackIteration
                    ? temporal.illumination
                    : graph.createImage(name_ + ".atrous-" + std::to_string(i), {kRgba16f}));
-    declareAtrous(graph, c, input, temporal.surface, albedo, i, target, tiles);
+    declareAtrous(graph, c, input, temporal.surface, temporal.slope, albedo, i, target, tiles);
     input = target;
   }
 }
 
 void Svgf::declareAtrous(graph::FrameGraph& graph, const gpu::SvgfConstants& constants,
                          graph::ImageHandle input, graph::ImageHandle surface,
-                         graph::ImageHandle albedo, uint32_t iteration, graph::ImageHandle output,
-                         std::optional<graph::ImageHandle> tiles) {
+                         graph::ImageHandle slope, graph::ImageHandle albedo, uint32_t iteration,
+                         graph::ImageHandle output, std::optional<graph::ImageHandle> tiles) {
   gpu::SvgfConstants c = constants;
   if (tiles) c.flags |= gpu::SVGF_FLAG_TILES;
   c.step = 1u << iteration;
@@ -217,6 +222,7 @@ void Svgf::declareAtrous(graph::FrameGraph& graph, const gpu::SvgfConstants& con
       graph.addPass(name_ + "-atrous-" + std::to_string(iteration), graph::QueueKind::Compute);
   pass.read(input, Access::StorageRead, gpu::SVGF_ATROUS_BINDING_INPUT)
       .read(surface, Access::StorageRead, gpu::SVGF_ATROUS_BINDING_SURFACE)
+      .read(slope, Access::StorageRead, gpu::SVGF_ATROUS_BINDING_SLOPE)
       .write(output, Access::StorageWrite, gpu::SVGF_ATROUS_BINDING_OUTPUT);
   if (c.lastIteration && (c.flags & gpu::SVGF_FLAG_ALBEDO))
     pass.read(albedo, Access::StorageRead, gpu::SVGF_ATROUS_BINDING_ALBEDO);
@@ -234,11 +240,13 @@ void Svgf::declareAtrous(graph::FrameGraph& graph, const gpu::SvgfConstants& con
 
 void Svgf::declareAtrousStep(graph::FrameGraph& graph, VkExtent2D resolution,
                              graph::ImageHandle input, graph::ImageHandle surface,
-                             uint32_t iteration, graph::ImageHandle output) {
+                             graph::ImageHandle slope, uint32_t iteration,
+                             graph::ImageHandle output) {
   if (iteration >= kMaxIterations)
     fail("SVGF: à-trous iteration {} of {}", iteration, kMaxIterations);
   SvgfInputs none;
-  declareAtrous(graph, constants(resolution, none), input, surface, input, iteration, output);
+  declareAtrous(graph, constants(resolution, none), input, surface, slope, input, iteration,
+                output);
 }
 
 }  // namespace bounce

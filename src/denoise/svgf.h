@@ -6,15 +6,16 @@
 //                   luminance moments, disocclusion tests on depth and normal
 //   svgf-variance   the luminance variance: temporal, or a 7x7 spatial estimate while the history
 //                   is shorter than 4 frames
-//   svgf-atrous-0..4  5 edge-avoiding à-trous iterations (5x5 B3 kernel, steps 1, 2, 4, 8, 16)
-//                   with depth, normal and luminance-variance edge stops; iteration 0
-//                   (SvgfSettings::feedbackIteration) is the next frame's colour history;
-//                   the last remodulates the albedo
+//   svgf-atrous-0..N  2 to 5 edge-avoiding à-trous iterations (the paper's 5x5 B3 kernel or
+//                   RELAX's 3x3 Gaussian, steps 1, 2, 4, ...) with depth, normal and
+//                   luminance-variance edge stops; iteration 0 (SvgfSettings::feedbackIteration)
+//                   is the next frame's colour history; the last remodulates the albedo
 //
-// Three compute pipelines (shaders/denoise/svgf_{temporal,variance,atrous}.comp); the five
-// à-trous passes share one, with a descriptor set each. Every image is at the frame graph's
-// render resolution. Resources: history svgf.surface, svgf.moments, svgf.illumination;
-// svgf.accumulated, svgf.filtered-moments, svgf.atrous-1..3 (formats: shared/svgf_io.h).
+// Three compute pipelines (shaders/denoise/svgf_{temporal,variance,atrous}.comp); the à-trous
+// passes share one, with a descriptor set each. Every image is at the frame graph's render
+// resolution. Resources: history svgf.surface, svgf.moments, svgf.illumination;
+// svgf.accumulated, svgf.slope, svgf.filtered-moments, svgf.atrous-1..3 (formats:
+// shared/svgf_io.h).
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -38,6 +39,14 @@ namespace bounce {
 //           the same from either side, so an outlier keeps its energy, and a pixel whose
 //           variance is 0 (certain, as a shadow) takes no noisy light in. docs/denoise.md.
 enum class SvgfLuminanceStop : uint32_t { Centre, Shared };
+
+// The à-trous kernel (svgf_atrous.comp).
+//   BSpline5x5:  the paper's 5x5 B3 spline (25 taps; per iteration, white noise's variance
+//                13x lower).
+//   Gaussian3x3: NRD RELAX's 3x3 sampled Gaussian (9 taps, 8x lower; research/
+//                gi10_lux_denoisers.md §3.3), with 5 iterations about the reach of the B3 with
+//                4 (31 against 30 pixels) for 45 taps against 100.
+enum class SvgfKernel : uint32_t { BSpline5x5, Gaussian3x3 };
 
 // The defaults are the paper's (Schied et al. 2017 §5) except where noted.
 struct SvgfSettings {
@@ -70,18 +79,35 @@ struct SvgfSettings {
   float phiLuminance = 4.0f;
   // Not the paper's (Centre): see SvgfLuminanceStop.
   SvgfLuminanceStop luminanceStop = SvgfLuminanceStop::Shared;
+  SvgfKernel kernel = SvgfKernel::BSpline5x5;
+  // The centre's variance is blurred by a 3x3 Gaussian before every à-trous iteration (the
+  // paper's, Schied eq. 5), or false: before the first only (NRD RELAX), later iterations taking
+  // the variance the previous one filtered (9 reads fewer per pixel and iteration).
+  bool prefilterEveryIteration = true;
 
   // Falcor's SVGFPass defaults where they differ from the paper's: colour alpha 0.05 (a longer
   // history, about 39 frames), sigma_l 10 (a looser luminance stop), 4 iterations (a 30-pixel
   // reach, one pass less). Not Falcor's feedback tap 1: the history from the second iteration
   // measured worse on Evolve's GI (docs/decisions.md). What Evolve's GI, the DI denoiser and
-  // the public API use; on the Cornell box HDR-FLIP 0.148-0.158 against the paper's 0.162
-  // (docs/denoise.md).
+  // the public API used until session 29; on the Cornell box HDR-FLIP 0.148-0.158 against the
+  // paper's 0.162 (docs/denoise.md).
   static SvgfSettings falcor() {
     SvgfSettings s;
     s.colorAlpha = 0.05f;
     s.phiLuminance = 10.0f;
     s.iterations = 4;
+    return s;
+  }
+
+  // Falcor's temporal settings and luminance stop with NRD RELAX's à-trous: the 3x3 kernel, the
+  // variance prefiltered before the first iteration only, 4 iterations (a 15-pixel reach). What
+  // Evolve's GI, Lux, the hybrid, the DI denoiser and the public API use: as good as falcor()
+  // on every measure taken (HDR-FLIP within 0.001 on cornell, sunroom, foliage and a camera
+  // path; flicker the same) at half its GPU time (docs/denoise.md, "RELAX's à-trous").
+  static SvgfSettings relaxAtrous() {
+    SvgfSettings s = falcor();
+    s.kernel = SvgfKernel::Gaussian3x3;
+    s.prefilterEveryIteration = false;
     return s;
   }
 };
@@ -125,6 +151,7 @@ class Svgf {
   struct Temporal {
     graph::ImageHandle filtered;  // svgf.filtered-moments: colour, variance
     graph::ImageHandle surface;   // svgf.surface (current)
+    graph::ImageHandle slope;     // svgf.slope: the view depth's change per pixel
     graph::ImageHandle moments;   // svgf.moments (current)
     graph::ImageHandle
         illumination;  // svgf.illumination (current): the feedback iteration writes it
@@ -138,16 +165,18 @@ class Svgf {
                       std::optional<graph::ImageHandle> tiles = std::nullopt);
   // One à-trous iteration alone (pass svgf-atrous-<iteration>), for tests against the CPU
   // reference (denoise/svgf_reference.h): `input` RGBA16F colour + variance, `surface` RG32UI
-  // packed normal + depth (svgf.surface's format: packSvgfSurface); no albedo.
+  // packed normal + depth (svgf.surface's format: packSvgfSurface), `slope` R32F the depth's
+  // change per pixel (svgf.slope: svgfDepthSlopes); no albedo.
   void declareAtrousStep(graph::FrameGraph& graph, VkExtent2D resolution, graph::ImageHandle input,
-                         graph::ImageHandle surface, uint32_t iteration, graph::ImageHandle output);
+                         graph::ImageHandle surface, graph::ImageHandle slope, uint32_t iteration,
+                         graph::ImageHandle output);
 
   const SvgfSettings& settings() const { return settings_; }
 
  private:
   gpu::SvgfConstants constants(VkExtent2D resolution, const SvgfInputs& inputs) const;
   void declareAtrous(graph::FrameGraph& graph, const gpu::SvgfConstants& constants,
-                     graph::ImageHandle input, graph::ImageHandle surface,
+                     graph::ImageHandle input, graph::ImageHandle surface, graph::ImageHandle slope,
                      graph::ImageHandle albedo, uint32_t iteration, graph::ImageHandle output,
                      std::optional<graph::ImageHandle> tiles = std::nullopt);
 

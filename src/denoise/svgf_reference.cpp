@@ -24,10 +24,15 @@ double luminance(const glm::dvec3& c) {
   return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
 }
 
-// B3 spline (1/16, 1/4, 3/8, 1/4, 1/16).
-double b3(int offset) {
-  static constexpr double kWeights[3] = {3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0};
-  return kWeights[std::abs(offset)];
+// The kernel's 1-D weight at `offset` (shared/svgf_io.h): B3 spline (1/16, 1/4, 3/8, 1/4, 1/16)
+// or RELAX's 3x3 Gaussian (0.27901, 0.44198, 0.27901).
+double kernelWeight(SvgfKernel kernel, int offset) {
+  static constexpr double kB3[3] = {3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0};
+  static constexpr double kGaussian[2] = {0.44198, 0.27901};
+  return kernel == SvgfKernel::Gaussian3x3 ? kGaussian[std::abs(offset)] : kB3[std::abs(offset)];
+}
+int kernelRadius(SvgfKernel kernel) {
+  return kernel == SvgfKernel::Gaussian3x3 ? 1 : 2;
 }
 
 // The surface's depth change per pixel along an axis: the smaller one-sided difference.
@@ -54,22 +59,26 @@ double prefilteredVariance(const Grid& g, int x, int y) {
   return sum / weights;
 }
 
-glm::vec4 filterPixel(const Grid& g, int x, int y, int step, const SvgfSettings& s) {
+glm::vec4 filterPixel(const Grid& g, int x, int y, uint32_t iteration, const SvgfSettings& s) {
+  const int step = 1 << iteration;
   const glm::dvec4 centre = g.in.colourVariance[g.index(x, y)];
   const glm::dvec3 n = glm::dvec3(g.in.surface[g.index(x, y)]);
   const double z = g.depth(x, y);
   const double l = luminance(glm::dvec3(centre));
-  const double deviation = std::sqrt(std::max(prefilteredVariance(g, x, y), 0.0));
+  const bool prefilter = iteration == 0 || s.prefilterEveryIteration;
+  const double deviation =
+      std::sqrt(std::max(prefilter ? prefilteredVariance(g, x, y) : centre.w, 0.0));
   const double slope = std::hypot(slopeAlong(g, x, y, 1, 0), slopeAlong(g, x, y, 0, 1));
   glm::dvec3 colour(0.0);
   double variance = 0.0, weights = 0.0;
-  for (int dy = -2; dy <= 2; ++dy)
-    for (int dx = -2; dx <= 2; ++dx) {
+  const int radius = kernelRadius(s.kernel);
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx) {
       int qx = x + step * dx, qy = y + step * dy;
       if (!g.surface(qx, qy)) continue;
       const glm::dvec4 c = g.in.colourVariance[g.index(qx, qy)];
       const glm::dvec3 nq = glm::dvec3(g.in.surface[g.index(qx, qy)]);
-      double w = b3(dx) * b3(dy);
+      double w = kernelWeight(s.kernel, dx) * kernelWeight(s.kernel, dy);
       if (dx != 0 || dy != 0) {
         // Schied eq. 3-5 (depth term with Falcor's |grad z| |offset|; svgf_common.glsl).
         double distance = step * std::hypot(double(dx), double(dy));
@@ -91,17 +100,27 @@ glm::vec4 filterPixel(const Grid& g, int x, int y, int step, const SvgfSettings&
 
 }  // namespace
 
+std::vector<float> svgfDepthSlopes(const SvgfAtrousInput& input) {
+  const Grid g{input};
+  std::vector<float> slopes(size_t(input.width) * input.height, 0.0f);
+  for (int y = 0; y < int(input.height); ++y)
+    for (int x = 0; x < int(input.width); ++x)
+      if (g.surface(x, y))
+        slopes[g.index(x, y)] =
+            float(std::hypot(slopeAlong(g, x, y, 1, 0), slopeAlong(g, x, y, 0, 1)));
+  return slopes;
+}
+
 std::vector<glm::vec4> svgfAtrousReference(const SvgfAtrousInput& input, uint32_t iteration,
                                            const SvgfSettings& settings) {
   const Grid g{input};
   std::vector<glm::vec4> out(input.colourVariance);
-  const int step = 1 << iteration;
   const bool last = iteration + 1 == settings.iterations;
   for (int y = 0; y < int(input.height); ++y)
     for (int x = 0; x < int(input.width); ++x) {
       glm::vec4& o = out[g.index(x, y)];
       if (g.surface(x, y))
-        o = filterPixel(g, x, y, step, settings);
+        o = filterPixel(g, x, y, iteration, settings);
       else if (last && o.w < 0.0f)  // gpu::SVGF_NO_SURFACE_VARIANCE
         o.w = 0.0f;
     }

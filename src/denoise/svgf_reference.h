@@ -25,4 +25,9 @@ struct SvgfAtrousInput {
 std::vector<glm::vec4> svgfAtrousReference(const SvgfAtrousInput& input, uint32_t iteration,
                                            const SvgfSettings& settings);
 
+// Per pixel, the view depth's change per pixel that svgf-temporal writes to svgf.slope and the
+// iterations read (of the two one-sided differences along each axis the smaller; 0 without a
+// surface): what a test uploads beside the à-trous step's input.
+std::vector<float> svgfDepthSlopes(const SvgfAtrousInput& input);
+
 }  // namespace bounce

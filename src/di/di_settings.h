@@ -120,7 +120,7 @@ struct DiSettings {
   // The denoiser of the DI signal (above). None by default and in both presets: SVGF removes the
   // speckles (per-pixel variance 44x lower on manylights) but darkens the mean by 5-6 % there,
   // beyond issue 21's 2 %, and does not move Cornell's HDR-FLIP (docs/di.md, "The denoiser").
-  // SVGF (Falcor's settings, SvgfSettings::falcor()) adds 3 pipelines, ReBLUR 5. Its history is
+  // SVGF (SvgfSettings::relaxAtrous()) adds 3 pipelines, ReBLUR 5. Its history is
   // dropped on every frame in which a light switched, dimmed or brightened by more than 2x or
   // moved by more than RestirDi::kDropMove of the scene's extent (restir_di.h), so a
   // changed light does not linger in it.

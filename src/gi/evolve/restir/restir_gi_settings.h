@@ -197,9 +197,9 @@ struct RestirGiSettings {
   uint32_t settleFrames = 16;
   float settleHistoryScale = 0.2f;
   GiDenoiser denoiser = GiDenoiser::Evolve;
-  // With GiDenoiser::Svgf: Falcor's parameters, which measured better than the paper's on the
-  // Cornell box (docs/denoise.md).
-  SvgfSettings svgf = SvgfSettings::falcor();
+  // With GiDenoiser::Svgf: Falcor's parameters (which measured better than the paper's on the
+  // Cornell box) with RELAX's cheaper à-trous (docs/denoise.md).
+  SvgfSettings svgf = SvgfSettings::relaxAtrous();
   ReblurSettings reblur;         // with GiDenoiser::Reblur (NRD's defaults)
   HybridDenoiseSettings hybrid;  // with GiDenoiser::Hybrid
   bool temporalDenoise = true;
