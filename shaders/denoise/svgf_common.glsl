@@ -8,6 +8,11 @@
 
 layout(push_constant, scalar) uniform Push { SvgfConstants pc; };
 
+layout(buffer_reference, scalar, buffer_reference_align = 4) buffer SvgfVarianceTiles {
+  SvgfVarianceTilesHeader header;
+  uint tiles[];  // x | y << 16
+};
+
 bool isFiniteValue(float v) { return !isnan(v) && !isinf(v); }
 vec3 finiteOrZero(vec3 v) { return any(isnan(v)) || any(isinf(v)) ? vec3(0.0) : v; }
 

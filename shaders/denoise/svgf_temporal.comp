@@ -12,6 +12,9 @@
 //     frames. The colour history is svgf-atrous-0's output of last frame (Schied's feedback),
 //     the moments' history svgf.moments.
 //   - Nothing non-finite enters history (a NaN/Inf sample counts as 0).
+//   - The variance: where the history is long enough (varianceHistoryFrames) the temporal one,
+//     mu2 - mu1^2, written to svgf.filtered-moments here; the 8x8 tiles holding a shorter one
+//     are listed in svgf.variance-tiles for svgf-variance's spatial estimate.
 // Pixels without a surface pass the signal through and restart their history.
 #version 460
 #include "denoise/svgf_common.glsl"
@@ -30,6 +33,9 @@ layout(set = 1, binding = SVGF_TEMPORAL_BINDING_SURFACE, rg32ui) uniform writeon
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_MOMENTS, rgba32f) uniform writeonly image2D momentsOut;
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_ACCUMULATED, rgba16f) uniform writeonly image2D accumulatedOut;
 layout(set = 1, binding = SVGF_TEMPORAL_BINDING_SLOPE, r32f) uniform writeonly image2D slopeOut;
+layout(set = 1, binding = SVGF_TEMPORAL_BINDING_FILTERED, rgba16f) uniform writeonly image2D filteredOut;
+
+shared bool tileNeedsSpatialVariance;
 
 float currentDepth(ivec2 q) { return imageLoad(depths, q).x; }
 DEFINE_DEPTH_GRADIENT(currentDepth)
@@ -97,9 +103,8 @@ History reproject(ivec2 pixel, float z, float slope, vec3 n) {
   return h;
 }
 
-void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (!inImage(pixel)) return;
+// The pass for one pixel; returns whether its variance needs svgf-variance's spatial estimate.
+bool accumulate(ivec2 pixel) {
   vec3 noisy = finiteOrZero(imageLoad(noisyImage, pixel).rgb);
   float z = imageLoad(depths, pixel).x;
   if (!hasSurface(z)) {
@@ -107,7 +112,8 @@ void main() {
     imageStore(momentsOut, pixel, vec4(0.0));
     imageStore(accumulatedOut, pixel, vec4(noisy, 0.0));
     imageStore(slopeOut, pixel, vec4(0.0));
-    return;
+    imageStore(filteredOut, pixel, vec4(noisy, SVGF_NO_SURFACE_VARIANCE));
+    return false;
   }
   vec3 n = loadNormal(pixel);
   imageStore(surfaceOut, pixel, uvec4(packSurface(n, z), 0u, 0u));
@@ -126,4 +132,21 @@ void main() {
   vec2 moments = mix(h.moments, vec2(l, l * l), momentsAlpha);
   imageStore(momentsOut, pixel, vec4(moments, frames, 0.0));
   imageStore(accumulatedOut, pixel, vec4(colour, 0.0));
+  if (frames < float(pc.varianceHistoryFrames)) return true;
+  // What svgf-variance gave these pixels before: the colour as stored, the fp32 moments.
+  imageStore(filteredOut, pixel, vec4(colour, max(moments.y - moments.x * moments.x, 0.0)));
+  return false;
+}
+
+void main() {
+  if (gl_LocalInvocationIndex == 0u) tileNeedsSpatialVariance = false;
+  barrier();
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  if (inImage(pixel) && accumulate(pixel)) tileNeedsSpatialVariance = true;
+  barrier();
+  if (gl_LocalInvocationIndex == 0u && tileNeedsSpatialVariance) {
+    SvgfVarianceTiles list = SvgfVarianceTiles(pc.varianceTiles);
+    uint slot = atomicAdd(list.header.groupsX, 1u);
+    list.tiles[slot] = gl_WorkGroupID.x | (gl_WorkGroupID.y << 16u);
+  }
 }

@@ -7,7 +7,9 @@
 //     (depth and normal edge stops; no luminance stop, which would reject the very noise being
 //     measured) and the variance is scaled by 4 / history length, as Falcor does, so that the
 //     first à-trous iterations blur a young history more.
-// Pixels without a surface pass through with variance SVGF_NO_SURFACE_VARIANCE.
+// svgf-temporal wrote the first case, and the pixels without a surface (variance
+// SVGF_NO_SURFACE_VARIANCE); this pass runs on the 8x8 tiles it listed (svgf.variance-tiles,
+// an indirect dispatch) and estimates the second.
 #version 460
 #include "denoise/svgf_common.glsl"
 
@@ -24,20 +26,14 @@ vec4 surfaceAt(ivec2 q) { return unpackSurface(imageLoad(surfaces, q).xy); }
 const int SPATIAL_RADIUS = 3;  // 7x7
 
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  uint tile = SvgfVarianceTiles(pc.varianceTiles).tiles[gl_WorkGroupID.x];
+  ivec2 pixel = ivec2(tile & 0xFFFFu, tile >> 16u) * int(SVGF_GROUP_SIZE) +
+                ivec2(gl_LocalInvocationID.xy);
   if (!inImage(pixel)) return;
-  vec3 colour = imageLoad(accumulated, pixel).rgb;
   vec4 s = surfaceAt(pixel);
-  if (!hasSurface(s.w)) {
-    imageStore(outputImage, pixel, vec4(colour, SVGF_NO_SURFACE_VARIANCE));
-    return;
-  }
-  vec4 m = imageLoad(moments, pixel);
-  float frames = m.z;
-  if (frames >= float(pc.varianceHistoryFrames)) {
-    imageStore(outputImage, pixel, vec4(colour, max(m.y - m.x * m.x, 0.0)));
-    return;
-  }
+  if (!hasSurface(s.w)) return;
+  float frames = imageLoad(moments, pixel).z;
+  if (frames >= float(pc.varianceHistoryFrames)) return;
   float slope = imageLoad(slopes, pixel).r;  // svgf-temporal's depthSlope
   vec3 colourSum = vec3(0.0);
   vec2 momentSum = vec2(0.0);

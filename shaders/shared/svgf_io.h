@@ -41,13 +41,26 @@ struct SvgfConstants {
   float phiDepth;         // edge stops (Schied eq. 3-5): sigma_z, sigma_n, sigma_l
   float phiNormal;
   float phiLuminance;
-  float maxHistory;            // frames, the cap on the history length
-  uint varianceHistoryFrames;  // below: svgf-variance estimates the variance spatially (7x7)
-  uint step;                   // svgf-atrous: the tap spacing 2^iteration in pixels
-  uint iteration;              // svgf-atrous: 0 .. iterations - 1
-  uint lastIteration;          // svgf-atrous: 1 on the last one (remodulation with the albedo)
+  float maxHistory;             // frames, the cap on the history length
+  uint varianceHistoryFrames;   // below: svgf-variance estimates the variance spatially (7x7)
+  uint step;                    // svgf-atrous: the tap spacing 2^iteration in pixels
+  uint iteration;               // svgf-atrous: 0 .. iterations - 1
+  uint lastIteration;           // svgf-atrous: 1 on the last one (remodulation with the albedo)
+  DeviceAddress varianceTiles;  // svgf-temporal, svgf-variance: svgf.variance-tiles
 };
-BOUNCE_CHECK_SIZE(SvgfConstants, 64);
+BOUNCE_CHECK_SIZE(SvgfConstants, 72);
+
+// svgf.variance-tiles: svgf-temporal lists the 8x8 tiles (SVGF_GROUP_SIZE) holding a pixel whose
+// history is shorter than varianceHistoryFrames (one uint each, x | y << 16, after this header)
+// and writes svgf.filtered-moments itself everywhere else; svgf-variance runs on the listed
+// tiles only, through an indirect dispatch of the header's first three words.
+struct SvgfVarianceTilesHeader {
+  uint groupsX;  // the tile count
+  uint groupsY;  // 1
+  uint groupsZ;  // 1
+  uint unused;
+};
+BOUNCE_CHECK_SIZE(SvgfVarianceTilesHeader, 16);
 
 BOUNCE_CONST uint SVGF_GROUP_SIZE = 8u;
 BOUNCE_CONST uint SVGF_FLAG_OCTAHEDRAL_NORMALS = 1u;
@@ -81,7 +94,8 @@ BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_SURFACE = 8u;       // svgf.surface (cur
 BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_MOMENTS = 9u;       // svgf.moments (current)
 BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_ACCUMULATED = 10u;  // svgf.accumulated
 BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_SLOPE = 11u;        // svgf.slope
-BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_COUNT = 12u;
+BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_FILTERED = 12u;     // svgf.filtered-moments
+BOUNCE_CONST uint SVGF_TEMPORAL_BINDING_COUNT = 13u;
 
 // svgf-variance
 BOUNCE_CONST uint SVGF_VARIANCE_BINDING_ACCUMULATED = 0u;

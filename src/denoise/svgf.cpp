@@ -147,7 +147,18 @@ Svgf::Temporal Svgf::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolu
   graph::ImageHandle accumulated = graph.createImage(name_ + ".accumulated", {kRgba16f});
   graph::ImageHandle filtered = graph.createImage(name_ + ".filtered-moments", {kRgba16f});
   graph::ImageHandle slope = graph.createImage(name_ + ".slope", {VK_FORMAT_R32_SFLOAT});
+  const graph::BufferHandle tiles =
+      graph.createBuffer(name_ + ".variance-tiles",
+                         {graph::BufferSize::perPixel(sizeof(uint32_t), gpu::SVGF_GROUP_SIZE)
+                              .withHeader(sizeof(gpu::SvgfVarianceTilesHeader))});
   const gpu::SvgfConstants c = constants(resolution, in);
+
+  graph.addPass(name_ + "-variance-tiles-reset", graph::QueueKind::Compute)
+      .write(tiles, Access::TransferDst)
+      .record([tiles](VkCommandBuffer cmd, const graph::PassResources& r) {
+        const gpu::SvgfVarianceTilesHeader empty{0u, 1u, 1u, 0u};  // no tile yet
+        vkCmdUpdateBuffer(cmd, r.buffer(tiles).buffer, 0, sizeof(empty), &empty);
+      });
 
   graph::PassBuilder t = graph.addPass(name_ + "-temporal", graph::QueueKind::Compute);
   t.read(in.noisy, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_NOISY)
@@ -161,15 +172,18 @@ Svgf::Temporal Svgf::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolu
       .write(surface.current, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_SURFACE)
       .write(moments.current, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_MOMENTS)
       .write(accumulated, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_ACCUMULATED)
-      .write(slope, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_SLOPE);
+      .write(slope, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_SLOPE)
+      .write(filtered, Access::StorageWrite, gpu::SVGF_TEMPORAL_BINDING_FILTERED)
+      .write(tiles, Access::StorageReadWrite);
   if (in.albedo)
     t.read(*in.albedo, Access::StorageRead, gpu::SVGF_TEMPORAL_BINDING_ALBEDO);
   else
     t.readPlaceholder(in.noisy, gpu::SVGF_TEMPORAL_BINDING_ALBEDO);
   const bool drop = in.dropHistory;
-  t.record([this, c, drop, surface, moments, illumination](VkCommandBuffer cmd,
-                                                           const graph::PassResources& r) {
+  t.record([this, c, drop, surface, moments, illumination, tiles](VkCommandBuffer cmd,
+                                                                  const graph::PassResources& r) {
     gpu::SvgfConstants k = c;
+    k.varianceTiles = r.buffer(tiles).address;
     k.historyValid =
         !drop && r.historyValid(surface) && r.historyValid(moments) && r.historyValid(illumination);
     temporal_.bind(cmd, k, r);
@@ -181,10 +195,15 @@ Svgf::Temporal Svgf::declareTemporal(graph::FrameGraph& graph, VkExtent2D resolu
       .read(moments.current, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_MOMENTS)
       .read(surface.current, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_SURFACE)
       .read(slope, Access::StorageRead, gpu::SVGF_VARIANCE_BINDING_SLOPE)
+      .read(tiles, Access::StorageRead)
+      .read(tiles, Access::IndirectRead)
+      // The listed tiles' short histories only: svgf-temporal wrote the other pixels.
       .write(filtered, Access::StorageWrite, gpu::SVGF_VARIANCE_BINDING_OUTPUT)
-      .record([this, c](VkCommandBuffer cmd, const graph::PassResources& r) {
-        variance_.bind(cmd, c, r);
-        dispatch(cmd, c);
+      .record([this, c, tiles](VkCommandBuffer cmd, const graph::PassResources& r) {
+        gpu::SvgfConstants k = c;
+        k.varianceTiles = r.buffer(tiles).address;
+        variance_.bind(cmd, k, r);
+        vkCmdDispatchIndirect(cmd, r.buffer(tiles).buffer, 0);
       });
 
   return {filtered, surface.current, slope, moments.current, illumination.current};

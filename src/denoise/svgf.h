@@ -3,9 +3,11 @@
 // G-buffer, as a library unit that knows nothing of the GI technique that made the signal:
 //
 //   svgf-temporal   reprojected running mean of the (demodulated) colour and of the first two
-//                   luminance moments, disocclusion tests on depth and normal
-//   svgf-variance   the luminance variance: temporal, or a 7x7 spatial estimate while the history
-//                   is shorter than 4 frames
+//                   luminance moments, disocclusion tests on depth and normal; the temporal
+//                   luminance variance where the history is long enough, and the list of the
+//                   8x8 tiles where it is not
+//   svgf-variance   on the listed tiles (an indirect dispatch), a 7x7 spatial estimate of the
+//                   variance while the history is shorter than 4 frames
 //   svgf-atrous-0..N  2 to 5 edge-avoiding à-trous iterations (the paper's 5x5 B3 kernel or
 //                   RELAX's 3x3 Gaussian, steps 1, 2, 4, ...) with depth, normal and
 //                   luminance-variance edge stops; iteration 0 (SvgfSettings::feedbackIteration)
@@ -14,8 +16,8 @@
 // Three compute pipelines (shaders/denoise/svgf_{temporal,variance,atrous}.comp); the à-trous
 // passes share one, with a descriptor set each. Every image is at the frame graph's render
 // resolution. Resources: history svgf.surface, svgf.moments, svgf.illumination;
-// svgf.accumulated, svgf.slope, svgf.filtered-moments, svgf.atrous-1..3 (formats:
-// shared/svgf_io.h).
+// svgf.accumulated, svgf.slope, svgf.filtered-moments, svgf.atrous-1..3; the buffer
+// svgf.variance-tiles (formats: shared/svgf_io.h).
 #pragma once
 #include <cstdint>
 #include <optional>

@@ -271,6 +271,7 @@ PassBuilder& PassBuilder::use(uint32_t resource, Access access, bool asWrite, ui
           pass.name, decl.name, accessName(earlier.access), accessName(access));
     earlier.info.stages |= info.stages;
     earlier.info.access |= info.access;
+    earlier.mergedReads.push_back(access);
     if (binding != kNoBinding) earlier.binding = binding;
     return *this;
   }

@@ -210,6 +210,9 @@ class FrameGraph {
     Access access = Access::StorageRead;
     AccessInfo info;
     uint32_t binding = kNoBinding;  // the shader binding of a bound image
+    // Reads of the same resource merged into this one (a buffer read as storage and as indirect
+    // arguments): each adds its usage flags.
+    std::vector<Access> mergedReads;
   };
   struct PassDecl {
     std::string name;

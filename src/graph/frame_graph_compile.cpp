@@ -279,9 +279,12 @@ void FrameGraph::collectUsage(const std::vector<bool>& livePasses) {
   usage_.assign(resources_.size(), 0);
   for (size_t p = 0; p < passes_.size(); ++p) {
     if (!livePasses[p]) continue;
-    for (const ResourceUse& use : passes_[p].uses)
-      usage_[use.resource] |=
-          resources_[use.resource].isImage ? imageUsageFor(use.access) : bufferUsageFor(use.access);
+    for (const ResourceUse& use : passes_[p].uses) {
+      const bool image = resources_[use.resource].isImage;
+      usage_[use.resource] |= image ? imageUsageFor(use.access) : bufferUsageFor(use.access);
+      for (Access merged : use.mergedReads)
+        usage_[use.resource] |= image ? imageUsageFor(merged) : bufferUsageFor(merged);
+    }
   }
   for (uint32_t a = 0; a < resources_.size(); ++a)
     for (uint32_t b = 0; b < resources_.size(); ++b)
