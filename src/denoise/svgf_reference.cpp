@@ -59,6 +59,11 @@ double prefilteredVariance(const Grid& g, int x, int y) {
   return sum / weights;
 }
 
+// The depth's change per pixel (svgf.slope): the axes' one-sided slopes combined.
+double depthSlope(const Grid& g, int x, int y) {
+  return std::hypot(slopeAlong(g, x, y, 1, 0), slopeAlong(g, x, y, 0, 1));
+}
+
 glm::vec4 filterPixel(const Grid& g, int x, int y, uint32_t iteration, const SvgfSettings& s) {
   const int step = 1 << iteration;
   const glm::dvec4 centre = g.in.colourVariance[g.index(x, y)];
@@ -68,7 +73,7 @@ glm::vec4 filterPixel(const Grid& g, int x, int y, uint32_t iteration, const Svg
   const bool prefilter = iteration == 0 || s.prefilterEveryIteration;
   const double deviation =
       std::sqrt(std::max(prefilter ? prefilteredVariance(g, x, y) : centre.w, 0.0));
-  const double slope = std::hypot(slopeAlong(g, x, y, 1, 0), slopeAlong(g, x, y, 0, 1));
+  const double slope = depthSlope(g, x, y);
   glm::dvec3 colour(0.0);
   double variance = 0.0, weights = 0.0;
   const int radius = kernelRadius(s.kernel);
@@ -105,9 +110,7 @@ std::vector<float> svgfDepthSlopes(const SvgfAtrousInput& input) {
   std::vector<float> slopes(size_t(input.width) * input.height, 0.0f);
   for (int y = 0; y < int(input.height); ++y)
     for (int x = 0; x < int(input.width); ++x)
-      if (g.surface(x, y))
-        slopes[g.index(x, y)] =
-            float(std::hypot(slopeAlong(g, x, y, 1, 0), slopeAlong(g, x, y, 0, 1)));
+      if (g.surface(x, y)) slopes[g.index(x, y)] = float(depthSlope(g, x, y));
   return slopes;
 }
 
