@@ -16,14 +16,12 @@ layout(set = 1, binding = REBLUR_BLUR_BINDING_INPUT, rgba16f) uniform readonly i
 layout(set = 1, binding = REBLUR_BLUR_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
 layout(set = 1, binding = REBLUR_BLUR_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
 layout(set = 1, binding = REBLUR_BLUR_BINDING_TILES, rgba16f) uniform readonly image2D tiles;
+layout(set = 1, binding = REBLUR_BLUR_BINDING_SLOPE, r32f) uniform readonly image2D slopes;
 
 // The hybrid denoiser's tile classes (hybrid_classify.comp): a workgroup is one 8x8 tile.
 bool tileSkipped() {
   return (pc.flags & REBLUR_FLAG_TILES) != 0u && imageLoad(tiles, ivec2(gl_WorkGroupID.xy)).g == 0.0;
 }
-
-float surfaceDepth(ivec2 q) { return surfaceDepthOf(imageLoad(surfaces, q).xy); }
-DEFINE_REBLUR_DEPTH_SLOPE(surfaceDepth)
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -37,7 +35,7 @@ void main() {
   }
   bool post = (pc.flags & REBLUR_FLAG_POST_BLUR) != 0u;
   float radius = max(pc.blurRadius / (1.0 + max(centre.a, 0.0)), pc.minBlurRadius) * (post ? 2.0 : 1.0);
-  float slope = depthSlope(pixel, s.w);
+  float slope = imageLoad(slopes, pixel).r;
   // One rotation per 8x8 tile and frame, as the pre-blur's: a workgroup's taps read nearby
   // texels together (docs/decisions.md, "ReBLUR's blurs rotated per 8x8 tile").
   mat2 rotation = tapRotation(pixel / int(REBLUR_GROUP_SIZE), post ? 17u : 5u);
@@ -47,8 +45,8 @@ void main() {
     vec2 offset = radius * (rotation * kPoisson[i]);
     ivec2 q = pixel + ivec2(round(offset));
     if (!inImage(q) || q == pixel) continue;
-    vec4 sq = unpackSurface(imageLoad(surfaces, q).xy);
-    float w = geometryWeight(s.w, slope, length(offset), s.xyz, sq.w, sq.xyz);
+    // |rotation kPoisson[i]| = |kPoisson[i]|: a constant, no square root per tap.
+    float w = geometryWeight(s.w, slope, radius * length(kPoisson[i]), s.xyz, imageLoad(surfaces, q).xy);
     if (w <= 0.0) continue;
     sum += w * imageLoad(inputImage, q).rgb;
     weightSum += w;

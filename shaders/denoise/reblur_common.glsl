@@ -40,11 +40,18 @@ mat2 tapRotation(ivec2 pixel, uint salt) {
 // noisy input): the depth must follow the centre's plane within depthTolerance (relative), the
 // plane's depth change over the distance given by its slope per pixel; normals weigh
 // max(0, n.n_q)^normalPower.
-float geometryWeight(float z, float slope, float distance, vec3 n, float zq, vec3 nq) {
+// The weight is the product of planeWeight and normalWeight.
+float planeWeight(float z, float slope, float distance, float zq) {
   if (!hasSurface(zq)) return 0.0;
   float allowed = pc.depthTolerance * z + slope * distance;
   float dz = abs(zq - z) / max(allowed, 1e-6);
-  return max(0.0, 1.0 - dz * dz) * pow(max(dot(n, nq), 0.0), pc.normalPower);
+  return max(0.0, 1.0 - dz * dz);
+}
+float normalWeight(vec3 n, vec3 nq) { return pow(max(dot(n, nq), 0.0), pc.normalPower); }
+
+// The geometry weight of a tap whose surface is reblur.surface's packed `q`.
+float geometryWeight(float z, float slope, float distance, vec3 n, uvec2 q) {
+  return planeWeight(z, slope, distance, surfaceDepthOf(q)) * normalWeight(n, unpackSurface(q).xyz);
 }
 
 // The view-depth change per pixel along the surface: the smaller one-sided difference on each
@@ -65,26 +72,47 @@ float geometryWeight(float z, float slope, float distance, vec3 n, float zq, vec
     return length(vec2(oneSidedSlope(pixel, ivec2(1, 0), z), oneSidedSlope(pixel, ivec2(0, 1), z))); \
   }
 
+// The fast history's neighbourhood statistics as reblur.fast-moments keeps them (6 halves).
+uvec4 packMoments(vec3 mean, vec3 sigma) {
+  return uvec4(packHalf2x16(mean.rg), packHalf2x16(vec2(mean.b, sigma.r)), packHalf2x16(sigma.gb), 0u);
+}
+void unpackMoments(uvec4 packed, out vec3 mean, out vec3 sigma) {
+  vec2 a = unpackHalf2x16(packed.x), b = unpackHalf2x16(packed.y), c = unpackHalf2x16(packed.z);
+  mean = vec3(a, b.x);
+  sigma = vec3(b.y, c);
+}
+
 // Whether last frame's surface `s` (reblur.surface unpacked: normal, depth) is this pixel's.
 bool sameSurface(vec4 s, float z, float slope, vec3 n) {
   return hasSurface(s.w) && abs(s.w - z) <= pc.depthTolerance * z + 2.0 * slope &&
          dot(s.xyz, n) >= pc.normalTolerance;
 }
 
+// The bilinear footprint of last frame's position `previous` (in pixels): its top-left pixel p0
+// and the weights of the 4 pixels p0 + (i & 1, i >> 1).
+vec4 bilinearFootprint(vec2 previous, out ivec2 p0) {
+  vec2 base = previous - 0.5;
+  p0 = ivec2(floor(base));
+  vec2 f = base - vec2(p0);
+  return vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+}
+
 // Bilinear reprojection of a history image (rgba, its alpha a frame count) to this pixel's
-// surface, each of the 4 last-frame pixels only where its surface agrees; returns weight 0 when
-// none does (a disocclusion). Used by reblur-temporal and reblur-stabilize.
+// surface, each of the 4 last-frame pixels only where its surface agrees (bit i of `agreeing`);
+// returns weight 0 when none does (a disocclusion). reblur-temporal tests the surfaces and keeps
+// the bits in reblur.footprint, which reblur-stabilize reprojects its own history with.
 #define DEFINE_REBLUR_REPROJECT(previousSurfaceImage)                                        \
-  float reprojectWeights(vec2 previous, float z, float slope, vec3 n, out ivec2 p0, out vec4 w) { \
-    vec2 base = previous - 0.5;                                                              \
-    p0 = ivec2(floor(base));                                                                 \
-    vec2 f = base - vec2(p0);                                                                \
-    w = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);     \
+  float reprojectWeights(vec2 previous, float z, float slope, vec3 n, out ivec2 p0, out vec4 w, \
+                         out uint agreeing) {                                                \
+    w = bilinearFootprint(previous, p0);                                                     \
     float sum = 0.0;                                                                         \
+    agreeing = 0u;                                                                           \
     for (int i = 0; i < 4; ++i) {                                                            \
       ivec2 q = p0 + ivec2(i & 1, i >> 1);                                                   \
       if (w[i] <= 0.0 || !inImage(q) || !sameSurface(unpackSurface(imageLoad(previousSurfaceImage, q).xy), z, slope, n)) \
         w[i] = 0.0;                                                                          \
+      else                                                                                   \
+        agreeing |= 1u << i;                                                                 \
       sum += w[i];                                                                           \
     }                                                                                        \
     return sum;                                                                              \
@@ -101,8 +129,8 @@ bool sameSurface(vec4 s, float z, float slope, vec3 n) {
       for (int dx = -1; dx <= 1; ++dx) {                                                     \
         ivec2 q = pixel + ivec2(dx, dy);                                                     \
         if (!inImage(q)) continue;                                                           \
-        vec4 sq = unpackSurface(imageLoad(surfaceImage, q).xy);                              \
-        if (geometryWeight(z, slope, length(vec2(dx, dy)), n, sq.w, sq.xyz) <= 0.0) continue; \
+        if (geometryWeight(z, slope, length(vec2(dx, dy)), n, imageLoad(surfaceImage, q).xy) <= 0.0) \
+          continue;                                                                          \
         vec3 c = imageLoad(image, q).rgb;                                                    \
         m1 += c;                                                                             \
         m2 += c * c;                                                                         \

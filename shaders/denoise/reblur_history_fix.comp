@@ -12,7 +12,8 @@
 //     the luminance is clamped to its same-surface neighbours' mean +- antiFireflySigma
 //     standard deviations, read in a 9x9 window less the 3x3 centre (a firefly's own blur
 //     footprint would vouch for it).
-// The result (rgb, a the history length) goes to reblur-blur.
+// The result (rgb, a the history length) goes to reblur-blur; the fast history's neighbourhood
+// statistics go to reblur.fast-moments, for reblur-stabilize's clamp to the same neighbourhood.
 #version 460
 #include "denoise/reblur_common.glsl"
 
@@ -22,9 +23,9 @@ layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_INPUT, rgba16f) uniform rea
 layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_FAST, rgba16f) uniform readonly image2D fastImage;
 layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
 layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_SLOPE, r32f) uniform readonly image2D slopes;
+layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_FAST_MOMENTS, rgba32ui) uniform writeonly uimage2D fastMomentsOut;
 
-float surfaceDepth(ivec2 q) { return surfaceDepthOf(imageLoad(surfaces, q).xy); }
-DEFINE_REBLUR_DEPTH_SLOPE(surfaceDepth)
 DEFINE_REBLUR_NEIGHBOURHOOD(fastImage, surfaces)
 
 vec3 fixHistory(ivec2 pixel, vec4 centre, float z, float slope, vec3 n) {
@@ -38,8 +39,7 @@ vec3 fixHistory(ivec2 pixel, vec4 centre, float z, float slope, vec3 n) {
       vec2 offset = stride * vec2(dx, dy);
       ivec2 q = pixel + ivec2(round(offset));
       if (!inImage(q)) continue;
-      vec4 sq = unpackSurface(imageLoad(surfaces, q).xy);
-      float w = geometryWeight(z, slope, length(offset), n, sq.w, sq.xyz);
+      float w = geometryWeight(z, slope, stride * length(vec2(dx, dy)), n, imageLoad(surfaces, q).xy);
       if (w <= 0.0) continue;
       vec4 c = imageLoad(inputImage, q);
       w *= 1.0 + c.a;
@@ -59,8 +59,7 @@ vec3 withoutFirefly(ivec2 pixel, vec3 colour, float z, float slope, vec3 n) {
       if (abs(dx) <= 1 && abs(dy) <= 1) continue;
       ivec2 q = pixel + ivec2(dx, dy);
       if (!inImage(q)) continue;
-      vec4 sq = unpackSurface(imageLoad(surfaces, q).xy);
-      if (geometryWeight(z, slope, length(vec2(dx, dy)), n, sq.w, sq.xyz) <= 0.0) continue;
+      if (geometryWeight(z, slope, length(vec2(dx, dy)), n, imageLoad(surfaces, q).xy) <= 0.0) continue;
       float l = reblurLuminance(imageLoad(inputImage, q).rgb);
       m1 += l;
       m2 += l * l;
@@ -81,14 +80,16 @@ void main() {
   vec4 s = unpackSurface(imageLoad(surfaces, pixel).xy);
   if (!hasSurface(s.w)) {
     imageStore(outputImage, pixel, centre);
+    imageStore(fastMomentsOut, pixel, uvec4(0u));
     return;
   }
-  float slope = depthSlope(pixel, s.w);
+  float slope = imageLoad(slopes, pixel).r;
   float frames = centre.a;
   vec3 colour = frames < pc.historyFixFrames ? fixHistory(pixel, centre, s.w, slope, s.xyz) : centre.rgb;
   colour = withoutFirefly(pixel, colour, s.w, slope, s.xyz);
   vec3 mean, sigma;
   neighbourhood(pixel, s.w, slope, s.xyz, mean, sigma);
+  imageStore(fastMomentsOut, pixel, packMoments(mean, sigma));
   vec3 clamped = clamp(colour, mean - pc.sigmaScale * sigma, mean + pc.sigmaScale * sigma);
   // How far the clamp moved the history, in the neighbourhood's standard deviations of luminance.
   float moved = abs(reblurLuminance(colour - clamped)) / max(reblurLuminance(sigma), 1e-6);

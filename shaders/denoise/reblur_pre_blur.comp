@@ -2,7 +2,8 @@
 // reuse of the noisy signal before it enters the temporal history, 8 Poisson taps in a disk of
 // blurRadius pixels (NRD: 30), rotated per 8x8 tile and frame, with the geometry weights of
 // reblur_common.glsl (plane, normal; no luminance weight, so the mean is kept). It also writes
-// reblur.surface (normal, view depth), which every later pass reads, and divides the signal by
+// reblur.surface (normal, view depth) and reblur.slope (the depth's change per pixel), which every
+// later pass reads, and divides the signal by
 // the albedo (REBLUR_FLAG_ALBEDO). Pixels without a surface pass the signal through.
 #version 460
 #include "denoise/reblur_common.glsl"
@@ -15,6 +16,7 @@ layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_NORMALS, rgba16f) uniform read
 layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_ALBEDO, rgba16f) uniform readonly image2D albedos;
 layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_SURFACE, rg32ui) uniform writeonly uimage2D surfaceOut;
 layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_SLOPE, r32f) uniform writeonly image2D slopeOut;
 
 float depthAt(ivec2 q) {
   float z = imageLoad(depths, q).x;
@@ -39,12 +41,14 @@ void main() {
   float z = depthAt(pixel);
   if (!hasSurface(z)) {
     imageStore(surfaceOut, pixel, uvec4(0u));
+    imageStore(slopeOut, pixel, vec4(0.0));
     imageStore(outputImage, pixel, vec4(finiteOrZero(imageLoad(noisyImage, pixel).rgb), 0.0));
     return;
   }
   vec3 n = normalAt(pixel);
   imageStore(surfaceOut, pixel, uvec4(packSurface(n, z), 0u, 0u));
   float slope = depthSlope(pixel, z);
+  imageStore(slopeOut, pixel, vec4(slope));
   // One rotation per 8x8 tile (and frame), not per pixel: a workgroup's taps then read nearby
   // texels together, 2.9x faster on an H200 with the same gates and Cornell FLIP
   // (docs/decisions.md); the temporal history still sees a new rotation every frame.
@@ -55,7 +59,9 @@ void main() {
     vec2 offset = pc.blurRadius * (rotation * kPoisson[i]);
     ivec2 q = pixel + ivec2(round(offset));
     if (!inImage(q) || q == pixel) continue;
-    float w = geometryWeight(z, slope, length(offset), n, depthAt(q), normalAt(q));
+    // |rotation kPoisson[i]| = |kPoisson[i]|: a constant, no square root per tap.
+    float w = planeWeight(z, slope, pc.blurRadius * length(kPoisson[i]), depthAt(q)) *
+              normalWeight(n, normalAt(q));
     if (w <= 0.0) continue;
     sum += w * signalAt(q);
     weightSum += w;

@@ -24,9 +24,9 @@ layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY, rgba16f) uni
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST, rgba16f) uniform readonly image2D previousFast;
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_FAST, rgba16f) uniform writeonly image2D fastOut;
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_ACCUMULATED, rgba16f) uniform writeonly image2D accumulatedOut;
+layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_SLOPE, r32f) uniform readonly image2D slopes;
+layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_FOOTPRINT, r8ui) uniform writeonly uimage2D footprintOut;
 
-float surfaceDepth(ivec2 q) { return surfaceDepthOf(imageLoad(surfaces, q).xy); }
-DEFINE_REBLUR_DEPTH_SLOPE(surfaceDepth)
 DEFINE_REBLUR_REPROJECT(previousSurface)
 
 void main() {
@@ -37,15 +37,18 @@ void main() {
   if (!hasSurface(s.w)) {
     imageStore(fastOut, pixel, vec4(signal, 0.0));
     imageStore(accumulatedOut, pixel, vec4(signal, 0.0));
+    imageStore(footprintOut, pixel, uvec4(0u));
     return;
   }
   vec4 slow = vec4(0.0), fast = vec4(0.0);
   float frames = 0.0;  // the history's length, 0: none
+  uint agreeing = 0u;  // the footprint's pixels on this surface
   vec2 previous = vec2(pixel) + 0.5 - imageLoad(motions, pixel).xy;
   if (pc.historyValid != 0u && isFiniteValue(previous.x) && isFiniteValue(previous.y)) {
     ivec2 p0;
     vec4 w;
-    float sum = reprojectWeights(previous, s.w, depthSlope(pixel, s.w), s.xyz, p0, w);
+    float sum = reprojectWeights(previous, s.w, imageLoad(slopes, pixel).r, s.xyz, p0, w, agreeing);
+    if (sum <= 1e-3) agreeing = 0u;
     if (sum > 1e-3) {
       for (int i = 0; i < 4; ++i) {
         if (w[i] <= 0.0) continue;
@@ -64,4 +67,5 @@ void main() {
   vec3 fastColour = mix(fast.rgb, signal, 1.0 / fastFrames);
   imageStore(fastOut, pixel, vec4(fastColour, fastFrames));
   imageStore(accumulatedOut, pixel, vec4(slowColour, slowFrames));
+  imageStore(footprintOut, pixel, uvec4(agreeing));
 }

@@ -54,7 +54,7 @@ struct Centre {
   vec4 surface;     // normal xyz, depth w
   float luminance;
   float deviation;  // the standard deviation of its luminance (prefiltered variance)
-  float phiL;       // the luminance stop's scale (the centre's alone)
+  float inversePhiL;  // 1 / the luminance stop's scale (the centre's alone)
   float slope;      // its depth change per pixel
 };
 
@@ -75,12 +75,14 @@ void addTap(ivec2 pixel, ivec2 kernelOffset, float kernelWeight, Centre centre,
   if (!hasSurface(surfaceDepthOf(packed))) return;
   vec4 sq = unpackSurface(packed);
   vec4 c = imageLoad(inputImage, q);
-  float phiL = (pc.flags & SVGF_FLAG_SHARED_LUMINANCE_STOP) != 0u
-                   ? pc.phiLuminance * sqrt(centre.deviation * sqrt(max(c.a, 0.0))) + 1e-10
-                   : centre.phiL;
-  float w = kernelWeight * edgeStopWeight(centre.surface.w, sq.w, centre.slope, vec2(offset),
+  float inversePhiL = (pc.flags & SVGF_FLAG_SHARED_LUMINANCE_STOP) != 0u
+                          ? inversesqrt(max(centre.deviation * sqrt(max(c.a, 0.0)), 1e-20)) /
+                                pc.phiLuminance
+                          : centre.inversePhiL;
+  float distance = float(pc.step) * length(vec2(kernelOffset));
+  float w = kernelWeight * edgeStopWeight(centre.surface.w, sq.w, centre.slope, distance,
                                           centre.surface.xyz, sq.xyz, centre.luminance,
-                                          svgfLuminance(c.rgb), phiL);
+                                          svgfLuminance(c.rgb), inversePhiL);
   sums.colour += w * c.rgb;
   sums.variance += w * w * c.a;
   sums.weight += w;
@@ -104,7 +106,7 @@ void main() {
   centre.luminance = svgfLuminance(colourVariance.rgb);
   bool prefilter = pc.iteration == 0u || (pc.flags & SVGF_FLAG_PREFILTER_FIRST_ONLY) == 0u;
   centre.deviation = sqrt(max(prefilter ? prefilteredVariance(pixel) : colourVariance.a, 0.0));
-  centre.phiL = pc.phiLuminance * centre.deviation + 1e-10;
+  centre.inversePhiL = 1.0 / (pc.phiLuminance * centre.deviation + 1e-10);
   centre.slope = imageLoad(slopes, pixel).r;  // svgf-temporal's depthSlope
   // Two loops of constant bounds rather than one of a variable radius, so that each unrolls.
   TapSums sums;

@@ -63,13 +63,15 @@ float gaussian3(int offset) { return offset == 0 ? SVGF_GAUSSIAN_0 : SVGF_GAUSSI
 // |grad z| |offset|, which stays tolerant across a slanted plane in any direction): depth,
 // normal and luminance, the last relative to the (prefiltered) standard deviation of the
 // centre's luminance.
-float edgeStopWeight(float z, float zq, float slope, vec2 offset, vec3 n, vec3 nq, float l, float lq,
-                     float phiL) {
+float edgeStopWeight(float z, float zq, float slope, float distance, vec3 n, vec3 nq, float l,
+                     float lq, float inversePhiL) {
   // 1e-3 z: the depth rounding of a plane facing the camera, whose slope is 0.
-  float wz = abs(z - zq) / (pc.phiDepth * slope * length(offset) + 1e-3 * z);
-  float wn = pow(max(dot(n, nq), 0.0), pc.phiNormal);
-  float wl = abs(l - lq) / phiL;
-  return exp(-wz - wl) * wn;
+  float wz = abs(z - zq) / (pc.phiDepth * slope * distance + 1e-3 * z);
+  float wl = abs(l - lq) * inversePhiL;
+  // exp(-wz - wl) max(0, n.n_q)^phiNormal as one exp2 (a normal at 90 degrees or more: log2 of
+  // 1e-30 = -100, so the weight underflows to 0 for any phiNormal >= 1).
+  float logNormal = pc.phiNormal * log2(max(dot(n, nq), 1e-30));
+  return exp2(logNormal - 1.4426950 * (wz + wl));
 }
 
 #endif

@@ -46,7 +46,7 @@ void main() {
       if (!hasSurface(surfaceDepthOf(packed))) continue;
       vec4 sq = unpackSurface(packed);
       // The luminance term off: phiL infinite.
-      float w = edgeStopWeight(s.w, sq.w, slope, vec2(dx, dy), s.xyz, sq.xyz, 0.0, 0.0, 1.0);
+      float w = edgeStopWeight(s.w, sq.w, slope, length(vec2(dx, dy)), s.xyz, sq.xyz, 0.0, 0.0, 1.0);
       colourSum += w * imageLoad(accumulated, q).rgb;
       momentSum += w * imageLoad(moments, q).xy;
       weightSum += w;

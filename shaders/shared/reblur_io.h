@@ -9,11 +9,16 @@
 // Images (ReBLUR's own):
 //   reblur.surface      RG32UI   (history) view depth bits (0: no surface), unit normal octahedral
 //                                as two snorm16 (denoise/packed_surface.glsl)
+//   reblur.slope        R32F     reblur-pre-blur's view-depth change per pixel (every later pass's
+//                                plane test; written once instead of read from 4 neighbours each)
 //   reblur.pre-blurred  RGBA16F  reblur-pre-blur's output (rgb; demodulated)
 //   reblur.fast         RGBA16F  (history) rgb the fast history (few frames), a its length
 //   reblur.accumulated  RGBA16F  (history) reblur-temporal's slow history: rgb, a its length in
 //                                frames; next frame's slow history (unblurred: docs/denoise.md)
+//   reblur.footprint    R8UI     reblur-temporal's disocclusion tests: which of the 4 last-frame
+//                                pixels around the reprojected position hold this surface
 //   reblur.fixed        RGBA16F  reblur-history-fix's output: rgb, a the (anti-lagged) length
+//   reblur.fast-moments RGBA32UI reblur-history-fix's 3x3 mean and deviation of reblur.fast
 //   reblur.blurred      RGBA16F  reblur-blur's output: rgb, a the length
 //   reblur.post-blurred RGBA16F  reblur-post-blur's output: rgb, a the length
 //   reblur.stable       RGBA16F  (history) reblur-stabilize's output: rgb, a its frame count
@@ -62,7 +67,8 @@ BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_NORMALS = 2u;
 BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_ALBEDO = 3u;
 BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_SURFACE = 4u;  // reblur.surface (current), written
 BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_OUTPUT = 5u;   // reblur.pre-blurred
-BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_COUNT = 6u;
+BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_SLOPE = 6u;    // reblur.slope (R32F), written
+BOUNCE_CONST uint REBLUR_PRE_BLUR_BINDING_COUNT = 7u;
 
 // reblur-temporal
 BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_INPUT = 0u;  // reblur.pre-blurred
@@ -73,28 +79,37 @@ BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY = 4u;  // reblur.accu
 BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST = 5u;
 BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_FAST = 6u;         // reblur.fast (current)
 BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_ACCUMULATED = 7u;  // reblur.accumulated (current)
-BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_COUNT = 8u;
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_SLOPE = 8u;        // reblur.slope
+// reblur.footprint (R8UI, written): bit i set where last-frame pixel p0 + (i & 1, i >> 1) of the
+// bilinear footprint holds this pixel's surface (reblur_common.glsl bilinearFootprint)
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_FOOTPRINT = 9u;
+BOUNCE_CONST uint REBLUR_TEMPORAL_BINDING_COUNT = 10u;
 
 // reblur-history-fix
 BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_INPUT = 0u;  // reblur.accumulated
 BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_FAST = 1u;
 BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_SURFACE = 2u;
 BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_OUTPUT = 3u;  // reblur.fixed
-BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_COUNT = 4u;
+BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_SLOPE = 4u;
+// reblur.fast-moments (RGBA32UI, written): the fast history's 3x3 same-surface mean and standard
+// deviation, as halves: x mean.rg, y (mean.b, sigma.r), z sigma.gb. reblur-stabilize clamps to it.
+BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_FAST_MOMENTS = 5u;
+BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_COUNT = 6u;
 
 // reblur-blur and reblur-post-blur (one shader)
 BOUNCE_CONST uint REBLUR_BLUR_BINDING_INPUT = 0u;
 BOUNCE_CONST uint REBLUR_BLUR_BINDING_SURFACE = 1u;
 BOUNCE_CONST uint REBLUR_BLUR_BINDING_OUTPUT = 2u;
 BOUNCE_CONST uint REBLUR_BLUR_BINDING_TILES = 3u;  // hybrid.tiles with REBLUR_FLAG_TILES
-BOUNCE_CONST uint REBLUR_BLUR_BINDING_COUNT = 4u;
+BOUNCE_CONST uint REBLUR_BLUR_BINDING_SLOPE = 4u;
+BOUNCE_CONST uint REBLUR_BLUR_BINDING_COUNT = 5u;
 
 // reblur-stabilize
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_INPUT = 0u;  // reblur.post-blurred
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_FAST = 1u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_INPUT = 0u;         // reblur.post-blurred
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_FAST_MOMENTS = 1u;  // reblur.fast-moments
 BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_SURFACE = 2u;
 BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_MOTION = 3u;
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_PREVIOUS_SURFACE = 4u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_FOOTPRINT = 4u;  // reblur.footprint
 BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE = 5u;
 BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_ALBEDO = 6u;
 BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_STABLE = 7u;  // reblur.stable (current)

@@ -14,6 +14,8 @@ namespace {
 constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
 // reblur.surface: depth bits and an octahedral snorm16 normal (denoise/packed_surface.glsl).
 constexpr VkFormat kRg32ui = VK_FORMAT_R32G32_UINT;
+constexpr VkFormat kRgba32ui = VK_FORMAT_R32G32B32A32_UINT;
+constexpr VkFormat kR32f = VK_FORMAT_R32_SFLOAT;
 
 void dispatch(VkCommandBuffer cmd, const gpu::ReblurConstants& c) {
   vk::ComputePipeline::dispatchCovering(cmd, c.resolution.x, c.resolution.y, gpu::REBLUR_GROUP_SIZE,
@@ -119,6 +121,9 @@ Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D re
   const graph::ImageHandle accumulated = history.current;
   graph::ImageHandle preBlurred = graph.createImage(name_ + ".pre-blurred", {kRgba16f});
   graph::ImageHandle fixed = graph.createImage(name_ + ".fixed", {kRgba16f});
+  graph::ImageHandle slope = graph.createImage(name_ + ".slope", {kR32f});
+  graph::ImageHandle fastMoments = graph.createImage(name_ + ".fast-moments", {kRgba32ui});
+  graph::ImageHandle footprint = graph.createImage(name_ + ".footprint", {VK_FORMAT_R8_UINT});
   const gpu::ReblurConstants c = constants(resolution, in);
   const bool valid = !in.dropHistory;
 
@@ -127,7 +132,8 @@ Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D re
       .read(in.depth, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_DEPTH)
       .read(in.normals, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_NORMALS)
       .write(surface.current, Access::StorageWrite, gpu::REBLUR_PRE_BLUR_BINDING_SURFACE)
-      .write(preBlurred, Access::StorageWrite, gpu::REBLUR_PRE_BLUR_BINDING_OUTPUT);
+      .write(preBlurred, Access::StorageWrite, gpu::REBLUR_PRE_BLUR_BINDING_OUTPUT)
+      .write(slope, Access::StorageWrite, gpu::REBLUR_PRE_BLUR_BINDING_SLOPE);
   if (in.albedo)
     pre.read(*in.albedo, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO);
   else
@@ -147,12 +153,14 @@ Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D re
   graph.addPass(name_ + "-temporal", graph::QueueKind::Compute)
       .read(preBlurred, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_INPUT)
       .read(surface.current, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_SURFACE)
+      .read(slope, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_SLOPE)
       .read(in.motion, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_MOTION)
       .read(surface.previous, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_SURFACE)
       .read(history.previous, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY)
       .read(fast.previous, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST)
       .write(fast.current, Access::StorageWrite, gpu::REBLUR_TEMPORAL_BINDING_FAST)
       .write(accumulated, Access::StorageWrite, gpu::REBLUR_TEMPORAL_BINDING_ACCUMULATED)
+      .write(footprint, Access::StorageWrite, gpu::REBLUR_TEMPORAL_BINDING_FOOTPRINT)
       .record([this, c, valid, surface, history, fast](VkCommandBuffer cmd,
                                                        const graph::PassResources& r) {
         gpu::ReblurConstants k = c;
@@ -167,13 +175,15 @@ Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D re
       .read(accumulated, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_INPUT)
       .read(fast.current, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_FAST)
       .read(surface.current, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_SURFACE)
+      .read(slope, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_SLOPE)
       .write(fixed, Access::StorageWrite, gpu::REBLUR_HISTORY_FIX_BINDING_OUTPUT)
+      .write(fastMoments, Access::StorageWrite, gpu::REBLUR_HISTORY_FIX_BINDING_FAST_MOMENTS)
       .record([this, c](VkCommandBuffer cmd, const graph::PassResources& r) {
         historyFix_.bind(cmd, c, r);
         dispatch(cmd, c);
       });
 
-  return {fixed, fast.current, surface};
+  return {fixed, fastMoments, surface, slope, footprint};
 }
 
 void Reblur::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution,
@@ -196,6 +206,7 @@ void Reblur::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution,
         graph.addPass(i == 0 ? name_ + "-blur" : name_ + "-post-blur", graph::QueueKind::Compute);
     blur.read(blurIn[i], Access::StorageRead, gpu::REBLUR_BLUR_BINDING_INPUT)
         .read(surface.current, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_SURFACE)
+        .read(temporal.slope, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_SLOPE)
         .write(blurOut[i], Access::StorageWrite, gpu::REBLUR_BLUR_BINDING_OUTPUT);
     if (tiles)
       blur.read(*tiles, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_TILES);
@@ -212,10 +223,10 @@ void Reblur::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution,
 
   graph::PassBuilder st = graph.addPass(name_ + "-stabilize", graph::QueueKind::Compute);
   st.read(postBlurred, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_INPUT)
-      .read(temporal.fast, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FAST)
+      .read(temporal.fastMoments, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FAST_MOMENTS)
       .read(surface.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_SURFACE)
       .read(in.motion, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_MOTION)
-      .read(surface.previous, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_PREVIOUS_SURFACE)
+      .read(temporal.footprint, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FOOTPRINT)
       .read(stable.previous, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE)
       .write(stable.current, Access::StorageWrite, gpu::REBLUR_STABILIZE_BINDING_STABLE)
       .write(output, Access::StorageWrite, gpu::REBLUR_STABILIZE_BINDING_OUTPUT);

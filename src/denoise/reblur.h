@@ -102,9 +102,11 @@ class Reblur {
   // first declares reblur-pre-blur, -temporal and -history-fix; the second the blurs and
   // reblur-stabilize.
   struct Temporal {
-    graph::ImageHandle fixed;  // reblur.fixed: rgb, a the history length after anti-lag
-    graph::ImageHandle fast;   // reblur.fast (current)
+    graph::ImageHandle fixed;        // reblur.fixed: rgb, a the history length after anti-lag
+    graph::ImageHandle fastMoments;  // reblur.fast-moments: the fast history's 3x3 statistics
     graph::HistoryImage surface;
+    graph::ImageHandle slope;      // reblur.slope: the view depth's change per pixel
+    graph::ImageHandle footprint;  // reblur.footprint: reblur-temporal's disocclusion tests
   };
   Temporal declareTemporal(graph::FrameGraph& graph, VkExtent2D resolution,
                            const DenoiseInputs& inputs);
