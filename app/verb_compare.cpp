@@ -49,6 +49,11 @@ void addCompareVerb(CLI::App& app, VerbAction& action) {
       ->required();
   verb->add_option("--json", o.jsonPath, "Also write the metrics to this JSON file");
   verb->add_option("--heatmap", o.heatmapPath, "Write the FLIP error map as a colour PNG");
+  verb->add_option("--trail", o.trailReferencePath,
+                   "The reference at an earlier pose of a moving scene (e.g. 10 frames before): "
+                   "also report relMSE inside the pixels that changed since (moving objects' old "
+                   "and new places, their shadows) and elsewhere, and the luminance ratio there: "
+                   "ghosting and lag (docs/tools.md)");
   verb->add_option("--side-by-side", o.sideBySidePath,
                    "Write test | reference | FLIP heat map side by side as one PNG");
   verb->add_option("--exposure", o.exposureStops,

@@ -367,6 +367,70 @@ TEST(Compare, NonFinitePixelsAreAnError) {
                         {dir + "/nan.exr", "NaN"});
 }
 
+// ---- Trail (ghosting) -------------------------------------------------------------------------
+
+// A grey plane with a white 6x6 square at `x0`.
+ImageRGBA32F planeWithSquare(int x0) {
+  ImageRGBA32F image = constantImage(40, 20, glm::vec3(0.2f));
+  for (int y = 7; y < 13; ++y)
+    for (int x = x0; x < x0 + 6; ++x) image.set(x, y, {1.0f, 1.0f, 1.0f, 1.0f});
+  return image;
+}
+
+// The square moved from x = 5 to x = 25: the mask is both places (dilated by the 3x3 block mean
+// and one pixel), nothing else; a test image that left a half-bright ghost at the old place errs
+// in the trail only, and is brighter than the reference there.
+TEST(Trail, MaskCoversTheOldAndNewPlacesOnly) {
+  const ImageRGBA32F earlier = planeWithSquare(5), now = planeWithSquare(25);
+  const std::vector<uint8_t> mask = trailMask(now, earlier);
+  auto masked = [&](int x, int y) { return mask[size_t(y) * 40 + x] != 0; };
+  for (int y = 7; y < 13; ++y)
+    for (int x : {5, 10, 25, 30}) EXPECT_TRUE(masked(x, y)) << x << "," << y;
+  EXPECT_FALSE(masked(17, 10));  // between the two places
+  EXPECT_FALSE(masked(0, 0));
+  EXPECT_FALSE(masked(39, 19));
+  EXPECT_FALSE(masked(15, 2));
+  // The same image twice: nothing changed, no trail.
+  const std::vector<uint8_t> none = trailMask(now, now);
+  EXPECT_EQ(std::count(none.begin(), none.end(), uint8_t(1)), 0);
+}
+
+TEST(Trail, AGhostErrsInTheTrailOnly) {
+  const ImageRGBA32F earlier = planeWithSquare(5), now = planeWithSquare(25);
+  ImageRGBA32F ghosted = now;
+  for (int y = 7; y < 13; ++y)
+    for (int x = 5; x < 11; ++x) ghosted.set(x, y, {0.6f, 0.6f, 0.6f, 1.0f});
+  const TrailError e = trailError(ghosted, now, trailMask(now, earlier));
+  EXPECT_GT(e.pixels, 72u);  // both 36-pixel squares and their rims
+  EXPECT_LT(e.pixels, 40u * 20u / 2u);
+  // Per ghost channel (0.6 - 0.2)^2 / (0.2^2 + 0.01) = 3.2, over 36 of the mask's pixels.
+  EXPECT_NEAR(e.relMseTrail, 3.2 * 36.0 / double(e.pixels), 1e-4);
+  EXPECT_EQ(e.relMseRest, 0.0);
+  EXPECT_GT(e.luminanceRatio, 1.0);  // the ghost adds light where the reference has the plane
+  const TrailError clean = trailError(now, now, trailMask(now, earlier));
+  EXPECT_EQ(clean.relMseTrail, 0.0);
+  EXPECT_DOUBLE_EQ(clean.luminanceRatio, 1.0);
+}
+
+TEST(Compare, TrailReferenceOfAnotherSizeIsAnErrorNamingIt) {
+  const std::string dir = test::tempDir("metrics-trail");
+  writeExr(dir + "/now.exr", planeWithSquare(25));
+  writeExr(dir + "/test.exr", planeWithSquare(24));
+  writeExr(dir + "/earlier.exr", constantImage(8, 4, glm::vec3(0.2f)));
+  CompareOptions options;
+  options.testPath = dir + "/test.exr";
+  options.referencePath = dir + "/now.exr";
+  options.trailReferencePath = dir + "/earlier.exr";
+  expectErrorMentioning([&] { runCompare(options); }, {dir + "/earlier.exr", "8x4", "40x20"});
+  writeExr(dir + "/earlier.exr", planeWithSquare(5));
+  const CompareReport report = runCompare(options);
+  ASSERT_TRUE(report.trail.has_value());
+  EXPECT_GT(report.trail->relMseTrail, 0.0);
+  EXPECT_EQ(report.trail->relMseRest, 0.0);
+  EXPECT_NE(compareReportJson(report).find("\"rel_mse_trail\""), std::string::npos);
+  EXPECT_NE(formatCompareTable(report).find("relMSE in the trail"), std::string::npos);
+}
+
 // ---- Heat map --------------------------------------------------------------------------------
 
 TEST(Heatmap, BrighterMeansLargerError) {

@@ -11,15 +11,19 @@
 //      upsampled visibility in the 3x3 pixels around (a workgroup's tile of it in shared
 //      memory): reprojection resamples a point-sampled shadow edge, and over a long history
 //      the error piled up into a trail of old light beside every edge (sunroom, a 48-frame
-//      dolly: 28x the error of no accumulation; docs/frame.md). A still view is not clamped,
-//      so a noisy soft penumbra keeps its running mean. Nothing non-finite is ever stored.
+//      dolly: 28x the error of no accumulation; docs/frame.md). The same where a moving
+//      object's shadow crosses pixels that stand still (docs/frame.md, "Moving casters"): near
+//      a shadow sample whose blocker moved this frame (shadows-trace's flag), and where objects
+//      moved and the history lies more than SCENE_MOTION_MARGIN outside the range (a shadow
+//      that left). Otherwise a still view is not clamped, so a noisy soft penumbra keeps its
+//      running mean. Nothing non-finite is ever stored.
 #version 460
 #include "passes/hybrid_frame.glsl"
 
 layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { HybridPassConstants pc; };
 
-layout(set = 1, binding = SHADOWS_DENOISE_BINDING_RAW, r16f) uniform readonly image2D raw;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_RAW, rg16f) uniform readonly image2D raw;
 layout(set = 1, binding = SHADOWS_DENOISE_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
 layout(set = 1, binding = SHADOWS_DENOISE_BINDING_DEPTH, r32f) uniform readonly image2D depths;
 layout(set = 1, binding = SHADOWS_DENOISE_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
@@ -35,6 +39,10 @@ const float HISTORY_DEPTH_TOLERANCE = 0.03;
 const float NORMAL_POWER = 8.0;
 // Below this screen motion (pixels a frame) the view counts as still: no motion clamp.
 const float STILL_PIXELS = 0.01;
+// Where objects moved but this pixel did not: how far outside this frame's 3x3 range the history
+// must lie to be clamped without a moved blocker near (nine samples of a soft penumbra often
+// agree; clamping to them darkened foliage's soft shadows: docs/frame.md).
+const float SCENE_MOTION_MARGIN = 0.5;
 
 struct GSample {
   vec3 position;
@@ -58,20 +66,24 @@ ivec2 fullResPixel(FrameConstants f, ivec2 shadowPixel) {
   return min(p, ivec2(f.resolution) - 1);
 }
 
-float upsampledVisibility(FrameConstants f, ivec2 pixel, GSample here) {
+// The joint bilateral upsample of the visibility (x) and whether any of its four shadow samples
+// has a moved blocker (y).
+vec2 upsampledVisibility(FrameConstants f, ivec2 pixel, GSample here) {
   float d = float(f.shadowDivisor);
   vec2 u = (vec2(pixel) - float(f.shadowDivisor / 2u)) / d;
   ivec2 base = ivec2(floor(u));
   vec2 t = u - vec2(base);
   ivec2 maxShadow = ivec2(f.shadowResolution) - 1;
   float sum = 0.0, weightSum = 0.0;
-  float nearestValue = 1.0, nearestDistance = 3.0e38;
+  float nearestValue = 1.0, nearestDistance = 3.0e38, movedBlocker = 0.0;
   for (int k = 0; k < 4; ++k) {
     ivec2 offset = ivec2(k & 1, k >> 1);
     ivec2 tap = clamp(base + offset, ivec2(0), maxShadow);
     GSample s = loadGSample(f, fullResPixel(f, tap));
     if (!s.surface) continue;
-    float value = imageLoad(raw, tap).x;
+    vec2 sampled = imageLoad(raw, tap).xy;
+    float value = sampled.x;
+    movedBlocker = max(movedBlocker, sampled.y);
     float planeDistance = abs(dot(here.normal, s.position - here.position)) / max(here.depth, 1e-6);
     float bilinear = (offset.x == 1 ? t.x : 1.0 - t.x) * (offset.y == 1 ? t.y : 1.0 - t.y);
     float w = bilinear * exp(-planeDistance / PLANE_TOLERANCE) *
@@ -84,7 +96,7 @@ float upsampledVisibility(FrameConstants f, ivec2 pixel, GSample here) {
     }
   }
   // No neighbour shares this surface (a thin feature): the most similar one is the best guess.
-  return weightSum > 1e-4 ? sum / weightSum : nearestValue;
+  return vec2(weightSum > 1e-4 ? sum / weightSum : nearestValue, movedBlocker);
 }
 
 // Last frame's (visibility, frames) where it saw this surface, else (0, 0): bilinear over the
@@ -116,30 +128,36 @@ vec2 reprojectedHistory(FrameConstants f, ivec2 pixel, GSample here) {
 // surface or outside the image), for the motion clamp.
 const int TILE = int(HYBRID_GROUP_SIZE) + 2;
 shared float tileVisibility[TILE * TILE];
+shared bool tileMovedBlocker[TILE * TILE];
 
 // Every invocation of the workgroup calls this (it ends in a barrier), before any return.
 void upsampleTile(FrameConstants f) {
   ivec2 origin = ivec2(gl_WorkGroupID.xy) * int(HYBRID_GROUP_SIZE) - 1;
   for (uint i = gl_LocalInvocationIndex; i < uint(TILE * TILE); i += HYBRID_GROUP_SIZE * HYBRID_GROUP_SIZE) {
     ivec2 q = origin + ivec2(int(i) % TILE, int(i) / TILE);
-    float v = -1.0;
+    vec2 v = vec2(-1.0, 0.0);
     if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, ivec2(f.resolution)))) {
       GSample s = loadGSample(f, q);
       if (s.surface) v = upsampledVisibility(f, q, s);
-      if (!isFiniteValue(v)) v = 0.0;
+      if (!isFiniteValue(v.x)) v.x = 0.0;
     }
-    tileVisibility[i] = v;
+    tileVisibility[i] = v.x;
+    tileMovedBlocker[i] = v.y > 0.0;
   }
   barrier();
 }
 
-// The range of the tile's visibility in the 3x3 pixels around this one (surfaces only).
-vec2 neighbourhoodRange() {
+// The range of the tile's visibility in the 3x3 pixels around this one (surfaces only), and
+// whether a shadow sample under them has a moved blocker.
+vec2 neighbourhoodRange(out bool movedBlocker) {
   ivec2 local = ivec2(gl_LocalInvocationID.xy) + 1;
   vec2 range = vec2(1.0, 0.0);
+  movedBlocker = false;
   for (int k = 0; k < 9; ++k) {
-    float v = tileVisibility[(local.y + k / 3 - 1) * TILE + local.x + k % 3 - 1];
+    int i = (local.y + k / 3 - 1) * TILE + local.x + k % 3 - 1;
+    float v = tileVisibility[i];
     if (v >= 0.0) range = vec2(min(range.x, v), max(range.y, v));
+    movedBlocker = movedBlocker || tileMovedBlocker[i];
   }
   return range;
 }
@@ -157,9 +175,13 @@ void main() {
   ivec2 local = ivec2(gl_LocalInvocationID.xy) + 1;
   float visibility = tileVisibility[local.y * TILE + local.x];
   vec2 history = reprojectedHistory(f, pixel, here);
-  if (length(imageLoad(velocities, pixel).xy) > STILL_PIXELS) {
-    vec2 range = neighbourhoodRange();
-    history.x = clamp(history.x, range.x, range.y);
+  bool viewMoved = length(imageLoad(velocities, pixel).xy) > STILL_PIXELS;
+  bool sceneMoved = (f.flags & FRAME_FLAG_SCENE_MOVED) != 0u;
+  if (viewMoved || sceneMoved) {
+    bool movedBlocker;
+    vec2 range = neighbourhoodRange(movedBlocker);
+    float clamped = clamp(history.x, range.x, range.y);
+    if (viewMoved || movedBlocker || abs(clamped - history.x) > SCENE_MOTION_MARGIN) history.x = clamped;
   }
   float frames = min(history.y + 1.0, max(f.shadowMaxHistory, 1.0));
   float accumulated = mix(history.x, visibility, 1.0 / frames);

@@ -50,6 +50,10 @@ BOUNCE_CONST uint FRAME_FLAG_LAMBERT = 1u;  // every material pure Lambert (--la
 // composite adds di.radiance instead of its unshadowed loop over the KHR lights, and rays that
 // leave the primary vertex (GI, reflections) count no emission of emitters the tables sample.
 BOUNCE_CONST uint FRAME_FLAG_DI_LIGHTS = 2u;
+// Instances moved or meshes deformed since the last frame (HybridFrame::setInstanceTransforms,
+// setDeformation): light and shadow may change on pixels that do not move themselves, so
+// shadows-denoise clamps its history everywhere, as it does where the view moves.
+BOUNCE_CONST uint FRAME_FLAG_SCENE_MOVED = 4u;
 
 BOUNCE_CONST uint FRAME_SKY_CONSTANT = 0u;
 BOUNCE_CONST uint FRAME_SKY_DAYLIGHT = 1u;  // Preetham et al. 1999, shaders/common/sky.glsl

@@ -176,6 +176,11 @@ void HybridFrame::setSunAndSky(const Sun& sun, const Sky& sky) {
 void HybridFrame::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
   gpuScene_.setInstanceTransforms(objectToWorld);
   if (di_) di_->instancesMoved();
+  if (!std::equal(objectToWorld.begin(), objectToWorld.end(), lastTransforms_.begin(),
+                  lastTransforms_.end())) {
+    sceneMoved_ = true;
+    lastTransforms_.assign(objectToWorld.begin(), objectToWorld.end());
+  }
 }
 
 void HybridFrame::setLights(std::span<const PunctualLight> lights) {
@@ -196,6 +201,8 @@ std::vector<vk::PassTiming> HybridFrame::render(const Camera& camera) {
                                ? taaJitter(graph_.frameIndex(), settings_.taa.jitterPhases)
                                : glm::vec2(0.0f);
   constants_ = makeFrameConstants(camera, jitter);
+  if (sceneMoved_) constants_.flags |= gpu::FRAME_FLAG_SCENE_MOVED;
+  sceneMoved_ = false;
   // Only a whole frame runs DI: renderGi's host lights its own frame, so there the GI keeps the
   // emission of every emitter.
   if (di_) constants_.flags |= gpu::FRAME_FLAG_DI_LIGHTS;
@@ -209,6 +216,8 @@ std::vector<vk::PassTiming> HybridFrame::renderGi(const Camera& camera,
   checkHostGBuffer(host, {settings_.width, settings_.height}, "bring your own G-buffer");
   advanceTime();
   constants_ = makeFrameConstants(camera, glm::vec2(0.0f));  // the host's camera: no jitter
+  if (sceneMoved_) constants_.flags |= gpu::FRAME_FLAG_SCENE_MOVED;
+  sceneMoved_ = false;
   recordGiFrame(host);
   return submitFrame(true);
 }

@@ -72,7 +72,10 @@ class HybridFrame {
   // poses them on the GPU and refits their BLAS (rt/gpu_deformer.h). Call it every frame while
   // they move. No Vulkan allocation. Emissive triangles of deforming meshes keep their rest
   // pose in ReSTIR DI's light tables (docs/di.md).
-  void setDeformation(const DeformationPose& pose) { gpuScene_.setDeformation(pose); }
+  void setDeformation(const DeformationPose& pose) {
+    gpuScene_.setDeformation(pose);
+    sceneMoved_ = true;
+  }
   // The scene's KHR punctual lights from the next render() on (Scene::lights, the same count
   // and types, with positions, directions, colours and intensities animated; intensity 0 is
   // off). ReSTIR DI's light tables follow in place (RestirDi::setLights), as do its emissive
@@ -162,6 +165,10 @@ class HybridFrame {
   LightingCutDetector lightingCuts_;
   // Set by setSunAndSky on a lighting cut, cleared after the next frame.
   bool lightingCutPending_ = false;
+  // Whether the next frame's instances or deforming meshes differ from the last frame's
+  // (gpu::FRAME_FLAG_SCENE_MOVED), and the transforms last set, to tell.
+  bool sceneMoved_ = false;
+  std::vector<glm::mat4> lastTransforms_;
   float nearPlane_ = 1e-3f;
   vk::Buffer punctualLights_, directionalLights_;
   uint32_t punctualLightCount_ = 0, directionalLightCount_ = 0;

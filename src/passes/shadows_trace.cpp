@@ -13,7 +13,7 @@ RawShadows ShadowsTracePass::declare(graph::FrameGraph& graph, const FrameContex
                                      const GBuffer& gbuffer) {
   RawShadows raw;
   raw.visibility = graph.createImage(
-      "shadows.raw", {VK_FORMAT_R16_SFLOAT, graph::ImageSize::dividedRes(settings_.divisor)});
+      "shadows.raw", {VK_FORMAT_R16G16_SFLOAT, graph::ImageSize::dividedRes(settings_.divisor)});
   const VkExtent2D extent = settings_.resolution(frame.resolution);
   graph.addPass("shadows-trace", graph::QueueKind::Compute)
       .read(frame.constants, Access::StorageRead)

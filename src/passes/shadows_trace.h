@@ -27,7 +27,9 @@ struct ShadowSettings {
 
 // The raw, noisy sun visibility at shadow resolution (one sample per pixel).
 struct RawShadows {
-  graph::ImageHandle visibility;  // shadows.raw: r16f, 0 (shadowed) to 1 (lit)
+  // shadows.raw: rg16f, r the visibility, 0 (shadowed) to 1 (lit); g 1 where the blocker moved
+  // this frame (gpu::FRAME_FLAG_SCENE_MOVED and its instance placed elsewhere than last frame)
+  graph::ImageHandle visibility;
 };
 
 class ShadowsTracePass {

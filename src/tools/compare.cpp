@@ -105,6 +105,15 @@ std::string formatCompareTable(const CompareReport& r) {
         fmt::format("{:.4f} to {:.4f} stops, {} steps, ACES", e.start, e.stop, e.count));
   }
   row("FLIP time", fmt::format("{:.3f} s", r.flipSeconds));
+  if (r.trail) {
+    const TrailError& t = *r.trail;
+    out += fmt::format("\ntrail      the pixels that changed since {}\n", r.trailReferencePath);
+    row("trail pixels", fmt::format("{} ({:.2f} %)", t.pixels,
+                                    100.0 * double(t.pixels) / double(r.width * r.height)));
+    row("relMSE in the trail", fmt::format("{:.6f}", t.relMseTrail));
+    row("relMSE elsewhere", fmt::format("{:.6f}", t.relMseRest));
+    row("trail luminance ratio", fmt::format("{:.4f} (test / reference)", t.luminanceRatio));
+  }
   return out;
 }
 
@@ -124,16 +133,22 @@ std::string compareReportJson(const CompareReport& r) {
     flip["exposure_stop"] = r.flip.exposures->stop;
     flip["exposure_count"] = r.flip.exposures->count;
   }
-  const nlohmann::json report = {{"test", r.testPath},
-                                 {"reference", r.referencePath},
-                                 {"width", r.width},
-                                 {"height", r.height},
-                                 {"mode", r.hdr ? "hdr" : "ldr"},
-                                 {"rel_mse", r.relMse},
-                                 {"rel_mse_epsilon", kRelMseEpsilon},
-                                 {"mse", r.mse},
-                                 {"psnr_db", finiteOrNull(r.psnrDb)},
-                                 {"flip", flip}};
+  nlohmann::json report = {{"test", r.testPath},
+                           {"reference", r.referencePath},
+                           {"width", r.width},
+                           {"height", r.height},
+                           {"mode", r.hdr ? "hdr" : "ldr"},
+                           {"rel_mse", r.relMse},
+                           {"rel_mse_epsilon", kRelMseEpsilon},
+                           {"mse", r.mse},
+                           {"psnr_db", finiteOrNull(r.psnrDb)},
+                           {"flip", flip}};
+  if (r.trail)
+    report["trail"] = {{"earlier_reference", r.trailReferencePath},
+                       {"pixels", r.trail->pixels},
+                       {"rel_mse_trail", r.trail->relMseTrail},
+                       {"rel_mse_rest", r.trail->relMseRest},
+                       {"luminance_ratio", r.trail->luminanceRatio}};
   // Paths are bytes, not always UTF-8: an invalid sequence becomes U+FFFD rather than an
   // exception, so the report is always valid JSON.
   return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
@@ -198,6 +213,15 @@ CompareReport runCompare(const CompareOptions& options) {
   if (options.zoom < 1 || options.zoom > 16) fail("--zoom {}: expected 1 to 16", options.zoom);
   CompareReport report =
       compareImages(options.testPath, options.referencePath, options.pixelsPerDegree);
+  if (!options.trailReferencePath.empty()) {
+    const ImageRGBA32F test = readImage(options.testPath);
+    const ImageRGBA32F reference = readImage(options.referencePath);
+    const ImageRGBA32F earlier = readImage(options.trailReferencePath);
+    requireComparable(options.trailReferencePath, earlier, options.referencePath, reference);
+    requireFinite(options.trailReferencePath, earlier);
+    report.trailReferencePath = options.trailReferencePath;
+    report.trail = trailError(test, reference, trailMask(reference, earlier));
+  }
   if (!options.heatmapPath.empty()) writeHeatmap(options.heatmapPath, report.flip);
   if (!options.sideBySidePath.empty()) writeSideBySide(options, report);
   if (!options.jsonPath.empty()) writeTextFile(options.jsonPath, compareReportJson(report));

@@ -4,9 +4,11 @@
 // choosing a tone mapping first.
 #pragma once
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "tools/flip.h"
+#include "tools/metrics.h"
 
 namespace bounce {
 
@@ -24,6 +26,9 @@ struct CompareOptions {
   std::string sideBySidePath;
   float exposureStops = NAN;
   int zoom = 1;
+  // The reference at an earlier pose of a moving scene (tools/metrics.h trailMask): also report
+  // the error inside the region that changed since and outside it. Empty: no trail report.
+  std::string trailReferencePath;
 };
 
 struct CompareReport {
@@ -38,6 +43,8 @@ struct CompareReport {
   float pixelsPerDegree = kDefaultPixelsPerDegree;
   FlipResult flip;
   double flipSeconds = 0.0;
+  std::string trailReferencePath;
+  std::optional<TrailError> trail;  // with CompareOptions::trailReferencePath
 };
 
 // Reads both images and computes the metrics. Throws bounce::Error naming the file for
