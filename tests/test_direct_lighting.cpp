@@ -213,6 +213,19 @@ CameraPath sunroomDolly() {
   return path;
 }
 
+// Whether a 120x68 visibility image is uniform within 0.05 over the (2 radius + 1)^2 pixels
+// around (x, y), which lie inside it: not a shadow edge.
+bool uniformAround(const std::vector<float>& image, int x, int y, int radius) {
+  float lo = 1.0f, hi = 0.0f;
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx) {
+      const float v = image[size_t(y + dy) * 120 + size_t(x + dx)];
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  return hi - lo <= 0.05f;
+}
+
 // The mean |moved - still| of two visibility images (120x68): away from the still image's shadow
 // edges (pixels whose 5x5 neighbourhood there is uniform within 0.05; their count in `away`)
 // and over the whole image (`all`).
@@ -226,15 +239,7 @@ double differenceAwayFromEdges(const std::vector<float>& moved, const std::vecto
       const size_t i = size_t(y) * w + x;
       const double difference = std::abs(double(moved[i]) - double(still[i]));
       allSum += difference;
-      if (x < 2 || y < 2 || x >= w - 2 || y >= h - 2) continue;
-      float lo = 1.0f, hi = 0.0f;
-      for (int dy = -2; dy <= 2; ++dy)
-        for (int dx = -2; dx <= 2; ++dx) {
-          const float v = still[size_t(y + dy) * w + size_t(x + dx)];
-          lo = std::min(lo, v);
-          hi = std::max(hi, v);
-        }
-      if (hi - lo > 0.05f) continue;
+      if (x < 2 || y < 2 || x >= w - 2 || y >= h - 2 || !uniformAround(still, x, y, 2)) continue;
       awaySum += difference;
       ++away;
     }
@@ -316,15 +321,7 @@ TEST(Shadows, MovingCasterLeavesNoTrail) {
   for (int y = 2; y < h - 2; ++y)
     for (int x = 2; x < w - 2; ++x) {
       const size_t i = size_t(y) * w + x;
-      if (std::abs(before[i] - after[i]) <= 0.5f) continue;
-      float lo = 1.0f, hi = 0.0f;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const float v = after[size_t(y + dy) * w + size_t(x + dx)];
-          lo = std::min(lo, v);
-          hi = std::max(hi, v);
-        }
-      if (hi - lo > 0.05f) continue;
+      if (std::abs(before[i] - after[i]) <= 0.5f || !uniformAround(after, x, y, 1)) continue;
       sum += std::abs(double(jumped[i]) - double(after[i]));
       ++changed;
     }
