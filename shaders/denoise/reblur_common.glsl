@@ -72,9 +72,10 @@ float geometryWeight(float z, float slope, float distance, vec3 n, uvec2 q) {
     return length(vec2(oneSidedSlope(pixel, ivec2(1, 0), z), oneSidedSlope(pixel, ivec2(0, 1), z))); \
   }
 
-// The fast history's neighbourhood statistics as reblur.fast-moments keeps them (6 halves).
+// The fast history's neighbourhood statistics as reblur.fast-moments keeps them (6 halves; w
+// 1: the pixel has a surface, which reblur-stabilize reads instead of reblur.surface).
 uvec4 packMoments(vec3 mean, vec3 sigma) {
-  return uvec4(packHalf2x16(mean.rg), packHalf2x16(vec2(mean.b, sigma.r)), packHalf2x16(sigma.gb), 0u);
+  return uvec4(packHalf2x16(mean.rg), packHalf2x16(vec2(mean.b, sigma.r)), packHalf2x16(sigma.gb), 1u);
 }
 void unpackMoments(uvec4 packed, out vec3 mean, out vec3 sigma) {
   vec2 a = unpackHalf2x16(packed.x), b = unpackHalf2x16(packed.y), c = unpackHalf2x16(packed.z);

@@ -15,7 +15,6 @@ layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
 
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_FAST_MOMENTS, rgba32ui) uniform readonly uimage2D fastMoments;
-layout(set = 1, binding = REBLUR_STABILIZE_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_MOTION, rg16f) uniform readonly image2D motions;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_FOOTPRINT, r8ui) uniform readonly uimage2D footprints;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE, rgba16f) uniform readonly image2D previousStable;
@@ -28,7 +27,8 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!inImage(pixel)) return;
   vec4 current = finiteOrZero4(imageLoad(inputImage, pixel));
-  if (!hasSurface(surfaceDepthOf(imageLoad(surfaces, pixel).xy))) {
+  uvec4 moments = imageLoad(fastMoments, pixel);
+  if (moments.w == 0u) {  // no surface (reblur-history-fix's flag)
     imageStore(stableOut, pixel, vec4(current.rgb, 0.0));
     imageStore(outputImage, pixel, vec4(current.rgb, 0.0));
     return;
@@ -55,7 +55,7 @@ void main() {
   float frames = history.a;
   if (frames > 0.0) {
     vec3 mean, sigma;
-    unpackMoments(imageLoad(fastMoments, pixel), mean, sigma);
+    unpackMoments(moments, mean, sigma);
     vec3 clamped = clamp(history.rgb, mean - pc.sigmaScale * sigma, mean + pc.sigmaScale * sigma);
     float moved = abs(reblurLuminance(history.rgb - clamped)) / max(reblurLuminance(sigma), 1e-6);
     frames = frames / (1.0 + pc.antilagSensitivity * moved);

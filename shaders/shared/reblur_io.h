@@ -92,7 +92,8 @@ BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_SURFACE = 2u;
 BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_OUTPUT = 3u;  // reblur.fixed
 BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_SLOPE = 4u;
 // reblur.fast-moments (RGBA32UI, written): the fast history's 3x3 same-surface mean and standard
-// deviation, as halves: x mean.rg, y (mean.b, sigma.r), z sigma.gb. reblur-stabilize clamps to it.
+// deviation, as halves: x mean.rg, y (mean.b, sigma.r), z sigma.gb; w 1 where the pixel has a
+// surface (0 elsewhere, all of it). reblur-stabilize clamps to it and reads its surface flag.
 BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_FAST_MOMENTS = 5u;
 BOUNCE_CONST uint REBLUR_HISTORY_FIX_BINDING_COUNT = 6u;
 
@@ -107,14 +108,13 @@ BOUNCE_CONST uint REBLUR_BLUR_BINDING_COUNT = 5u;
 // reblur-stabilize
 BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_INPUT = 0u;         // reblur.post-blurred
 BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_FAST_MOMENTS = 1u;  // reblur.fast-moments
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_SURFACE = 2u;
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_MOTION = 3u;
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_FOOTPRINT = 4u;  // reblur.footprint
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE = 5u;
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_ALBEDO = 6u;
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_STABLE = 7u;  // reblur.stable (current)
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_OUTPUT = 8u;
-BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_COUNT = 9u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_MOTION = 2u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_FOOTPRINT = 3u;  // reblur.footprint
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE = 4u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_ALBEDO = 5u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_STABLE = 6u;  // reblur.stable (current)
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_OUTPUT = 7u;
+BOUNCE_CONST uint REBLUR_STABILIZE_BINDING_COUNT = 8u;
 
 // The 8 Poisson-disk taps of the blurs (unit disk; NRD's pre-pass, blur and post-blur each take
 // 8), rotated per pixel and frame.

@@ -224,7 +224,6 @@ void Reblur::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution,
   graph::PassBuilder st = graph.addPass(name_ + "-stabilize", graph::QueueKind::Compute);
   st.read(postBlurred, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_INPUT)
       .read(temporal.fastMoments, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FAST_MOMENTS)
-      .read(surface.current, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_SURFACE)
       .read(in.motion, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_MOTION)
       .read(temporal.footprint, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FOOTPRINT)
       .read(stable.previous, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE)
