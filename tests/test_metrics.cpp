@@ -484,6 +484,25 @@ TEST(CompareCli, PrintsMetricsAndWritesJsonAndHeatmap) {
   EXPECT_EQ(heat.height, 256);
 }
 
+// `--trail EARLIER`: the trail's lines in the table and its fields in the JSON, from the verb.
+TEST(CompareCli, TrailReportsTheChangedPixels) {
+  const std::string dir = test::tempDir("metrics-cli-trail");
+  writeExr(dir + "/now.exr", planeWithSquare(25));
+  writeExr(dir + "/earlier.exr", planeWithSquare(5));
+  writeExr(dir + "/test.exr", planeWithSquare(25));
+  const std::string command = quoted(test::bounceExe()) + " compare " + quoted(dir + "/test.exr") +
+                              " " + quoted(dir + "/now.exr") + " --trail " +
+                              quoted(dir + "/earlier.exr") + " --json " +
+                              quoted(dir + "/report.json") + " 2>&1";
+  const test::CommandResult result = test::runCommand(command);
+  ASSERT_EQ(result.exitCode, 0) << result.output;
+  EXPECT_NE(result.output.find("relMSE in the trail"), std::string::npos) << result.output;
+  const nlohmann::json report = nlohmann::json::parse(readBytes(dir + "/report.json"));
+  EXPECT_GT(report["trail"]["pixels"].get<size_t>(), 72u);
+  EXPECT_EQ(report["trail"]["rel_mse_trail"].get<double>(), 0.0);  // test == reference
+  EXPECT_EQ(report["trail"]["earlier_reference"], dir + "/earlier.exr");
+}
+
 // The side-by-side picture: three panels (test, reference, heat map) with 4-pixel gaps, each
 // enlarged; the reference panel shows the reference's pixels.
 TEST(CompareCli, SideBySideHoldsTestReferenceAndHeatmap) {
