@@ -174,13 +174,8 @@ void HybridFrame::setSunAndSky(const Sun& sun, const Sky& sky) {
 }
 
 void HybridFrame::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
-  gpuScene_.setInstanceTransforms(objectToWorld);
+  if (gpuScene_.setInstanceTransforms(objectToWorld)) sceneMoved_ = true;
   if (di_) di_->instancesMoved();
-  if (!std::equal(objectToWorld.begin(), objectToWorld.end(), lastTransforms_.begin(),
-                  lastTransforms_.end())) {
-    sceneMoved_ = true;
-    lastTransforms_.assign(objectToWorld.begin(), objectToWorld.end());
-  }
 }
 
 void HybridFrame::setLights(std::span<const PunctualLight> lights) {

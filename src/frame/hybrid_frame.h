@@ -166,9 +166,8 @@ class HybridFrame {
   // Set by setSunAndSky on a lighting cut, cleared after the next frame.
   bool lightingCutPending_ = false;
   // Whether the next frame's instances or deforming meshes differ from the last frame's
-  // (gpu::FRAME_FLAG_SCENE_MOVED), and the transforms last set, to tell.
+  // (gpu::FRAME_FLAG_SCENE_MOVED).
   bool sceneMoved_ = false;
-  std::vector<glm::mat4> lastTransforms_;
   float nearPlane_ = 1e-3f;
   vk::Buffer punctualLights_, directionalLights_;
   uint32_t punctualLightCount_ = 0, directionalLightCount_ = 0;

@@ -292,16 +292,19 @@ void GpuScene::refitCpuTlas() {
     rt::refitTlas(bvh_.tlasNodes, tlasRefit_.plan, bvh_.instances, bvh_.meshBounds);
 }
 
-void GpuScene::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
+bool GpuScene::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
   if (objectToWorld.size() != bvh_.instances.size())
     fail("setInstanceTransforms: {} transforms for {} instances", objectToWorld.size(),
          bvh_.instances.size());
-  if (bvh_.instances.empty()) return;
+  if (bvh_.instances.empty()) return false;
   std::byte* staging = static_cast<std::byte*>(instanceStaging_.mapped());
   const size_t instanceBytes = bytesOf(bvh_.instances);
   std::memcpy(staging + instanceBytes, bvh_.instances.data(), instanceBytes);  // previous
   for (size_t i = 0; i < objectToWorld.size(); ++i)
     rt::setInstanceTransform(bvh_.instances[i], objectToWorld[i]);
+  // The previous placement is the staging copy made above.
+  const bool moved =
+      std::memcmp(staging + instanceBytes, bvh_.instances.data(), instanceBytes) != 0;
   std::memcpy(staging, bvh_.instances.data(), instanceBytes);
   uploadPending_ = true;
   if (tlasUpdate_ == TlasUpdate::GpuRefit) {
@@ -310,13 +313,14 @@ void GpuScene::setInstanceTransforms(std::span<const glm::mat4> objectToWorld) {
         rt::updateRefittedTlas(bvh_.tlasNodes, tlasRefit_, bvh_.instances, bvh_.meshBounds,
                                tlasRebuildRatio_))
       stageTlasRebuild();
-    return;
+    return moved;
   }
   bvh_.tlasNodes = rt::buildTlas(bvh_.instances, bvh_.meshBounds);
   if (bvh_.tlasNodes.size() > tlasCapacity_)
     fail("setInstanceTransforms: TLAS of {} nodes exceeds the {} allocated", bvh_.tlasNodes.size(),
          tlasCapacity_);
   std::memcpy(staging + 2 * instanceBytes, bvh_.tlasNodes.data(), bytesOf(bvh_.tlasNodes));
+  return moved;
 }
 
 // Stages a rebuilt tree's nodes and plan behind the instances, for recordInstanceUpload to

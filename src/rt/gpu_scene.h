@@ -104,8 +104,8 @@ class GpuScene {
   // placement before this call as the "previous" one, in a mapped upload buffer made at
   // construction. Nothing reaches the GPU until recordInstanceUpload(). No Vulkan allocation. The
   // caller must not call it while a recorded upload is still executing (the hybrid frame submits
-  // and waits).
-  void setInstanceTransforms(std::span<const glm::mat4> objectToWorld);
+  // and waits). Returns whether any instance now stands elsewhere than before the call.
+  bool setInstanceTransforms(std::span<const glm::mat4> objectToWorld);
   // Deforming meshes (rt/gpu_deformer.h): stages their pose for the next recordInstanceUpload.
   // Throws bounce::Error in a scene where nothing deforms.
   void setDeformation(const DeformationPose& pose);

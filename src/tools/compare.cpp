@@ -57,7 +57,7 @@ std::string formatPsnr(const CompareReport& report) {
 }  // namespace
 
 CompareReport compareImages(const std::string& testPath, const std::string& referencePath,
-                            float pixelsPerDegree) {
+                            float pixelsPerDegree, const std::string& trailReferencePath) {
   const ImageRGBA32F test = readImage(testPath);
   const ImageRGBA32F reference = readImage(referencePath);
   requireComparable(testPath, test, referencePath, reference);
@@ -79,6 +79,13 @@ CompareReport compareImages(const std::string& testPath, const std::string& refe
                            : computeLdrFlip(test, reference, pixelsPerDegree);
   report.flipSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!trailReferencePath.empty()) {
+    const ImageRGBA32F earlier = readImage(trailReferencePath);
+    requireComparable(trailReferencePath, earlier, referencePath, reference);
+    requireFinite(trailReferencePath, earlier);
+    report.trailReferencePath = trailReferencePath;
+    report.trail = trailError(test, reference, trailMask(reference, earlier));
+  }
   return report;
 }
 
@@ -211,17 +218,8 @@ CompareReport runCompare(const CompareOptions& options) {
     }
   }
   if (options.zoom < 1 || options.zoom > 16) fail("--zoom {}: expected 1 to 16", options.zoom);
-  CompareReport report =
-      compareImages(options.testPath, options.referencePath, options.pixelsPerDegree);
-  if (!options.trailReferencePath.empty()) {
-    const ImageRGBA32F test = readImage(options.testPath);
-    const ImageRGBA32F reference = readImage(options.referencePath);
-    const ImageRGBA32F earlier = readImage(options.trailReferencePath);
-    requireComparable(options.trailReferencePath, earlier, options.referencePath, reference);
-    requireFinite(options.trailReferencePath, earlier);
-    report.trailReferencePath = options.trailReferencePath;
-    report.trail = trailError(test, reference, trailMask(reference, earlier));
-  }
+  CompareReport report = compareImages(options.testPath, options.referencePath,
+                                       options.pixelsPerDegree, options.trailReferencePath);
   if (!options.heatmapPath.empty()) writeHeatmap(options.heatmapPath, report.flip);
   if (!options.sideBySidePath.empty()) writeSideBySide(options, report);
   if (!options.jsonPath.empty()) writeTextFile(options.jsonPath, compareReportJson(report));

@@ -47,10 +47,12 @@ struct CompareReport {
   std::optional<TrailError> trail;  // with CompareOptions::trailReferencePath
 };
 
-// Reads both images and computes the metrics. Throws bounce::Error naming the file for
-// unreadable images, different sizes, an LDR/HDR mix, or NaN/infinite pixels.
+// Reads both images and computes the metrics, and with `trailReferencePath` the trail's
+// (CompareOptions::trailReferencePath). Throws bounce::Error naming the file for unreadable
+// images, different sizes, an LDR/HDR mix, or NaN/infinite pixels.
 CompareReport compareImages(const std::string& testPath, const std::string& referencePath,
-                            float pixelsPerDegree = kDefaultPixelsPerDegree);
+                            float pixelsPerDegree = kDefaultPixelsPerDegree,
+                            const std::string& trailReferencePath = "");
 
 // The human-readable table `bounce compare` prints.
 std::string formatCompareTable(const CompareReport& report);

@@ -29,6 +29,11 @@ double meanOverRgb(const ImageRGBA32F& test, const ImageRGBA32F& reference, PerS
   return sum / (3.0 * double(test.pixelCount()));
 }
 
+// One channel's term of relMSE (relativeMeanSquaredError, trailError).
+double relativeSquaredError(double t, double r) {
+  return (t - r) * (t - r) / (r * r + kRelMseEpsilon);
+}
+
 double psnrFromMse(double mse, double peak) {
   if (mse == 0.0) return std::numeric_limits<double>::infinity();
   return 10.0 * std::log10(peak * peak / mse);
@@ -45,9 +50,7 @@ double meanSquaredError(const ImageRGBA32F& test, const ImageRGBA32F& reference)
 }
 
 double relativeMeanSquaredError(const ImageRGBA32F& test, const ImageRGBA32F& reference) {
-  return meanOverRgb(test, reference, [](double t, double r) {
-    return (t - r) * (t - r) / (r * r + kRelMseEpsilon);
-  });
+  return meanOverRgb(test, reference, relativeSquaredError);
 }
 
 double psnrLdr(const ImageRGBA32F& test, const ImageRGBA32F& reference) {
@@ -124,10 +127,8 @@ TrailError trailError(const ImageRGBA32F& test, const ImageRGBA32F& reference,
   TrailError e;
   for (size_t i = 0; i < reference.pixelCount(); ++i) {
     double sum = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      const double t = test.pixels[4 * i + c], r = reference.pixels[4 * i + c];
-      sum += (t - r) * (t - r) / (r * r + kRelMseEpsilon);
-    }
+    for (int c = 0; c < 3; ++c)
+      sum += relativeSquaredError(test.pixels[4 * i + c], reference.pixels[4 * i + c]);
     if (mask[i]) {
       trail += sum / 3.0;
       testLuminance += luminanceAt(test, i);
