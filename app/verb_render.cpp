@@ -558,8 +558,8 @@ void addRenderVerb(CLI::App& app, VerbAction& action) {
       ->capture_default_str();
   cmd->add_option("--di-candidate-visibility", options->diCandidateVisibility,
                   "ReSTIR DI's shadow ray for each pixel's new candidate (RTXDI's initial "
-                  "visibility): auto (the default: on with the light grid, from 512 lights), on, "
-                  "or off (a ray per pixel less; di-shade's final ray is fed back instead); on "
+                  "visibility): off (the default: a ray per pixel less; di-shade's final ray is "
+                  "fed back instead), on, or auto (on with the light grid, from 512 lights); on "
                   "with --di-unbiased");
   cmd->add_option("--di-denoiser", options->diDenoiser,
                   std::string("Denoiser of ReSTIR DI's signal (di-denoise-*, docs/di.md): ") +

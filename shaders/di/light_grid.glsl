@@ -76,10 +76,15 @@ float diCellTarget(uint light, vec3 lo, vec3 hi) {
     float distance = length(toBox);
     float radius = length(halfSize);
     if (p.type == PUNCTUAL_LIGHT_SPOT && distance > radius) {
-      // The smallest angle from the spot's axis to a point of the box's bounding sphere.
-      float axisAngle = acos(clamp(dot(p.spotDirection, toBox / distance), -1.0, 1.0));
-      float nearest = max(axisAngle - asin(radius / distance), 0.0);
-      float a = clamp(cos(nearest) * p.angleScale + p.angleOffset, 0.0, 1.0);
+      // The cosine of the smallest angle from the spot's axis to a point of the box's bounding
+      // sphere: 1 where the axis passes through the sphere's cone (axis angle A at most the
+      // sphere's angular radius B), else cos(A - B) = cos A cos B + sin A sin B, which needs no
+      // inverse trigonometry (every pixel evaluates this for each of its candidates).
+      float cosA = clamp(dot(p.spotDirection, toBox / distance), -1.0, 1.0);
+      float sinB = radius / distance;
+      float cosB = sqrt(max(1.0 - sinB * sinB, 0.0));
+      float cosNearest = cosA >= cosB ? 1.0 : cosA * cosB + sqrt(max(1.0 - cosA * cosA, 0.0)) * sinB;
+      float a = clamp(cosNearest * p.angleScale + p.angleOffset, 0.0, 1.0);
       attenuation = a * a;
     }
     float distanceSq = max(diSquaredDistanceToBox(p.position, lo, hi), minDistanceSq);

@@ -7,7 +7,8 @@
 // to whole cells (so a cell's box is the same from frame to frame while the camera stays in its
 // cell), whose origin every pass derives from the frame's camera (diLightGridOrigin). Each frame
 // di-light-grid fills every cell's slotsPerCell slots with one local light each, chosen by RIS
-// from buildCandidates alias-table candidates (by power) with the target diCellTarget: the
+// from a pool of buildCandidates alias-table candidates (by power) that the cell's slots share,
+// with the target diCellTarget: the
 // light's unshadowed contribution bound over the cell's box (no surface, so no BRDF or cosine
 // there). A slot holds (light, W): W is RIS's unbiased contribution weight of that light
 // (1 / the slot's pdf of choosing it, estimated), DI_NO_LIGHT and 0 when no candidate reached
@@ -26,12 +27,14 @@ struct DiLightGrid {
   uint cellsZ;
   float cellSize;        // world units
   uint slotsPerCell;     // reservoirs per cell
-  uint buildCandidates;  // alias-table candidates per slot
+  uint buildCandidates;  // alias-table candidates per cell, a multiple of DI_LIGHT_GRID_GROUP_SIZE
   uint gridCandidates;   // of DiConstants::lightCandidates, how many come from the grid
   uint pad0;
 };
 BOUNCE_CHECK_SIZE(DiLightGrid, 40);
 
+// Threads of di-light-grid's workgroup, one workgroup per cell: each draws an equal share of the
+// cell's pool of candidates.
 BOUNCE_CONST uint DI_LIGHT_GRID_GROUP_SIZE = 64u;
 
 BOUNCE_END_SHARED

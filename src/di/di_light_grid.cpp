@@ -19,6 +19,8 @@ DiLightGridPass::DiLightGridPass(vk::Context& context, const GpuScene& scene,
     : pass_(context, scene, "di/di_light_grid", 0, sizeof(gpu::DiPassConstants)),
       slotCount_(settings.lightGridCellsX * settings.lightGridCellsY * settings.lightGridCellsZ *
                  settings.lightGridSlots),
+      cellsXY_(settings.lightGridCellsX * settings.lightGridCellsY),
+      cellsZ_(settings.lightGridCellsZ),
       cellSize_(lightGridCellSize(settings, bounds)),
       slots_(context, VkDeviceSize(slotCount_) * 2 * sizeof(uint32_t),
              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::DeviceOnly, "di.light-grid") {
@@ -43,9 +45,8 @@ graph::BufferHandle DiLightGridPass::declare(graph::FrameGraph& graph, const DiF
       .write(slots, graph::Access::StorageWrite)
       .record([this, f](VkCommandBuffer cmd, const graph::PassResources&) {
         pass_.bind(cmd, f.passConstants());
-        vkCmdDispatch(
-            cmd, (slotCount_ + gpu::DI_LIGHT_GRID_GROUP_SIZE - 1) / gpu::DI_LIGHT_GRID_GROUP_SIZE,
-            1, 1);
+        // One workgroup per cell (its slots share one pool of candidates).
+        vkCmdDispatch(cmd, cellsXY_, cellsZ_, 1);
       });
   return slots;
 }

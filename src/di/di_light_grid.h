@@ -27,6 +27,8 @@ class DiLightGridPass {
  private:
   ComputePass pass_;
   uint32_t slotCount_ = 0;
+  uint32_t cellsXY_ = 0;  // dispatched as cellsXY_ x cellsZ_ workgroups, one per cell
+  uint32_t cellsZ_ = 0;
   float cellSize_ = 1.0f;
   vk::Buffer slots_;  // uvec2 per slot
   vk::Buffer block_;  // gpu::DiLightGrid

@@ -77,8 +77,10 @@ void validate(const DiSettings& s) {
       (uint64_t(1) << 22))
     fail("DI light grid: {}x{}x{} cells of {} slots: at most 4,194,304 slots", s.lightGridCellsX,
          s.lightGridCellsY, s.lightGridCellsZ, s.lightGridSlots);
-  if (s.lightGridBuildCandidates < 1 || s.lightGridBuildCandidates > 64)
-    fail("DI light grid build candidates {}: expected 1 to 64", s.lightGridBuildCandidates);
+  if (s.lightGridBuildCandidates < 64 || s.lightGridBuildCandidates > 4096 ||
+      s.lightGridBuildCandidates % 64 != 0)
+    fail("DI light grid build candidates {}: expected a multiple of 64 from 64 to 4096",
+         s.lightGridBuildCandidates);
   if (s.lightGridCandidates >= s.lightCandidates && s.lightCandidates > 1)
     fail(
         "DI light grid candidates {}: at most {} (one of the {} light candidates stays the alias "
