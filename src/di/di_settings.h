@@ -105,7 +105,9 @@ struct DiSettings {
   // Of the lightCandidates, how many come from the pixel's cell; the rest from the alias table,
   // which reaches every light, so the estimate stays unbiased where the cell's bound misses one
   // (ReGIR's fallback; light_grid.glsl). At least one candidate always stays the alias table's.
-  uint32_t lightGridCandidates = 6;
+  // 7 of 8: on `city` by night the alias table's draws (lamps streets away) are mostly wasted,
+  // and 7 from the grid halve the frame's noise against 6 (docs/di.md, "A pool per cell").
+  uint32_t lightGridCandidates = 7;
   // di-shade's final shadow ray is not traced again for a sample that this pixel's own final
   // ray found visible fewer than this many frames ago (RTXDI's reuseFinalVisibility and
   // finalVisibilityMaxAge): the sample is kept through di-temporal and taken as visible (a
