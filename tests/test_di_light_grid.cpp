@@ -9,7 +9,9 @@
 //   - the grid finds the lights a point sees: on city by night, one frame of uniform DI (no
 //     reuse) varies less with the grid than with the alias table alone at the same candidates;
 //   - no lights, no DI: a scene without DI lights runs no di-* pass, and its frame is the frame
-//     of --di off.
+//     of --di off;
+//   - the pool's size fills di-light-grid's workgroup: a multiple of 64 from 64 to 4096, anything
+//     else refused by name.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +23,7 @@
 #include "di_test_common.h"
 #include "harness.h"
 
+#include "core/error.h"
 #include "di/di_light_grid.h"
 #include "frame/hybrid_frame.h"
 #include "lighting/light_table.h"
@@ -54,6 +57,30 @@ TEST(DiLightGrid, Rgb9e5KeepsPositiveChannelsPositive) {
       // 9-bit mantissas under the largest channel's exponent: within one step, at most
       // largest / 256 (a positive channel below half a step is rounded up to one).
       if (largest > 1e-6f) EXPECT_NEAR(d[k], c[k], largest / 256.0f) << "channel " << k;
+    }
+  }
+}
+
+// di-light-grid gives each of a cell's 64 threads an equal share of the pool, so a size that is
+// not a multiple of 64 would silently draw fewer candidates than asked: it is refused, with the
+// setting named and the range.
+TEST(DiLightGrid, PoolSizeMustFillTheWorkgroup) {
+  for (uint32_t accepted : {64u, 256u, 4096u}) {
+    DiSettings s;
+    s.lightGridBuildCandidates = accepted;
+    EXPECT_NO_THROW(validate(s)) << accepted;
+  }
+  for (uint32_t refused : {0u, 8u, 100u, 4160u}) {
+    DiSettings s;
+    s.lightGridBuildCandidates = refused;
+    try {
+      validate(s);
+      ADD_FAILURE() << refused << " accepted";
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("build candidates " + std::to_string(refused)), std::string::npos)
+          << message;
+      EXPECT_NE(message.find("multiple of 64"), std::string::npos) << message;
     }
   }
 }
