@@ -323,14 +323,22 @@ TEST(RestirDi, PipelineCountWithinSeedBudget) {
   uniform.mode = DiMode::Uniform;
   HybridFrame restir(context, gpuScene, scene, diSettings(16, 16, DiSettings{}));
   HybridFrame baseline(context, gpuScene, scene, diSettings(16, 16, uniform));
-  // The wall's one light is below the light grid's threshold: `auto` traces no candidates'
-  // shadow ray there; `on` adds its pipeline.
+  // By default the candidates are drawn in di-temporal's pass (di-candidates-temporal): 3 with
+  // spatial reuse and shade; apart, 4; the candidates' shadow ray (`on`; the wall's one light is
+  // below the light grid's threshold, so no grid) splits them and adds its own pipeline.
+  DiSettings separate;
+  separate.fuseCandidatesWithTemporal = false;
+  HybridFrame split(context, gpuScene, scene, diSettings(16, 16, separate));
   DiSettings visibility;
   visibility.candidateVisibility = DiCandidateVisibility::On;
   HybridFrame traced(context, gpuScene, scene, diSettings(16, 16, visibility));
-  std::printf("DI pipelines: restir %u (candidates' shadow ray on: %u), uniform %u\n",
-              restir.diPipelineCount(), traced.diPipelineCount(), baseline.diPipelineCount());
-  EXPECT_EQ(restir.diPipelineCount(), 4u);
+  std::printf(
+      "DI pipelines: restir %u (candidates apart from temporal reuse: %u; candidates' shadow ray "
+      "on: %u), uniform %u\n",
+      restir.diPipelineCount(), split.diPipelineCount(), traced.diPipelineCount(),
+      baseline.diPipelineCount());
+  EXPECT_EQ(restir.diPipelineCount(), 3u);
+  EXPECT_EQ(split.diPipelineCount(), 4u);
   EXPECT_EQ(traced.diPipelineCount(), 5u);
   EXPECT_EQ(baseline.diPipelineCount(), 2u);
   EXPECT_LE(traced.diPipelineCount(), 15u);

@@ -102,13 +102,15 @@ BOUNCE_CONST uint DI_SPEC_SPATIAL_TRACED_CORRECTION = 1u;
 // by direction (rt/ray_bins.glsl)
 BOUNCE_CONST uint DI_VISIBILITY_GROUP_SIDE = 16u;
 
-// di-temporal
-BOUNCE_CONST uint DI_TEMPORAL_BINDING_CANDIDATE = 5u;         // di.candidate
-BOUNCE_CONST uint DI_TEMPORAL_BINDING_VELOCITY = 6u;          // gbuffer.velocity
-BOUNCE_CONST uint DI_TEMPORAL_BINDING_PREVIOUS = 7u;          // di.reservoir-final (previous)
-BOUNCE_CONST uint DI_TEMPORAL_BINDING_PREVIOUS_SURFACE = 8u;  // di.reservoir-surface (previous)
-BOUNCE_CONST uint DI_TEMPORAL_BINDING_CURRENT = 9u;           // out: di.reservoir
-BOUNCE_CONST uint DI_TEMPORAL_BINDING_CURRENT_SURFACE = 10u;  // di.reservoir-surface (current)
+// di-temporal, and di-candidates-temporal (the candidates drawn in the same pass: every binding
+// but the candidate's, which comes last so that the fused pass's bindings stay contiguous)
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_VELOCITY = 5u;          // gbuffer.velocity
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_PREVIOUS = 6u;          // di.reservoir-final (previous)
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_PREVIOUS_SURFACE = 7u;  // di.reservoir-surface (previous)
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_CURRENT = 8u;           // out: di.reservoir
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_CURRENT_SURFACE = 9u;   // di.reservoir-surface (current)
+BOUNCE_CONST uint DI_CANDIDATES_TEMPORAL_BINDING_COUNT = 10u;
+BOUNCE_CONST uint DI_TEMPORAL_BINDING_CANDIDATE = 10u;  // di.candidate (di-temporal only)
 BOUNCE_CONST uint DI_TEMPORAL_BINDING_COUNT = 11u;
 
 // di-spatial

@@ -63,6 +63,11 @@ struct DiSettings {
   // pool). The unbiased configuration needs it on: its ray-traced correction assumes that no
   // input reservoir holds a hidden light.
   DiCandidateVisibility candidateVisibility = DiCandidateVisibility::Off;
+  // Without the candidates' shadow ray, draw the candidates in di-temporal's pass
+  // (di-candidates-temporal: the same reservoirs, one surface load and one dispatch less than
+  // di-generate-candidates then di-temporal; docs/di.md). false: the two passes, for
+  // comparison. Ignored with the ray (it runs between them) and without reuse (--di uniform).
+  bool fuseCandidatesWithTemporal = true;
   // Cap on the history reservoir's M, in candidate reservoirs (RTXDI's maxHistoryLength 20).
   // Higher: less noise on static views, slower reaction to changed light. 1 to 1000.
   float temporalMaxM = 20.0f;

@@ -60,13 +60,16 @@ RestirDi::RestirDi(vk::Context& context, const GpuScene& gpuScene, const Scene& 
   if (lights_.localLightCount() >= settings.lightGridThreshold)
     grid_.emplace(context, gpuScene, settings, gpuScene.bounds());
   const gpu::DiConstants c = makeConstants(settings, lights_, grid_ ? grid_->address() : 0);
-  candidates_.emplace(context, gpuScene, c.brdfCandidates > 0,
-                      (c.flags & gpu::DI_FLAG_CANDIDATE_VISIBILITY) != 0);
+  const bool candidateRay = (c.flags & gpu::DI_FLAG_CANDIDATE_VISIBILITY) != 0;
+  // With nothing between them, the candidates are drawn in di-temporal's pass (one surface
+  // load, no di.candidate round trip).
+  const bool fused = settings.reuses() && !candidateRay && settings.fuseCandidatesWithTemporal;
+  if (!fused) candidates_.emplace(context, gpuScene, c.brdfCandidates > 0, candidateRay);
   shade_.emplace(context, gpuScene);
   constants_ = vk::uploadBuffer(context, std::as_bytes(std::span(&c, 1)),
                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "di.constants");
   if (settings.reuses()) {
-    temporal_.emplace(context, gpuScene);
+    temporal_.emplace(context, gpuScene, fused, c.brdfCandidates > 0);
     if (c.flags & gpu::DI_FLAG_SPATIAL)
       spatial_.emplace(context, gpuScene, (c.flags & gpu::DI_FLAG_UNBIASED) != 0);
   }
@@ -118,8 +121,8 @@ void RestirDi::instancesMoved() {
 
 uint32_t RestirDi::pipelineCount() const {
   if (!hasLights()) return 0;
-  return candidates_->pipelineCount() + 1 + (grid_ ? 1 : 0) + (temporal_ ? 1 : 0) +
-         (spatial_ ? 1 : 0) + (denoise_ ? denoise_->pipelineCount() : 0);
+  return (candidates_ ? candidates_->pipelineCount() : 0) + 1 + (grid_ ? 1 : 0) +
+         (temporal_ ? 1 : 0) + (spatial_ ? 1 : 0) + (denoise_ ? denoise_->pipelineCount() : 0);
 }
 
 // The chain, top to bottom (see the header).
@@ -141,8 +144,10 @@ DirectLight RestirDi::declare(graph::FrameGraph& graph, const FrameContext& fram
   if (grid_) f.lightGrid = grid_->declare(graph, f);
   if (temporal_)
     f.finalReservoirs = graph.createHistoryImage("di.reservoir-final", {kDiReservoirFormat});
-  graph::ImageHandle reservoirs = candidates_->declare(graph, f);
-  if (temporal_) reservoirs = temporal_->declare(graph, f, reservoirs);
+  std::optional<graph::ImageHandle> candidates;
+  if (candidates_) candidates = candidates_->declare(graph, f);
+  graph::ImageHandle reservoirs =
+      temporal_ ? temporal_->declare(graph, f, candidates) : candidates.value();
   const graph::ImageHandle temporal = reservoirs;
   if (spatial_) reservoirs = spatial_->declare(graph, f, reservoirs);
   DirectLight direct = shade_->declare(graph, f, reservoirs, temporal);

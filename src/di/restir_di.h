@@ -54,7 +54,7 @@ class RestirDi {
 
   // Whether the light tables hold any light (local or distant; the sun is not DI's): without,
   // every pass would find nothing, so the frame runs none (and declare() must not be called).
-  bool hasLights() const { return candidates_.has_value(); }
+  bool hasLights() const { return shade_.has_value(); }
   // Whether di-light-grid runs (at least DiSettings::lightGridThreshold local lights).
   bool usesLightGrid() const { return grid_.has_value(); }
 
@@ -89,15 +89,15 @@ class RestirDi {
 
   DiSettings settings_;
   GpuLightTables lights_;
-  double dropDistance_ = 0.0;              // kDropMove x the scene's largest extent
-  bool dropDenoiseHistory_ = false;        // for the next frame that runs
-  std::vector<PunctualLight> lightState_;  // the lights as last set
-  bool dropHistory_ = false;               // for the next frame that runs
-  vk::Buffer constants_;                   // gpu::DiConstants
-  std::optional<DiLightGridPass> grid_;    // from lightGridThreshold local lights on
-  std::optional<DiGenerateCandidatesPass> candidates_;
-  std::optional<DiTemporalPass> temporal_;  // DiMode::Restir only
-  std::optional<DiSpatialPass> spatial_;    // DiMode::Restir with spatial samples
+  double dropDistance_ = 0.0;                           // kDropMove x the scene's largest extent
+  bool dropDenoiseHistory_ = false;                     // for the next frame that runs
+  std::vector<PunctualLight> lightState_;               // the lights as last set
+  bool dropHistory_ = false;                            // for the next frame that runs
+  vk::Buffer constants_;                                // gpu::DiConstants
+  std::optional<DiLightGridPass> grid_;                 // from lightGridThreshold local lights on
+  std::optional<DiGenerateCandidatesPass> candidates_;  // none where di-temporal draws them
+  std::optional<DiTemporalPass> temporal_;              // DiMode::Restir only
+  std::optional<DiSpatialPass> spatial_;                // DiMode::Restir with spatial samples
   std::optional<DiShadePass> shade_;
   std::optional<DiDenoise> denoise_;  // DiSettings::denoiser != None
 };
