@@ -149,6 +149,69 @@ TEST(DiLightGrid, GridLowersOneFrameVarianceOnCityByNight) {
   EXPECT_EQ(context.validationErrorCount(), 0u);
 }
 
+// The grid's debug view (di.grid-cells, di-light-grid-view): declared only while requested, it
+// colours each pixel by its cell, so the street view shows several cells, every pixel with a
+// surface inside the grid lit and the sky black; a scene without the grid refuses it by name.
+TEST(DiLightGrid, GridViewShowsTheCellsOnlyWhenRequested) {
+  const uint32_t width = 48, height = 27;
+  Scene scene = cityAtNight(true);
+  const Camera camera = cityStreetCamera();
+  vk::Context context(vk::contextOptionsFromEnvironment());
+  GpuScene gpuScene(context, scene);
+  HybridFrame frame(context, gpuScene, scene, diSettings(width, height, DiSettings{}));
+  auto declares = [&](const char* pass) {
+    const std::vector<std::string> names = frame.passNames();
+    return std::find(names.begin(), names.end(), pass) != names.end();
+  };
+  frame.render(camera);
+  EXPECT_FALSE(declares("di-light-grid-view"));
+  frame.requestDebugView(kDiGridView);
+  frame.requestDebugView("gbuffer.depth");
+  frame.render(camera);
+  EXPECT_TRUE(declares("di-light-grid-view"));
+  const ImageRGBA32F view = frame.debugViewImage(kDiGridView);
+  const ImageRGBA32F depth = frame.debugViewImage("gbuffer.depth");
+  size_t surfaces = 0, litSurfaces = 0, litSky = 0;
+  std::vector<uint32_t> colours;
+  for (size_t i = 0; i < view.pixelCount(); ++i) {
+    const float* p = &view.pixels[4 * i];
+    const bool lit = p[0] > 0.0f || p[1] > 0.0f || p[2] > 0.0f;
+    const bool surface = depth.pixels[4 * i] > 0.0f && std::isfinite(depth.pixels[4 * i]);
+    surfaces += surface;
+    litSurfaces += surface && lit;
+    litSky += !surface && lit;
+    if (lit)
+      colours.push_back(uint32_t(p[0] * 255.0f) << 16 | uint32_t(p[1] * 255.0f) << 8 |
+                        uint32_t(p[2] * 255.0f));
+  }
+  std::sort(colours.begin(), colours.end());
+  const size_t distinct = size_t(std::unique(colours.begin(), colours.end()) - colours.begin());
+  std::printf(
+      "city at 22 h %ux%u, di.grid-cells: %zu of %zu surface pixels in a cell, %zu sky "
+      "pixels coloured, %zu distinct colours\n",
+      width, height, litSurfaces, surfaces, litSky, distinct);
+  EXPECT_GT(surfaces, view.pixelCount() / 2);
+  EXPECT_GT(litSurfaces, surfaces * 9 / 10);  // the street view lies within the 160 m grid
+  EXPECT_EQ(litSky, 0u);
+  EXPECT_GE(distinct, 4u);
+  EXPECT_EQ(countNonFinitePixels(view), 0u);
+  frame.clearDebugViews();
+  frame.render(camera);
+  EXPECT_FALSE(declares("di-light-grid-view"));
+  EXPECT_EQ(context.validationErrorCount(), 0u);
+
+  Scene room = loadScene("manylights");  // 64 lights: below the grid's threshold
+  GpuScene roomGpu(context, room);
+  HybridFrame roomFrame(context, roomGpu, room, diSettings(16, 16, DiSettings{}));
+  roomFrame.requestDebugView(kDiGridView);
+  try {
+    roomFrame.render(effectiveCamera(room));
+    ADD_FAILURE() << "di.grid-cells accepted without a light grid";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(kDiGridView), std::string::npos) << e.what();
+  }
+}
+
 // A scene without DI lights (sunroom-glossy: the sun and the sky only) runs no di-* pass, and
 // its composite is the --di off frame's, texel for texel.
 TEST(DiLightGrid, NoLightsRunNoDiPass) {

@@ -113,6 +113,10 @@ BOUNCE_CONST uint DI_CANDIDATES_TEMPORAL_BINDING_COUNT = 10u;
 BOUNCE_CONST uint DI_TEMPORAL_BINDING_CANDIDATE = 10u;  // di.candidate (di-temporal only)
 BOUNCE_CONST uint DI_TEMPORAL_BINDING_COUNT = 11u;
 
+// di-light-grid-view (the debug view di.grid-cells, only when requested)
+BOUNCE_CONST uint DI_GRID_VIEW_BINDING_OUTPUT = 5u;  // out: di.grid-cells
+BOUNCE_CONST uint DI_GRID_VIEW_BINDING_COUNT = 6u;
+
 // di-spatial
 BOUNCE_CONST uint DI_SPATIAL_BINDING_INPUT = 5u;   // di.reservoir
 BOUNCE_CONST uint DI_SPATIAL_BINDING_OUTPUT = 6u;  // di.spatial

@@ -16,7 +16,9 @@ float lightGridCellSize(const DiSettings& s, const Aabb& bounds) {
 
 DiLightGridPass::DiLightGridPass(vk::Context& context, const GpuScene& scene,
                                  const DiSettings& settings, const Aabb& bounds)
-    : pass_(context, scene, "di/di_light_grid", 0, sizeof(gpu::DiPassConstants)),
+    : context_(context),
+      scene_(scene),
+      pass_(context, scene, "di/di_light_grid", 0, sizeof(gpu::DiPassConstants)),
       slotCount_(settings.lightGridCellsX * settings.lightGridCellsY * settings.lightGridCellsZ *
                  settings.lightGridSlots),
       cellsXY_(settings.lightGridCellsX * settings.lightGridCellsY),
@@ -49,6 +51,20 @@ graph::BufferHandle DiLightGridPass::declare(graph::FrameGraph& graph, const DiF
         vkCmdDispatch(cmd, cellsXY_, cellsZ_, 1);
       });
   return slots;
+}
+
+void DiLightGridPass::declareView(graph::FrameGraph& graph, const DiFrame& f,
+                                  graph::BufferHandle slots) {
+  if (!view_)
+    view_.emplace(context_, scene_, "di/di_light_grid_view", gpu::DI_GRID_VIEW_BINDING_COUNT);
+  graph::ImageHandle image = graph.createImage(kDiGridView, {VK_FORMAT_R32G32B32A32_SFLOAT});
+  graph::PassBuilder pass = graph.addPass("di-light-grid-view", graph::QueueKind::Compute);
+  readDiGBuffer(pass, f)
+      .read(slots, graph::Access::StorageRead)
+      .write(image, graph::Access::StorageWrite, gpu::DI_GRID_VIEW_BINDING_OUTPUT)
+      .record([this, f](VkCommandBuffer cmd, const graph::PassResources& r) {
+        view_->record(cmd, r, f.passConstants(), f.frame.resolution);
+      });
 }
 
 }  // namespace bounce

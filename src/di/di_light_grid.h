@@ -23,9 +23,16 @@ class DiLightGridPass {
 
   // Declares the pass; returns the slots buffer it writes (di-generate-candidates reads it).
   graph::BufferHandle declare(graph::FrameGraph& graph, const DiFrame& f);
+  // The debug view di.grid-cells (di-light-grid-view, shaders/di/di_light_grid_view.comp): each
+  // pixel's cell and how many distinct lights its slots hold. Its pipeline is made at the first
+  // request; a frame that does not ask for the view declares no such pass.
+  void declareView(graph::FrameGraph& graph, const DiFrame& f, graph::BufferHandle slots);
 
  private:
+  vk::Context& context_;
+  const GpuScene& scene_;
   ComputePass pass_;
+  std::optional<DiPass> view_;  // made at the first declareView
   uint32_t slotCount_ = 0;
   uint32_t cellsXY_ = 0;  // dispatched as cellsXY_ x cellsZ_ workgroups, one per cell
   uint32_t cellsZ_ = 0;
@@ -33,6 +40,9 @@ class DiLightGridPass {
   vk::Buffer slots_;  // uvec2 per slot
   vk::Buffer block_;  // gpu::DiLightGrid
 };
+
+// The light grid's debug view (DiLightGridPass::declareView).
+inline constexpr const char* kDiGridView = "di.grid-cells";
 
 // The cell size a grid of these settings uses in a scene of these bounds (world units, > 0).
 float lightGridCellSize(const DiSettings& settings, const Aabb& bounds);

@@ -142,6 +142,7 @@ DirectLight RestirDi::declare(graph::FrameGraph& graph, const FrameContext& fram
         dropDenoiseHistory_ = false;
       });
   if (grid_) f.lightGrid = grid_->declare(graph, f);
+  if (showLightGrid_) grid_->declareView(graph, f, *f.lightGrid);
   if (temporal_)
     f.finalReservoirs = graph.createHistoryImage("di.reservoir-final", {kDiReservoirFormat});
   std::optional<graph::ImageHandle> candidates;

@@ -57,6 +57,9 @@ class RestirDi {
   bool hasLights() const { return shade_.has_value(); }
   // Whether di-light-grid runs (at least DiSettings::lightGridThreshold local lights).
   bool usesLightGrid() const { return grid_.has_value(); }
+  // Whether frames declare the grid's debug view (kDiGridView, di-light-grid-view); only with
+  // the grid.
+  void showLightGrid(bool on) { showLightGrid_ = on && grid_.has_value(); }
 
   // The chain; the returned radiance is di.denoised when a denoiser is on (di.radiance, the
   // raw estimate, stays di-shade's image).
@@ -93,6 +96,7 @@ class RestirDi {
   bool dropDenoiseHistory_ = false;                     // for the next frame that runs
   std::vector<PunctualLight> lightState_;               // the lights as last set
   bool dropHistory_ = false;                            // for the next frame that runs
+  bool showLightGrid_ = false;                          // declare the grid's debug view
   vk::Buffer constants_;                                // gpu::DiConstants
   std::optional<DiLightGridPass> grid_;                 // from lightGridThreshold local lights on
   std::optional<DiGenerateCandidatesPass> candidates_;  // none where di-temporal draws them

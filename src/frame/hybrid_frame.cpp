@@ -249,8 +249,14 @@ void HybridFrame::countRays(bool on) {
 }
 
 void HybridFrame::requestDebugView(const std::string& passOrResource) {
+  if (di_ && passOrResource == kDiGridView) di_->showLightGrid(true);
   graph_.requestDebugView(di_ && isDiDerivedView(passOrResource) ? kDiInfoResource
                                                                  : passOrResource);
+}
+
+void HybridFrame::clearDebugViews() {
+  graph_.clearDebugViews();
+  if (di_) di_->showLightGrid(false);
 }
 
 ImageRGBA32F HybridFrame::debugViewImage(const std::string& name) const {
@@ -285,6 +291,9 @@ std::vector<std::string> HybridFrame::resourceNames() {
   std::vector<std::string> names = graph_.declaredResourceNames();
   if (di_)
     for (const std::string& name : diDerivedViewNames()) names.push_back(name);
+  if (di_ && di_->usesLightGrid() &&
+      std::find(names.begin(), names.end(), kDiGridView) == names.end())
+    names.push_back(kDiGridView);
   return names;
 }
 

@@ -119,7 +119,7 @@ class HybridFrame {
   // DI's derived views (di.light, di.m, di.w, di.visibility: di/di_debug_views.h) request
   // di.reservoir-info.
   void requestDebugView(const std::string& passOrResource);
-  void clearDebugViews() { graph_.clearDebugViews(); }
+  void clearDebugViews();
   // The view as captured by the last frame (linear values; see graph/debug_view_image.h; DI's
   // reservoirs decoded and its derived views computed, di/di_debug_views.h).
   ImageRGBA32F debugViewImage(const std::string& name) const;
