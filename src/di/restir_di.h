@@ -3,8 +3,10 @@
 // shadowed at the primary vertex by resampling, a straight chain of passes:
 //
 //   di-light-grid           (many lights only) the world-space light grid around the camera
-//   di-generate-candidates  RIS over DiSettings::lightCandidates candidates + 1 shadow ray
-//   di-temporal             + last frame's reservoir at the reprojected pixel (M <= 20)
+//   di-generate-candidates  RIS over DiSettings::lightCandidates candidates (+ 1 shadow ray,
+//                           DiSettings::candidateVisibility)
+//   di-temporal             + last frame's reservoir at the reprojected pixel (M <= 20); the
+//                           two as one pass, di-candidates-temporal, without the shadow ray
 //   di-spatial              + 1-3 neighbours within 32 px, bias correction
 //   di-shade                the final sample with the full BRDF and a shadow ray: di.radiance
 //   di-denoise-*            (DiSettings::denoiser) SVGF or ReBLUR on the demodulated
