@@ -448,8 +448,9 @@ TEST(RestirDi, CityStreetLightsLightTheNightAsInTheReference) {
 // machine loaded 4x over, about 190 s unloaded): uniform 1.51e-4, restir 3.46e-5: 4.4x. The grid
 // gives both modes better candidates (uniform alone 2.3x lower, DiLightGrid tests), so reuse
 // has less left to gain at equal candidates; restir with the grid is 9.9x below the alias-only
-// uniform frame (3.42e-4), which is not this gate. With the grid's shared pool (session 31):
-// uniform 8.74e-5, restir 2.62e-5, 3.3x; restir 12.9x below the alias-only uniform frame.
+// uniform frame (3.42e-4), which is not this gate. With the grid's shared pool and 7 of 8
+// candidates from the grid (session 31): uniform 8.78e-5, restir 1.33e-5, 6.6x; restir 25x below
+// the alias-only uniform frame.
 // docs/di.md. Too slow for the suite as well.
 TEST(RestirDi, DISABLED_ReuseLowersVarianceTenfoldOnCityByNight) {
   const uint32_t width = 24, height = 14;
