@@ -3,8 +3,10 @@
 // resampled (di_candidates.glsl, as di_generate_candidates.comp describes) and the kept one
 // merged at once with last frame's reservoir (di_temporal_reuse.glsl, as di_temporal.comp
 // describes). The candidate goes through the reservoir's packing as it would between the two
-// passes (u quantised), so the output is the two passes' texel for texel, without the surface
-// loaded twice, the candidate written and read back, or a dispatch (docs/di.md).
+// passes (today an identity: resampleCandidates already quantises u, and M = 1 is exact as a
+// half; kept so that the equality with the two passes holds by construction), so the output is
+// the two passes' texel for texel, without the surface loaded twice, the candidate written and
+// read back, or a dispatch (docs/di.md).
 #version 460
 #include "di/di_candidates.glsl"
 #include "di/di_temporal_reuse.glsl"

@@ -10,8 +10,8 @@
 // di-generate-candidates uses as 1/pdf of the slot's light. Slots of a cell are correlated
 // (they share the pool): each is still unbiased on its own, which is all the candidates' MIS
 // weights need (docs/di.md, "The light grid"). A pool shared by the cell's slots reaches a
-// cell's few nearby lights among thousands with N = 512 draws at 512 target evaluations, where
-// slots drawing 8 candidates each (the earlier build) rarely found them. Rebuilt every frame
+// cell's few nearby lights among thousands with N = 256 draws (the default) at 256 target
+// evaluations, where slots drawing 8 candidates each (the earlier build) rarely found them. Rebuilt every frame
 // with fresh random numbers for the camera-centred grid of this frame.
 #version 460
 #include "di/light_grid.glsl"
