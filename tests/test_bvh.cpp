@@ -999,7 +999,7 @@ TEST(SceneBvh, ArraysDescribeTheScene) {
   }
   const SceneBvhStats& stats = bvh.stats;
   EXPECT_EQ(stats.bytes.blasNodes, bvh.blasNodes.size() * 64);
-  EXPECT_EQ(stats.bytes.triangles, bvh.triangles.size() * 44);
+  EXPECT_EQ(stats.bytes.triangles, bvh.triangles.size() * 48);
   EXPECT_EQ(stats.bytes.instances, bvh.instances.size() * 112);
   EXPECT_GT(stats.bytes.total(), 0u);
 }

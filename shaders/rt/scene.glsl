@@ -4,15 +4,6 @@
 #define BOUNCE_RT_SCENE_GLSL
 #include "shared/scene_layout.h"
 
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer BvhNodeArray {
-  GpuBvhNode v[];
-};
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer WideBvhNodeArray {
-  GpuWideBvhNode v[];
-};
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer TriangleArray {
-  GpuTriangle v[];
-};
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer InstanceArray {
   GpuInstance v[];
 };
@@ -34,6 +25,42 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Vec
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Vec4Array {
   vec4 v[];
 };
+
+// The traversal's view of nodes and triangles: 16-byte quarters. A view of GpuBvhNode[] with
+// the scalar layout promises only 4-byte alignment, so a GPU compiler fetches a 64-byte node
+// through it as sixteen 32-bit loads; every node and triangle starts on a 16-byte boundary (their buffers are separate
+// allocations and their sizes multiples of 16), and through this view it takes four (a
+// triangle three). docs/ray-tracing.md, "128-bit loads".
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer QuadArray {
+  vec4 v[];
+};
+
+GpuBvhNode loadBvhNode(QuadArray nodes, uint index) {
+  vec4 q0 = nodes.v[4u * index];
+  vec4 q1 = nodes.v[4u * index + 1u];
+  vec4 q2 = nodes.v[4u * index + 2u];
+  vec4 q3 = nodes.v[4u * index + 3u];
+  return GpuBvhNode(q0.xyz, floatBitsToUint(q0.w), q1.xyz, floatBitsToUint(q1.w), q2.xyz,
+                    floatBitsToUint(q2.w), q3.xyz, floatBitsToUint(q3.w));
+}
+
+GpuTriangle loadTriangle(QuadArray triangles, uint index) {
+  vec4 q0 = triangles.v[3u * index];
+  vec4 q1 = triangles.v[3u * index + 1u];
+  vec4 q2 = triangles.v[3u * index + 2u];
+  return GpuTriangle(q0.xyz, floatBitsToUint(q0.w), q1.xyz, floatBitsToUint(q1.w), q2.xyz,
+                     floatBitsToUint(q2.w));
+}
+
+GpuWideBvhNode loadWideBvhNode(QuadArray nodes, uint index) {
+  uvec4 q0 = floatBitsToUint(nodes.v[5u * index]);
+  uvec4 q1 = floatBitsToUint(nodes.v[5u * index + 1u]);
+  uvec4 q2 = floatBitsToUint(nodes.v[5u * index + 2u]);
+  uvec4 q3 = floatBitsToUint(nodes.v[5u * index + 3u]);
+  uvec4 q4 = floatBitsToUint(nodes.v[5u * index + 4u]);
+  return GpuWideBvhNode(uintBitsToFloat(q0.xyz), q0.w, q1.x, q1.y, q1.zw, q2.xy, q2.zw, q3.xy,
+                        q3.zw, q4.xy, q4.zw);
+}
 
 layout(set = 0, binding = 0, scalar) uniform SceneBlock { GpuSceneRefs scene; };
 

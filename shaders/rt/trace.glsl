@@ -128,22 +128,26 @@ struct InstanceSpace {
 };
 
 InstanceSpace enterInstance(uint instance, vec3 worldOrigin, vec3 worldDir) {
-  GpuInstance inst = sceneInstance(instance);
+  // GpuInstance's worldToObject rows and its indices: quarters 3..6 of its 112 bytes.
+  QuadArray instances = QuadArray(scene.instances);
+  vec4 worldToObject[3] = vec4[3](instances.v[7u * instance + 3u], instances.v[7u * instance + 4u],
+                                  instances.v[7u * instance + 5u]);
+  uvec4 indices = floatBitsToUint(instances.v[7u * instance + 6u]);
   InstanceSpace s;
-  s.ray = makeLevelRay(transformPoint(inst.worldToObject, worldOrigin),
-                       transformVector(inst.worldToObject, worldDir));
+  s.ray = makeLevelRay(transformPoint(worldToObject, worldOrigin),
+                       transformVector(worldToObject, worldDir));
   s.instance = instance;
-  s.geometryBase = inst.geometryBase;
-  s.blasRoot = inst.blasRoot;
-  s.mirrored = dot(inst.worldToObject[0].xyz,
-                   cross(inst.worldToObject[1].xyz, inst.worldToObject[2].xyz)) < 0.0;
+  s.blasRoot = indices.x;
+  s.geometryBase = indices.y;
+  s.mirrored =
+      dot(worldToObject[0].xyz, cross(worldToObject[1].xyz, worldToObject[2].xyz)) < 0.0;
   return s;
 }
 
 // Tests triangle i of the instance's BLAS; an accepted hit nearer than best.t replaces best.
 // Returns whether it did.
 bool hitTriangle(uint i, InstanceSpace space, float tMin, bool alphaTest, inout TraceHit best) {
-  GpuTriangle tri = TriangleArray(scene.triangles).v[i];
+  GpuTriangle tri = loadTriangle(QuadArray(scene.triangles), i);
   TriangleHit h = intersectTriangle(space.ray.origin, space.ray.shear, tri.v0, tri.v1, tri.v2,
                                     tMin, best.t);
   // Most tests miss: leave before the geometry index and the alpha test (one expression for
@@ -189,7 +193,7 @@ TraceHit traceSceneBinary(vec3 worldOrigin, vec3 worldDir, float tMin, float tMa
   // other fields are first read after enterInstance has set them).
   InstanceSpace space;
   space.ray = makeLevelRay(worldOrigin, worldDir);
-  BvhNodeArray nodes = BvhNodeArray(scene.tlasNodes);
+  QuadArray nodes = QuadArray(scene.tlasNodes);
   bool inBlas = false;
   int blasStackBase = 0;
   uint next = 0u;  // the TLAS root
@@ -197,7 +201,8 @@ TraceHit traceSceneBinary(vec3 worldOrigin, vec3 worldDir, float tMin, float tMa
   while (true) {
     // Interior nodes, until the next entry is a leaf, an instance or nothing.
     while ((next & STACK_KIND_BITS) == 0u) {
-      EnteredChildren c = enterBinaryNode(nodes.v[next], space.ray.box, tMin, best.t, inBlas);
+      EnteredChildren c =
+          enterBinaryNode(loadBvhNode(nodes, next), space.ray.box, tMin, best.t, inBlas);
       if (c.both) stack[sp++] = c.farther;
       next = c.any ? c.nearer : (sp > (inBlas ? blasStackBase : 0) ? stack[--sp] : NO_ENTRY);
     }
@@ -213,7 +218,7 @@ TraceHit traceSceneBinary(vec3 worldOrigin, vec3 worldDir, float tMin, float tMa
       if (inBlas && sp == blasStackBase) {  // the instance is done: back to the world ray
         inBlas = false;
         space.ray = makeLevelRay(worldOrigin, worldDir);
-        nodes = BvhNodeArray(scene.tlasNodes);
+        nodes = QuadArray(scene.tlasNodes);
       }
       if (sp == 0) break;
       next = stack[--sp];
@@ -221,7 +226,7 @@ TraceHit traceSceneBinary(vec3 worldOrigin, vec3 worldDir, float tMin, float tMa
     }
     if (!inBlas && (next & BVH_STACK_INSTANCE) != 0u) {  // continue in the instance's BLAS
       space = enterInstance(next & ~BVH_STACK_INSTANCE, worldOrigin, worldDir);
-      nodes = BvhNodeArray(scene.blasNodes);
+      nodes = QuadArray(scene.blasNodes);
       blasStackBase = sp;
       inBlas = true;
       next = space.blasRoot;
@@ -260,7 +265,7 @@ bool traceBlasWide(uint instance, vec3 worldOrigin, vec3 worldDir, float tMin, b
   bvec3 negative = space.ray.box.negative;
   uint octant = (negative.x ? 1u : 0u) | (negative.y ? 2u : 0u) | (negative.z ? 4u : 0u);
   uint octantInv = 7u ^ octant;
-  WideBvhNodeArray nodes = WideBvhNodeArray(scene.blasNodes);
+  QuadArray nodes = QuadArray(scene.blasNodes);
 
   uvec2 stack[BVH_WIDE_STACK_SIZE];
   int sp = 0;
@@ -276,7 +281,7 @@ bool traceBlasWide(uint instance, vec3 worldOrigin, vec3 worldDir, float tMin, b
     uint nodeIndex = group.x + bitCount(group.y & 0xFFu & ((1u << slot) - 1u));
     if ((group.y & 0xFF000000u) != 0u) stack[sp++] = group;
 
-    GpuWideBvhNode node = nodes.v[nodeIndex];
+    GpuWideBvhNode node = loadWideBvhNode(nodes, nodeIndex);
     uint interiorMask = node.exponentsAndMask >> 24;
     vec3 scale = vec3(uintBitsToFloat((node.exponentsAndMask & 0xFFu) << 23),
                       uintBitsToFloat(((node.exponentsAndMask >> 8) & 0xFFu) << 23),
@@ -312,11 +317,11 @@ TraceHit traceSceneWide(vec3 worldOrigin, vec3 worldDir, float tMin, float tMax,
   uint stack[BVH_STACK_SIZE / 2];
   int sp = 0;
   BoxRay ray = makeBoxRay(worldOrigin, worldDir);
-  BvhNodeArray nodes = BvhNodeArray(scene.tlasNodes);
+  QuadArray nodes = QuadArray(scene.tlasNodes);
   uint next = 0u;  // the TLAS root
   while (true) {
     while ((next & BVH_STACK_INSTANCE) == 0u) {
-      EnteredChildren c = enterBinaryNode(nodes.v[next], ray, tMin, best.t, false);
+      EnteredChildren c = enterBinaryNode(loadBvhNode(nodes, next), ray, tMin, best.t, false);
       if (c.both) stack[sp++] = c.farther;
       next = c.any ? c.nearer : (sp > 0 ? stack[--sp] : NO_ENTRY);
     }

@@ -106,14 +106,17 @@ BOUNCE_CONST uint PASS_SPEC_FIRST = 1u;
 // intersection loop touches one array. `geometry` holds the geometry index local to the mesh
 // in its low 31 bits and GPU_TRIANGLE_ALPHA_TESTED in the top bit.
 BOUNCE_CONST uint GPU_TRIANGLE_ALPHA_TESTED = 0x80000000u;
+// 48 bytes, each vertex in its own 16-byte quarter, so that the traversal fetches a triangle
+// as three 128-bit loads (shaders/rt/scene.glsl, loadTriangle).
 struct GpuTriangle {
   vec3 v0;
-  vec3 v1;
-  vec3 v2;
   uint primitive;  // triangle index within its geometry (glTF primitive)
+  vec3 v1;
   uint geometry;
+  vec3 v2;
+  uint padding;
 };
-BOUNCE_CHECK_SIZE(GpuTriangle, 44);
+BOUNCE_CHECK_SIZE(GpuTriangle, 48);
 
 // One placed mesh. Transforms are affine, stored as the three rows of a 3x4 matrix.
 // GPU_INSTANCE_HIDDEN: the placement is singular (a scale of 0, how glTF animations hide

@@ -278,9 +278,12 @@ void writeTriangles(const Scene& scene, size_t meshIndex, const MeshBlas& blas, 
     const uint32_t primitive = t - first[g];
     const uint32_t* index = &geometry.indices[size_t(primitive) * 3];
     const bool alphaTested = scene.materials[geometry.material].alphaMode != AlphaMode::Opaque;
-    triangles[i] = {geometry.positions[index[0]], geometry.positions[index[1]],
-                    geometry.positions[index[2]], primitive,
-                    g | (alphaTested ? gpu::GPU_TRIANGLE_ALPHA_TESTED : 0u)};
+    triangles[i] = {.v0 = geometry.positions[index[0]],
+                    .primitive = primitive,
+                    .v1 = geometry.positions[index[1]],
+                    .geometry = g | (alphaTested ? gpu::GPU_TRIANGLE_ALPHA_TESTED : 0u),
+                    .v2 = geometry.positions[index[2]],
+                    .padding = 0u};
   }
 }
 
