@@ -219,7 +219,7 @@ vec3 diIncidentLight(uint light, vec2 u, vec3 x, bool exact, inout DiLight l) {
   }
   if (light >= lightTables.localLightCount) return vec3(0.0);
   if (light >= lightTables.emissiveTriangleCount) {
-    GpuPunctualLight p = PunctualLightArray(lightTables.punctualLights).v[light - lightTables.emissiveTriangleCount];
+    GpuPunctualLight p = loadPunctualLight(light - lightTables.emissiveTriangleCount);
     vec3 toLight = p.position - x;
     float distanceSq = dot(toLight, toLight);
     if (!(distanceSq > 0.0)) return vec3(0.0);
@@ -232,7 +232,7 @@ vec3 diIncidentLight(uint light, vec2 u, vec3 x, bool exact, inout DiLight l) {
     }
     return p.intensity * (attenuation / distanceSq);
   }
-  GpuEmissiveTriangle e = EmissiveTriangleArray(lightTables.emissiveTriangles).v[light];
+  GpuEmissiveTriangle e = loadEmissiveTriangle(light);
   vec2 b = uniformTriangleBarycentrics(u);
   vec3 y = e.p0 + b.x * e.edge1 + b.y * e.edge2;
   vec3 toLight = y - x;

@@ -70,7 +70,7 @@ float diCellTarget(uint light, vec3 lo, vec3 hi) {
   vec3 halfSize = 0.5 * (hi - lo);
   float minDistanceSq = dot(halfSize, halfSize) * (1.0 / 3.0);
   if (light >= lightTables.emissiveTriangleCount) {
-    GpuPunctualLight p = PunctualLightArray(lightTables.punctualLights).v[light - lightTables.emissiveTriangleCount];
+    GpuPunctualLight p = loadPunctualLight(light - lightTables.emissiveTriangleCount);
     float attenuation = 1.0;
     vec3 toBox = centre - p.position;
     float distance = length(toBox);
@@ -90,7 +90,7 @@ float diCellTarget(uint light, vec3 lo, vec3 hi) {
     float distanceSq = max(diSquaredDistanceToBox(p.position, lo, hi), minDistanceSq);
     return brdfLuminance(p.intensity) * attenuation / distanceSq;
   }
-  GpuEmissiveTriangle e = EmissiveTriangleArray(lightTables.emissiveTriangles).v[light];
+  GpuEmissiveTriangle e = loadEmissiveTriangle(light);
   // Emits towards the box when its front side faces at least one corner.
   if (dot(e.frontNormal, centre - e.p0) + dot(abs(e.frontNormal), halfSize) <= 0.0) return 0.0;
   vec3 triangleCentre = e.p0 + (e.edge1 + e.edge2) * (1.0 / 3.0);

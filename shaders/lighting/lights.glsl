@@ -56,7 +56,7 @@ vec2 uniformTriangleBarycentrics(vec2 u) {
 }
 
 LightSample sampleEmissiveTriangle(uint index, float pmf, vec3 x, vec2 u) {
-  GpuEmissiveTriangle e = EmissiveTriangleArray(lightTables.emissiveTriangles).v[index];
+  GpuEmissiveTriangle e = loadEmissiveTriangle(index);
   vec2 b = uniformTriangleBarycentrics(u);
   vec3 y = e.p0 + b.x * e.edge1 + b.y * e.edge2;
   vec3 toLight = y - x;
@@ -85,7 +85,7 @@ LightSample sampleEmissiveTriangle(uint index, float pmf, vec3 x, vec2 u) {
 
 // glTF KHR_lights_punctual: intensity / distance^2, times the spot's smooth angular falloff.
 LightSample samplePunctualLight(uint index, float pmf, vec3 x) {
-  GpuPunctualLight p = PunctualLightArray(lightTables.punctualLights).v[index];
+  GpuPunctualLight p = loadPunctualLight(index);
   vec3 toLight = p.position - x;
   float distanceSq = dot(toLight, toLight);
   LightSample l = invalidLightSample();

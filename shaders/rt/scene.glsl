@@ -10,9 +10,6 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Ins
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer GeometryArray {
   GpuGeometry v[];
 };
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer MaterialArray {
-  GpuMaterial v[];
-};
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer UintArray {
   uint v[];
 };
@@ -26,11 +23,12 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Vec
   vec4 v[];
 };
 
-// The traversal's view of nodes and triangles: 16-byte quarters. A view of GpuBvhNode[] with
-// the scalar layout promises only 4-byte alignment, so a GPU compiler fetches a 64-byte node
-// through it as sixteen 32-bit loads; every node and triangle starts on a 16-byte boundary (their buffers are separate
-// allocations and their sizes multiples of 16), and through this view it takes four (a
-// triangle three). docs/ray-tracing.md, "128-bit loads".
+// The traversal's view of nodes, triangles and instances, and the view materials are read
+// through: 16-byte quarters. A view of GpuBvhNode[] with the scalar layout promises only 4-byte
+// alignment, so a GPU compiler fetches a 64-byte node through it as sixteen 32-bit loads; every
+// element of these arrays starts on a 16-byte boundary (each array is its own allocation and
+// its element a multiple of 16 bytes), and through this view it takes four 128-bit loads.
+// docs/ray-tracing.md, "128-bit loads".
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer QuadArray {
   vec4 v[];
 };
@@ -141,7 +139,16 @@ vec4 fetchSceneTexelNearest(uint ref, vec2 uv) {
 
 GpuInstance sceneInstance(uint i) { return InstanceArray(scene.instances).v[i]; }
 GpuGeometry sceneGeometry(uint i) { return GeometryArray(scene.geometries).v[i]; }
-GpuMaterial sceneMaterial(uint i) { return MaterialArray(scene.materials).v[i]; }
+// Four 128-bit loads (QuadArray above): baseColor; emissive, metallic; roughness, alphaCutoff,
+// normalScale, flags; the four texture references.
+GpuMaterial sceneMaterial(uint i) {
+  QuadArray quads = QuadArray(scene.materials);
+  vec4 q1 = quads.v[4u * i + 1u];
+  vec4 q2 = quads.v[4u * i + 2u];
+  uvec4 textures = floatBitsToUint(quads.v[4u * i + 3u]);
+  return GpuMaterial(quads.v[4u * i], q1.xyz, q1.w, q2.x, q2.y, q2.z, floatBitsToUint(q2.w),
+                     textures.x, textures.y, textures.z, textures.w);
+}
 
 // The three vertex indices (into the shared streams) of a triangle of a geometry.
 uvec3 triangleVertices(GpuGeometry g, uint primitive) {
