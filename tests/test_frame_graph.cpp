@@ -530,6 +530,26 @@ TEST(FrameGraphErrors, BindingsAndPlaceholders) {
             .readPlaceholder(other, 0);
       },
       {"'d'", "placeholder 'other'", "binding 0"});
+  // A sampled binding's placeholder is a SampledRead, merged with the pass's sampled read of
+  // the image; a placeholder cannot write, and a storage placeholder of an image the pass
+  // samples would need two layouts at once.
+  EXPECT_NO_THROW(graph.addPass("e", QueueKind::Compute)
+                      .read(image, Access::SampledRead, 0)
+                      .readPlaceholder(image, 1, Access::SampledRead));
+  expectError(
+      [&] {
+        graph.addPass("f", QueueKind::Compute)
+            .read(image, Access::SampledRead, 0)
+            .readPlaceholder(other, 1, Access::StorageWrite);
+      },
+      {"'f'", "placeholder 'other'", "binding 1", "StorageRead or SampledRead"});
+  expectError(
+      [&] {
+        graph.addPass("g", QueueKind::Compute)
+            .read(image, Access::SampledRead, 0)
+            .readPlaceholder(image, 1);
+      },
+      {"'g'", "'image'"});
 }
 
 TEST(FrameGraphErrors, HistoryNobodyWrites) {

@@ -22,23 +22,24 @@
 // follows the new light instead: a two-frame fast history and a threshold of the fast
 // neighbourhood mean's standard error rather than its spread (docs/gi/restir-gi.md).
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "gi/evolve/restir/restir_gi_common.glsl"
 
 layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
 
-layout(set = 1, binding = GI_DENOISE_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
+layout(set = 1, binding = GI_DENOISE_BINDING_INPUT) uniform texture2D inputImage;
 layout(set = 1, binding = GI_DENOISE_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
 layout(set = 1, binding = GI_DENOISE_BINDING_DEPTH, r32f) uniform readonly image2D depths;
 layout(set = 1, binding = GI_DENOISE_BINDING_PREVIOUS_DEPTH, r32f) uniform readonly image2D previousDepths;
 layout(set = 1, binding = GI_DENOISE_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
 layout(set = 1, binding = GI_DENOISE_BINDING_VELOCITY, rg16f) uniform readonly image2D velocities;
-layout(set = 1, binding = GI_DENOISE_BINDING_PREVIOUS, rgba16f) uniform readonly image2D previous;
+layout(set = 1, binding = GI_DENOISE_BINDING_PREVIOUS) uniform texture2D previous;
 layout(set = 1, binding = GI_DENOISE_BINDING_CURRENT, rgba16f) uniform writeonly image2D current;
 layout(set = 1, binding = GI_DENOISE_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
 layout(set = 1, binding = GI_DENOISE_BINDING_VALIDITY, rgba16f) uniform readonly image2D reservoirValidity;
 layout(set = 1, binding = GI_DENOISE_BINDING_OCCLUSION_VALIDITY, r16f) uniform readonly image2D occlusionValidity;
-layout(set = 1, binding = GI_DENOISE_BINDING_PREVIOUS_FAST, rgba16f) uniform readonly image2D previousFast;
+layout(set = 1, binding = GI_DENOISE_BINDING_PREVIOUS_FAST) uniform texture2D previousFast;
 layout(set = 1, binding = GI_DENOISE_BINDING_CURRENT_FAST, rgba16f) uniform writeonly image2D currentFast;
 
 const float HISTORY_DEPTH_TOLERANCE = 0.03;
@@ -85,7 +86,7 @@ bool insideImage(FrameConstants f, ivec2 q) {
 }
 
 vec3 inputAt(FrameConstants f, ivec2 q) {
-  return insideImage(f, q) ? finiteOrZero(imageLoad(inputImage, q)).rgb : vec3(0.0);
+  return insideImage(f, q) ? finiteOrZero(texelFetch(inputImage, q, 0)).rgb : vec3(0.0);
 }
 
 // q's clamp: its excess colour over fireflyRatio x the brightest of its ring, and the number
@@ -149,7 +150,7 @@ ClipBox fastHistoryBox(FrameConstants f, RestirGiConstants gi, ivec2 p, vec3 cen
       if (dx == 0 && dy == 0) continue;
       ivec2 q = p + stride * ivec2(dx, dy);
       if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(f.resolution)))) continue;
-      vec4 c = finiteOrZero(imageLoad(previousFast, q));
+      vec4 c = finiteOrZero(texelFetch(previousFast, q, 0));
       if (!(c.a > 0.0)) continue;  // no history there (sky, disocclusion)
       mean += c.rgb;
       meanSq += c.rgb * c.rgb;
@@ -172,13 +173,13 @@ void main() {
     imageStore(outputImage, pixel, vec4(0.0));
     return;
   }
-  vec3 value = withoutFirefly(f, gi, pixel, finiteOrZero(imageLoad(inputImage, pixel)).rgb);
+  vec3 value = withoutFirefly(f, gi, pixel, finiteOrZero(texelFetch(inputImage, pixel, 0)).rgb);
   vec4 history = vec4(0.0), fastHistory = vec4(0.0);
   ivec2 p = ivec2(-1);
   if (pc.historyValid != 0u && (gi.flags & RESTIR_GI_FLAG_DENOISE) != 0u) p = historyPixel(f, pixel);
   if (p.x >= 0) {
-    history = finiteOrZero(imageLoad(previous, p));
-    fastHistory = finiteOrZero(imageLoad(previousFast, p));
+    history = finiteOrZero(texelFetch(previous, p, 0));
+    fastHistory = finiteOrZero(texelFetch(previousFast, p, 0));
   }
   float fastFrames = min(fastHistory.a + 1.0, settling ? SETTLE_FAST_FRAMES : FAST_FRAMES);
   vec3 fast = mix(fastHistory.rgb, value, 1.0 / fastFrames);

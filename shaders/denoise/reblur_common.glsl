@@ -110,7 +110,7 @@ vec4 bilinearFootprint(vec2 previous, out ivec2 p0) {
     agreeing = 0u;                                                                           \
     for (int i = 0; i < 4; ++i) {                                                            \
       ivec2 q = p0 + ivec2(i & 1, i >> 1);                                                   \
-      if (w[i] <= 0.0 || !inImage(q) || !sameSurface(unpackSurface(imageLoad(previousSurfaceImage, q).xy), z, slope, n)) \
+      if (w[i] <= 0.0 || !inImage(q) || !sameSurface(unpackSurface(texelFetch(previousSurfaceImage, q, 0).xy), z, slope, n)) \
         w[i] = 0.0;                                                                          \
       else                                                                                   \
         agreeing |= 1u << i;                                                                 \
@@ -130,9 +130,9 @@ vec4 bilinearFootprint(vec2 previous, out ivec2 p0) {
       for (int dx = -1; dx <= 1; ++dx) {                                                     \
         ivec2 q = pixel + ivec2(dx, dy);                                                     \
         if (!inImage(q)) continue;                                                           \
-        if (geometryWeight(z, slope, length(vec2(dx, dy)), n, imageLoad(surfaceImage, q).xy) <= 0.0) \
+        if (geometryWeight(z, slope, length(vec2(dx, dy)), n, texelFetch(surfaceImage, q, 0).xy) <= 0.0) \
           continue;                                                                          \
-        vec3 c = imageLoad(image, q).rgb;                                                    \
+        vec3 c = texelFetch(image, q, 0).rgb;                                                \
         m1 += c;                                                                             \
         m2 += c * c;                                                                         \
         count += 1.0;                                                                        \

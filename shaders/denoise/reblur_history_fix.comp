@@ -15,15 +15,16 @@
 // The result (rgb, a the history length) goes to reblur-blur; the fast history's neighbourhood
 // statistics go to reblur.fast-moments, for reblur-stabilize's clamp to the same neighbourhood.
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "denoise/reblur_common.glsl"
 
 layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
 
-layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
-layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_FAST, rgba16f) uniform readonly image2D fastImage;
-layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
+layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_INPUT) uniform texture2D inputImage;
+layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_FAST) uniform texture2D fastImage;
+layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_SURFACE) uniform utexture2D surfaces;
 layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
-layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_SLOPE, r32f) uniform readonly image2D slopes;
+layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_SLOPE) uniform texture2D slopes;
 layout(set = 1, binding = REBLUR_HISTORY_FIX_BINDING_FAST_MOMENTS, rgba32ui) uniform writeonly uimage2D fastMomentsOut;
 
 DEFINE_REBLUR_NEIGHBOURHOOD(fastImage, surfaces)
@@ -39,9 +40,9 @@ vec3 fixHistory(ivec2 pixel, vec4 centre, float z, float slope, vec3 n) {
       vec2 offset = stride * vec2(dx, dy);
       ivec2 q = pixel + ivec2(round(offset));
       if (!inImage(q)) continue;
-      float w = geometryWeight(z, slope, stride * length(vec2(dx, dy)), n, imageLoad(surfaces, q).xy);
+      float w = geometryWeight(z, slope, stride * length(vec2(dx, dy)), n, texelFetch(surfaces, q, 0).xy);
       if (w <= 0.0) continue;
-      vec4 c = imageLoad(inputImage, q);
+      vec4 c = texelFetch(inputImage, q, 0);
       w *= 1.0 + c.a;
       sum += w * c.rgb;
       weightSum += w;
@@ -59,8 +60,8 @@ vec3 withoutFirefly(ivec2 pixel, vec3 colour, float z, float slope, vec3 n) {
       if (abs(dx) <= 1 && abs(dy) <= 1) continue;
       ivec2 q = pixel + ivec2(dx, dy);
       if (!inImage(q)) continue;
-      if (geometryWeight(z, slope, length(vec2(dx, dy)), n, imageLoad(surfaces, q).xy) <= 0.0) continue;
-      float l = reblurLuminance(imageLoad(inputImage, q).rgb);
+      if (geometryWeight(z, slope, length(vec2(dx, dy)), n, texelFetch(surfaces, q, 0).xy) <= 0.0) continue;
+      float l = reblurLuminance(texelFetch(inputImage, q, 0).rgb);
       m1 += l;
       m2 += l * l;
       count += 1.0;
@@ -76,14 +77,14 @@ vec3 withoutFirefly(ivec2 pixel, vec3 colour, float z, float slope, vec3 n) {
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!inImage(pixel)) return;
-  vec4 centre = imageLoad(inputImage, pixel);
-  vec4 s = unpackSurface(imageLoad(surfaces, pixel).xy);
+  vec4 centre = texelFetch(inputImage, pixel, 0);
+  vec4 s = unpackSurface(texelFetch(surfaces, pixel, 0).xy);
   if (!hasSurface(s.w)) {
     imageStore(outputImage, pixel, centre);
     imageStore(fastMomentsOut, pixel, uvec4(0u));
     return;
   }
-  float slope = imageLoad(slopes, pixel).r;
+  float slope = texelFetch(slopes, pixel, 0).r;
   float frames = centre.a;
   vec3 colour = frames < pc.historyFixFrames ? fixHistory(pixel, centre, s.w, slope, s.xyz) : centre.rgb;
   colour = withoutFirefly(pixel, colour, s.w, slope, s.xyz);

@@ -6,32 +6,33 @@
 // later pass reads, and divides the signal by
 // the albedo (REBLUR_FLAG_ALBEDO). Pixels without a surface pass the signal through.
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "denoise/reblur_common.glsl"
 
 layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
 
-layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_NOISY, rgba16f) uniform readonly image2D noisyImage;
-layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_DEPTH, r32f) uniform readonly image2D depths;
-layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
-layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_ALBEDO, rgba16f) uniform readonly image2D albedos;
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_NOISY) uniform texture2D noisyImage;
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_DEPTH) uniform texture2D depths;
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_NORMALS) uniform texture2D normals;
+layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_ALBEDO) uniform texture2D albedos;
 layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_SURFACE, rg32ui) uniform writeonly uimage2D surfaceOut;
 layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
 layout(set = 1, binding = REBLUR_PRE_BLUR_BINDING_SLOPE, r32f) uniform writeonly image2D slopeOut;
 
 float depthAt(ivec2 q) {
-  float z = imageLoad(depths, q).x;
+  float z = texelFetch(depths, q, 0).x;
   return hasSurface(z) ? z : 0.0;
 }
 DEFINE_REBLUR_DEPTH_SLOPE(depthAt)
 
 vec3 normalAt(ivec2 q) {
-  vec4 n = imageLoad(normals, q);
+  vec4 n = texelFetch(normals, q, 0);
   return (pc.flags & REBLUR_FLAG_OCTAHEDRAL_NORMALS) != 0u ? decodeOctahedralNormal(n.xy) : normalize(n.xyz);
 }
 
 vec3 signalAt(ivec2 q) {
-  vec3 c = finiteOrZero(imageLoad(noisyImage, q).rgb);
-  if ((pc.flags & REBLUR_FLAG_ALBEDO) != 0u) c /= safeAlbedo(imageLoad(albedos, q).rgb);
+  vec3 c = finiteOrZero(texelFetch(noisyImage, q, 0).rgb);
+  if ((pc.flags & REBLUR_FLAG_ALBEDO) != 0u) c /= safeAlbedo(texelFetch(albedos, q, 0).rgb);
   return c;
 }
 
@@ -42,7 +43,7 @@ void main() {
   if (!hasSurface(z)) {
     imageStore(surfaceOut, pixel, uvec4(0u));
     imageStore(slopeOut, pixel, vec4(0.0));
-    imageStore(outputImage, pixel, vec4(finiteOrZero(imageLoad(noisyImage, pixel).rgb), 0.0));
+    imageStore(outputImage, pixel, vec4(finiteOrZero(texelFetch(noisyImage, pixel, 0).rgb), 0.0));
     return;
   }
   vec3 n = normalAt(pixel);

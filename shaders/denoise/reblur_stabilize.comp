@@ -9,16 +9,17 @@
 // x (distance moved in standard deviations of luminance), so it follows a change in a few frames.
 // Last, the albedo is multiplied back (REBLUR_FLAG_ALBEDO). Pixels without a surface pass through.
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "denoise/reblur_common.glsl"
 
 layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
 
-layout(set = 1, binding = REBLUR_STABILIZE_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
-layout(set = 1, binding = REBLUR_STABILIZE_BINDING_FAST_MOMENTS, rgba32ui) uniform readonly uimage2D fastMoments;
-layout(set = 1, binding = REBLUR_STABILIZE_BINDING_MOTION, rg16f) uniform readonly image2D motions;
-layout(set = 1, binding = REBLUR_STABILIZE_BINDING_FOOTPRINT, r8ui) uniform readonly uimage2D footprints;
-layout(set = 1, binding = REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE, rgba16f) uniform readonly image2D previousStable;
-layout(set = 1, binding = REBLUR_STABILIZE_BINDING_ALBEDO, rgba16f) uniform readonly image2D albedos;
+layout(set = 1, binding = REBLUR_STABILIZE_BINDING_INPUT) uniform texture2D inputImage;
+layout(set = 1, binding = REBLUR_STABILIZE_BINDING_FAST_MOMENTS) uniform utexture2D fastMoments;
+layout(set = 1, binding = REBLUR_STABILIZE_BINDING_MOTION) uniform texture2D motions;
+layout(set = 1, binding = REBLUR_STABILIZE_BINDING_FOOTPRINT) uniform utexture2D footprints;
+layout(set = 1, binding = REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE) uniform texture2D previousStable;
+layout(set = 1, binding = REBLUR_STABILIZE_BINDING_ALBEDO) uniform texture2D albedos;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_STABLE, rgba16f) uniform writeonly image2D stableOut;
 layout(set = 1, binding = REBLUR_STABILIZE_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
 
@@ -26,8 +27,8 @@ layout(set = 1, binding = REBLUR_STABILIZE_BINDING_OUTPUT, rgba16f) uniform writ
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!inImage(pixel)) return;
-  vec4 current = finiteOrZero4(imageLoad(inputImage, pixel));
-  uvec4 moments = imageLoad(fastMoments, pixel);
+  vec4 current = finiteOrZero4(texelFetch(inputImage, pixel, 0));
+  uvec4 moments = texelFetch(fastMoments, pixel, 0);
   if (moments.w == 0u) {  // no surface (reblur-history-fix's flag)
     imageStore(stableOut, pixel, vec4(current.rgb, 0.0));
     imageStore(outputImage, pixel, vec4(current.rgb, 0.0));
@@ -36,8 +37,8 @@ void main() {
   vec4 history = vec4(0.0);
   // The footprint's pixels that reblur-temporal found on this surface: the same disocclusion
   // test, not repeated here.
-  uint agreeing = imageLoad(footprints, pixel).r;
-  vec2 previous = vec2(pixel) + 0.5 - imageLoad(motions, pixel).xy;
+  uint agreeing = texelFetch(footprints, pixel, 0).r;
+  vec2 previous = vec2(pixel) + 0.5 - texelFetch(motions, pixel, 0).xy;
   if (pc.historyValid != 0u && agreeing != 0u) {
     ivec2 p0;
     vec4 w = bilinearFootprint(previous, p0);
@@ -48,7 +49,7 @@ void main() {
     }
     if (sum > 1e-3) {
       for (int i = 0; i < 4; ++i)
-        if (w[i] > 0.0) history += w[i] * finiteOrZero4(imageLoad(previousStable, p0 + ivec2(i & 1, i >> 1)));
+        if (w[i] > 0.0) history += w[i] * finiteOrZero4(texelFetch(previousStable, p0 + ivec2(i & 1, i >> 1), 0));
       history /= sum;
     }
   }
@@ -64,6 +65,6 @@ void main() {
   frames = min(frames + 1.0, pc.maxStabilizedFrames);
   vec3 colour = mix(history.rgb, current.rgb, 1.0 / frames);
   imageStore(stableOut, pixel, vec4(colour, frames));
-  if ((pc.flags & REBLUR_FLAG_ALBEDO) != 0u) colour *= safeAlbedo(imageLoad(albedos, pixel).rgb);
+  if ((pc.flags & REBLUR_FLAG_ALBEDO) != 0u) colour *= safeAlbedo(texelFetch(albedos, pixel, 0).rgb);
   imageStore(outputImage, pixel, vec4(colour, current.a));
 }

@@ -12,19 +12,20 @@
 //     the blurs' small bias frame after frame: docs/denoise.md.)
 //   - Nothing non-finite enters history.
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "denoise/reblur_common.glsl"
 
 layout(local_size_x = REBLUR_GROUP_SIZE, local_size_y = REBLUR_GROUP_SIZE) in;
 
-layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_INPUT, rgba16f) uniform readonly image2D inputImage;
-layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_SURFACE, rg32ui) uniform readonly uimage2D surfaces;
-layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_MOTION, rg16f) uniform readonly image2D motions;
-layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_SURFACE, rg32ui) uniform readonly uimage2D previousSurface;
-layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY, rgba16f) uniform readonly image2D previousHistory;
-layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST, rgba16f) uniform readonly image2D previousFast;
+layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_INPUT) uniform texture2D inputImage;
+layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_SURFACE) uniform utexture2D surfaces;
+layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_MOTION) uniform texture2D motions;
+layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_SURFACE) uniform utexture2D previousSurface;
+layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY) uniform texture2D previousHistory;
+layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST) uniform texture2D previousFast;
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_FAST, rgba16f) uniform writeonly image2D fastOut;
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_ACCUMULATED, rgba16f) uniform writeonly image2D accumulatedOut;
-layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_SLOPE, r32f) uniform readonly image2D slopes;
+layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_SLOPE) uniform texture2D slopes;
 layout(set = 1, binding = REBLUR_TEMPORAL_BINDING_FOOTPRINT, r8ui) uniform writeonly uimage2D footprintOut;
 
 DEFINE_REBLUR_REPROJECT(previousSurface)
@@ -32,8 +33,8 @@ DEFINE_REBLUR_REPROJECT(previousSurface)
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (!inImage(pixel)) return;
-  vec3 signal = finiteOrZero(imageLoad(inputImage, pixel).rgb);
-  vec4 s = unpackSurface(imageLoad(surfaces, pixel).xy);
+  vec3 signal = finiteOrZero(texelFetch(inputImage, pixel, 0).rgb);
+  vec4 s = unpackSurface(texelFetch(surfaces, pixel, 0).xy);
   if (!hasSurface(s.w)) {
     imageStore(fastOut, pixel, vec4(signal, 0.0));
     imageStore(accumulatedOut, pixel, vec4(signal, 0.0));
@@ -43,18 +44,18 @@ void main() {
   vec4 slow = vec4(0.0), fast = vec4(0.0);
   float frames = 0.0;  // the history's length, 0: none
   uint agreeing = 0u;  // the footprint's pixels on this surface
-  vec2 previous = vec2(pixel) + 0.5 - imageLoad(motions, pixel).xy;
+  vec2 previous = vec2(pixel) + 0.5 - texelFetch(motions, pixel, 0).xy;
   if (pc.historyValid != 0u && isFiniteValue(previous.x) && isFiniteValue(previous.y)) {
     ivec2 p0;
     vec4 w;
-    float sum = reprojectWeights(previous, s.w, imageLoad(slopes, pixel).r, s.xyz, p0, w, agreeing);
+    float sum = reprojectWeights(previous, s.w, texelFetch(slopes, pixel, 0).r, s.xyz, p0, w, agreeing);
     if (sum <= 1e-3) agreeing = 0u;
     if (sum > 1e-3) {
       for (int i = 0; i < 4; ++i) {
         if (w[i] <= 0.0) continue;
         ivec2 q = p0 + ivec2(i & 1, i >> 1);
-        slow += w[i] * finiteOrZero4(imageLoad(previousHistory, q));
-        fast += w[i] * finiteOrZero4(imageLoad(previousFast, q));
+        slow += w[i] * finiteOrZero4(texelFetch(previousHistory, q, 0));
+        fast += w[i] * finiteOrZero4(texelFetch(previousFast, q, 0));
       }
       slow /= sum;
       fast /= sum;

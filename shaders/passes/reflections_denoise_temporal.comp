@@ -26,6 +26,7 @@
 //   - Nothing non-finite enters history: NaN/Inf samples count as no sample, non-finite history
 //     as no history.
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "passes/hybrid_frame.glsl"
 #include "shared/reflections_denoise_io.h"
 
@@ -35,33 +36,33 @@ layout(push_constant, scalar) uniform Push { ReflectionDenoiseConstants pc; };
 #include "passes/reflections_denoise.glsl"
 #include "passes/reflection_parallax.glsl"
 
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_TRACED, rgba16f) uniform readonly image2D traced;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_DEPTH, r32f) uniform readonly image2D depths;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_EMISSIVE, rgba16f) uniform readonly image2D emissives;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_VELOCITY, rg16f) uniform readonly image2D velocities;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS, rgba16f) uniform readonly image2D previous;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_MOMENTS, rgba32f) uniform readonly image2D previousMoments;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_SURFACE, rgba32f) uniform readonly image2D previousSurface;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_TRACED) uniform texture2D traced;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_NORMALS) uniform texture2D normals;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_DEPTH) uniform texture2D depths;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_EMISSIVE) uniform texture2D emissives;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_FLAGS) uniform utexture2D flags;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_VELOCITY) uniform texture2D velocities;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS) uniform texture2D previous;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_MOMENTS) uniform texture2D previousMoments;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_SURFACE) uniform texture2D previousSurface;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT, rgba16f) uniform writeonly image2D current;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_MOMENTS, rgba32f) uniform writeonly image2D currentMoments;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_SURFACE, rgba32f) uniform writeonly image2D currentSurface;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_FAST, rgba16f) uniform readonly image2D previousFast;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_FAST) uniform texture2D previousFast;
 layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_FAST, rgba16f) uniform writeonly image2D currentFast;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_SAMPLE, rgba32f) uniform readonly image2D candidateSample;
-layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_ORIGIN, rgba32f) uniform readonly image2D candidateOrigin;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_SAMPLE) uniform texture2D candidateSample;
+layout(set = 1, binding = REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_ORIGIN) uniform texture2D candidateOrigin;
 
 // The surface a traced pixel stands for (its full-res GBuffer pixel).
 DenoiseSurface loadSurface(FrameConstants f, ivec2 tracedPixel) {
   ivec2 p = fullResPixel(f, tracedPixel);
   DenoiseSurface s;
   s.roughness = -1.0;
-  s.viewDepth = imageLoad(depths, p).x;
-  s.normal = decodeOctahedral(imageLoad(normals, p).xy);
+  s.viewDepth = texelFetch(depths, p, 0).x;
+  s.normal = decodeOctahedral(texelFetch(normals, p, 0).xy);
   s.position = positionFromDepth(f, vec2(p) + 0.5, s.viewDepth);
-  if ((imageLoad(flags, p).x & GBUFFER_FLAG_SURFACE) != 0u && s.viewDepth > 0.0)
-    s.roughness = clamp(imageLoad(emissives, p).w, 0.0, 1.0);
+  if ((texelFetch(flags, p, 0).x & GBUFFER_FLAG_SURFACE) != 0u && s.viewDepth > 0.0)
+    s.roughness = clamp(texelFetch(emissives, p, 0).w, 0.0, 1.0);
   return s;
 }
 
@@ -83,7 +84,7 @@ vec4 poisoned(FrameConstants f, ivec2 q, vec4 value) {
 // This frame's sample at traced pixel q; false where there is none (no ray, or a non-finite
 // value: sanitized here, so nothing non-finite goes further).
 bool freshSample(FrameConstants f, ivec2 q, out vec4 value) {
-  value = imageLoad(traced, q);
+  value = texelFetch(traced, q, 0);
   if ((pc.flags & REFLECTION_DENOISE_FLAG_POISON_INPUT) != 0u) value = poisoned(f, q, value);
   if (!isFiniteVec(value) || value.w == REFLECTION_NO_SAMPLE || value.w < 0.0) return false;
   value.rgb = max(value.rgb, vec3(0.0));
@@ -105,10 +106,10 @@ History noHistory() { return History(vec3(0.0), vec3(0.0), 0.0, 0.0, 0.0, 0.0, 0
 // Last frame's history at traced pixel q if it belongs to `here`'s surface (weight 1), else
 // none.
 History historyAt(DenoiseSurface here, ivec2 q) {
-  if (!insideTraced(q) || !sameSurface(here, imageLoad(previousSurface, q))) return noHistory();
-  vec4 value = imageLoad(previous, q);
-  vec4 moments = imageLoad(previousMoments, q);
-  vec4 fast = imageLoad(previousFast, q);
+  if (!insideTraced(q) || !sameSurface(here, texelFetch(previousSurface, q, 0))) return noHistory();
+  vec4 value = texelFetch(previous, q, 0);
+  vec4 moments = texelFetch(previousMoments, q, 0);
+  vec4 fast = texelFetch(previousFast, q, 0);
   if (!isFiniteVec(value) || !isFiniteVec(moments) || !isFiniteVec(fast) || moments.y <= 0.0 || value.w < 0.0) return noHistory();
   return History(max(value.rgb, vec3(0.0)), max(fast.rgb, vec3(0.0)), value.w, max(moments.x, 0.0), clamp(moments.z, 0.0, 1.0), moments.y, 1.0);
 }
@@ -212,7 +213,7 @@ float virtualImageDistance(float hitDistance, float curvature) {
 Reprojection reproject(FrameConstants f, ivec2 tracedPixel, DenoiseSurface here, float hitDistance) {
   ivec2 p = fullResPixel(f, tracedPixel);
   Reprojection r;
-  r.surface = vec2(p) + 0.5 - imageLoad(velocities, p).xy;
+  r.surface = vec2(p) + 0.5 - texelFetch(velocities, p, 0).xy;
   r.hasVirtual = false;
   r.virtualPoint = r.surface;
   vec2 cameraOnly;
@@ -352,7 +353,7 @@ float neighboursParallax(FrameConstants f, ivec2 tracedPixel, DenoiseSurface her
     ivec2 d = ivec2(k % 3 - 1, k / 3 - 1);
     ivec2 q = tracedPixel + d;
     if (d == ivec2(0) || !insideTraced(q)) continue;
-    float parallax = candidateParallax(f.camera.position, imageLoad(candidateSample, q), imageLoad(candidateOrigin, q));
+    float parallax = candidateParallax(f.camera.position, texelFetch(candidateSample, q, 0), texelFetch(candidateOrigin, q, 0));
     if (parallax < 0.0 || !sameSurface(here, encodeSurface(loadSurface(f, q)))) continue;
     sum += parallax;
     n += 1.0;

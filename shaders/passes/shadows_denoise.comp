@@ -18,18 +18,19 @@
 //      that left). Otherwise a still view is not clamped, so a noisy soft penumbra keeps its
 //      running mean. Nothing non-finite is ever stored.
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "passes/hybrid_frame.glsl"
 
 layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { HybridPassConstants pc; };
 
-layout(set = 1, binding = SHADOWS_DENOISE_BINDING_RAW, rg16f) uniform readonly image2D raw;
-layout(set = 1, binding = SHADOWS_DENOISE_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
-layout(set = 1, binding = SHADOWS_DENOISE_BINDING_DEPTH, r32f) uniform readonly image2D depths;
-layout(set = 1, binding = SHADOWS_DENOISE_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
-layout(set = 1, binding = SHADOWS_DENOISE_BINDING_VELOCITY, rg16f) uniform readonly image2D velocities;
-layout(set = 1, binding = SHADOWS_DENOISE_BINDING_PREVIOUS_DEPTH, r32f) uniform readonly image2D previousDepths;
-layout(set = 1, binding = SHADOWS_DENOISE_BINDING_PREVIOUS, rg16f) uniform readonly image2D previous;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_RAW) uniform texture2D raw;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_NORMALS) uniform texture2D normals;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_DEPTH) uniform texture2D depths;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_FLAGS) uniform utexture2D flags;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_VELOCITY) uniform texture2D velocities;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_PREVIOUS_DEPTH) uniform texture2D previousDepths;
+layout(set = 1, binding = SHADOWS_DENOISE_BINDING_PREVIOUS) uniform texture2D previous;
 layout(set = 1, binding = SHADOWS_DENOISE_BINDING_CURRENT, rg16f) uniform writeonly image2D current;
 
 // How far (relative to view depth) a neighbour may sit off this pixel's tangent plane, and how
@@ -53,9 +54,9 @@ struct GSample {
 
 GSample loadGSample(FrameConstants f, ivec2 pixel) {
   GSample s;
-  s.surface = (imageLoad(flags, pixel).x & GBUFFER_FLAG_SURFACE) != 0u;
-  s.depth = imageLoad(depths, pixel).x;
-  s.normal = decodeOctahedral(imageLoad(normals, pixel).zw);
+  s.surface = (texelFetch(flags, pixel, 0).x & GBUFFER_FLAG_SURFACE) != 0u;
+  s.depth = texelFetch(depths, pixel, 0).x;
+  s.normal = decodeOctahedral(texelFetch(normals, pixel, 0).zw);
   s.position = positionFromDepth(f, vec2(pixel) + 0.5, s.depth);
   return s;
 }
@@ -81,7 +82,7 @@ vec2 upsampledVisibility(FrameConstants f, ivec2 pixel, GSample here) {
     ivec2 tap = clamp(base + offset, ivec2(0), maxShadow);
     GSample s = loadGSample(f, fullResPixel(f, tap));
     if (!s.surface) continue;
-    vec2 sampled = imageLoad(raw, tap).xy;
+    vec2 sampled = texelFetch(raw, tap, 0).xy;
     float value = sampled.x;
     movedBlocker = max(movedBlocker, sampled.y);
     float planeDistance = abs(dot(here.normal, s.position - here.position)) / max(here.depth, 1e-6);
@@ -103,7 +104,7 @@ vec2 upsampledVisibility(FrameConstants f, ivec2 pixel, GSample here) {
 // four texels around the reprojected position whose view depth agrees, renormalised.
 vec2 reprojectedHistory(FrameConstants f, ivec2 pixel, GSample here) {
   if (pc.historyValid == 0u) return vec2(0.0);
-  vec2 base = vec2(pixel) - imageLoad(velocities, pixel).xy;  // the position minus half a texel
+  vec2 base = vec2(pixel) - texelFetch(velocities, pixel, 0).xy;  // the position minus half a texel
   float expectedDepth = (f.previousViewProjection * vec4(here.position, 1.0)).w;
   ivec2 p0 = ivec2(floor(base));
   vec2 t = base - vec2(p0);
@@ -114,9 +115,9 @@ vec2 reprojectedHistory(FrameConstants f, ivec2 pixel, GSample here) {
     ivec2 p = p0 + offset;
     float w = (offset.x == 1 ? t.x : 1.0 - t.x) * (offset.y == 1 ? t.y : 1.0 - t.y);
     if (w <= 0.0 || any(lessThan(p, ivec2(0))) || any(greaterThanEqual(p, ivec2(f.resolution)))) continue;
-    float previousDepth = imageLoad(previousDepths, p).x;
+    float previousDepth = texelFetch(previousDepths, p, 0).x;
     if (abs(previousDepth - expectedDepth) > HISTORY_DEPTH_TOLERANCE * expectedDepth) continue;
-    vec2 history = imageLoad(previous, p).xy;
+    vec2 history = texelFetch(previous, p, 0).xy;
     if (!isFiniteValue(history.x) || !isFiniteValue(history.y)) continue;
     sum += w * history;
     weightSum += w;
@@ -175,7 +176,7 @@ void main() {
   ivec2 local = ivec2(gl_LocalInvocationID.xy) + 1;
   float visibility = tileVisibility[local.y * TILE + local.x];
   vec2 history = reprojectedHistory(f, pixel, here);
-  bool viewMoved = length(imageLoad(velocities, pixel).xy) > STILL_PIXELS;
+  bool viewMoved = length(texelFetch(velocities, pixel, 0).xy) > STILL_PIXELS;
   bool sceneMoved = (f.flags & FRAME_FLAG_SCENE_MOVED) != 0u;
   if (viewMoved || sceneMoved) {
     bool movedBlocker;

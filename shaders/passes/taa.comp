@@ -9,6 +9,7 @@
 // cannot trail), and blended in linear radiance (so a flat region keeps its mean). No
 // sharpening.
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "passes/auto_exposure.glsl"
 #include "passes/hybrid_frame.glsl"
 #include "shared/taa_io.h"
@@ -16,10 +17,10 @@
 layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { TaaConstants pc; };
 
-layout(set = 1, binding = TAA_BINDING_HDR, rgba16f) uniform readonly image2D hdr;
-layout(set = 1, binding = TAA_BINDING_VELOCITY, rg16f) uniform readonly image2D velocities;
-layout(set = 1, binding = TAA_BINDING_DEPTH, r32f) uniform readonly image2D depths;
-layout(set = 1, binding = TAA_BINDING_PREVIOUS, rgba16f) uniform readonly image2D previous;
+layout(set = 1, binding = TAA_BINDING_HDR) uniform texture2D hdr;
+layout(set = 1, binding = TAA_BINDING_VELOCITY) uniform texture2D velocities;
+layout(set = 1, binding = TAA_BINDING_DEPTH) uniform texture2D depths;
+layout(set = 1, binding = TAA_BINDING_PREVIOUS) uniform texture2D previous;
 layout(set = 1, binding = TAA_BINDING_CURRENT, rgba16f) uniform writeonly image2D current;
 
 bool isFiniteColor(vec3 c) {
@@ -85,7 +86,7 @@ Neighbourhood neighbourhood(FrameConstants f, ivec2 pixel, float exposure) {
   float count = 0.0;
   for (int k = 0; k < 9; ++k) {
     ivec2 q = pixel + ivec2(k % 3, k / 3) - 1;
-    vec3 c = inside(f, q) ? imageLoad(hdr, q).rgb : vec3(0.0);
+    vec3 c = inside(f, q) ? texelFetch(hdr, q, 0).rgb : vec3(0.0);
     bool valid = inside(f, q) && isFiniteColor(c);
     samples[k] = valid ? vec4(c, 1.0) : vec4(0.0);
     if (!valid) continue;
@@ -125,13 +126,13 @@ vec2 dilatedVelocity(FrameConstants f, ivec2 pixel) {
     for (int dx = -1; dx <= 1; ++dx) {
       ivec2 q = pixel + ivec2(dx, dy);
       if (!inside(f, q)) continue;
-      float depth = imageLoad(depths, q).x;
+      float depth = texelFetch(depths, q, 0).x;
       if (depth > 0.0 && depth < nearest) {
         nearest = depth;
         nearestPixel = q;
       }
     }
-  if (nearestPixel.x >= 0) return imageLoad(velocities, nearestPixel).xy;
+  if (nearestPixel.x >= 0) return texelFetch(velocities, nearestPixel, 0).xy;
   // A direction is a point at infinity (w = 0): only the camera's rotation moves it.
   vec2 centre = vec2(pixel) + 0.5;
   vec4 clip = f.previousViewProjection * vec4(pixelRayDirection(f, centre), 0.0);
@@ -164,9 +165,9 @@ vec4 historyAt(FrameConstants f, vec2 position) {
       float w = wx[i] * wy[j];
       if (w == 0.0) continue;
       ivec2 q = clamp(base + ivec2(i - 1, j - 1), ivec2(0), ivec2(f.resolution) - 1);
-      sum += w * imageLoad(previous, q).rgb;
+      sum += w * texelFetch(previous, q, 0).rgb;
     }
-  float frames = imageLoad(previous, nearest).a;
+  float frames = texelFetch(previous, nearest, 0).a;
   if (!isFiniteColor(sum) || !isFiniteValue(frames)) return vec4(0.0);
   return vec4(max(sum, vec3(0.0)), frames);
 }

@@ -4,9 +4,13 @@ namespace bounce {
 
 using graph::Access;
 
+// The read-only inputs it reads around each pixel are sampled images (docs/architecture.md,
+// "Sampled inputs").
 GiTemporalDenoise::GiTemporalDenoise(vk::Context& context, const GpuScene& scene)
     : pass_(context, scene, "denoise/gi_temporal_denoise", gpu::GI_DENOISE_BINDING_COUNT,
-            sizeof(gpu::RestirGiPassConstants)) {}
+            sizeof(gpu::RestirGiPassConstants), 1, {},
+            bindingMask({gpu::GI_DENOISE_BINDING_INPUT, gpu::GI_DENOISE_BINDING_PREVIOUS,
+                         gpu::GI_DENOISE_BINDING_PREVIOUS_FAST})) {}
 
 void GiTemporalDenoise::declare(graph::FrameGraph& graph, const FrameContext& frame,
                                 const GBuffer& gbuffer, const GiTemporalDenoiseInputs& in,
@@ -18,14 +22,14 @@ void GiTemporalDenoise::declare(graph::FrameGraph& graph, const FrameContext& fr
   graph::PassBuilder pass = graph.addPass("gi-temporal-denoise", graph::QueueKind::Compute);
   pass.read(frame.constants, Access::StorageRead)
       .write(output, Access::StorageWrite, gpu::GI_DENOISE_BINDING_OUTPUT)
-      .read(in.noisy, Access::StorageRead, gpu::GI_DENOISE_BINDING_INPUT)
+      .read(in.noisy, Access::SampledRead, gpu::GI_DENOISE_BINDING_INPUT)
       .read(gbuffer.normals, Access::StorageRead, gpu::GI_DENOISE_BINDING_NORMALS)
       .read(depth.current, Access::StorageRead, gpu::GI_DENOISE_BINDING_DEPTH)
       .read(depth.previous, Access::StorageRead, gpu::GI_DENOISE_BINDING_PREVIOUS_DEPTH)
       .read(gbuffer.flags, Access::StorageRead, gpu::GI_DENOISE_BINDING_FLAGS)
       .read(gbuffer.velocity, Access::StorageRead, gpu::GI_DENOISE_BINDING_VELOCITY)
-      .read(slow.previous, Access::StorageRead, gpu::GI_DENOISE_BINDING_PREVIOUS)
-      .read(fast.previous, Access::StorageRead, gpu::GI_DENOISE_BINDING_PREVIOUS_FAST)
+      .read(slow.previous, Access::SampledRead, gpu::GI_DENOISE_BINDING_PREVIOUS)
+      .read(fast.previous, Access::SampledRead, gpu::GI_DENOISE_BINDING_PREVIOUS_FAST)
       .read(in.validity, Access::StorageRead, gpu::GI_DENOISE_BINDING_VALIDITY);
   if (in.occlusionValidity)
     pass.read(*in.occlusionValidity, Access::StorageRead,

@@ -62,20 +62,42 @@ void validate(const ReblurSettings& s) {
         s.depthTolerance, s.normalTolerance, s.normalPower);
 }
 
+// The read-only inputs are sampled images (docs/architecture.md, "Sampled inputs").
 Reblur::Reblur(vk::Context& context, const GpuScene& scene, const ReblurSettings& settings,
                std::string name)
     : settings_(settings),
       name_(std::move(name)),
-      preBlur_(context, scene, "denoise/reblur_pre_blur", gpu::REBLUR_PRE_BLUR_BINDING_COUNT,
-               sizeof(gpu::ReblurConstants)),
-      temporal_(context, scene, "denoise/reblur_temporal", gpu::REBLUR_TEMPORAL_BINDING_COUNT,
-                sizeof(gpu::ReblurConstants)),
-      historyFix_(context, scene, "denoise/reblur_history_fix",
-                  gpu::REBLUR_HISTORY_FIX_BINDING_COUNT, sizeof(gpu::ReblurConstants)),
+      preBlur_(
+          context, scene, "denoise/reblur_pre_blur", gpu::REBLUR_PRE_BLUR_BINDING_COUNT,
+          sizeof(gpu::ReblurConstants), 1, {},
+          bindingMask({gpu::REBLUR_PRE_BLUR_BINDING_NOISY, gpu::REBLUR_PRE_BLUR_BINDING_DEPTH,
+                       gpu::REBLUR_PRE_BLUR_BINDING_NORMALS, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO})),
+      temporal_(
+          context, scene, "denoise/reblur_temporal", gpu::REBLUR_TEMPORAL_BINDING_COUNT,
+          sizeof(gpu::ReblurConstants), 1, {},
+          bindingMask(
+              {gpu::REBLUR_TEMPORAL_BINDING_INPUT, gpu::REBLUR_TEMPORAL_BINDING_SURFACE,
+               gpu::REBLUR_TEMPORAL_BINDING_MOTION, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_SURFACE,
+               gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY,
+               gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST, gpu::REBLUR_TEMPORAL_BINDING_SLOPE})),
+      historyFix_(
+          context, scene, "denoise/reblur_history_fix", gpu::REBLUR_HISTORY_FIX_BINDING_COUNT,
+          sizeof(gpu::ReblurConstants), 1, {},
+          bindingMask({gpu::REBLUR_HISTORY_FIX_BINDING_INPUT, gpu::REBLUR_HISTORY_FIX_BINDING_FAST,
+                       gpu::REBLUR_HISTORY_FIX_BINDING_SURFACE,
+                       gpu::REBLUR_HISTORY_FIX_BINDING_SLOPE})),
       blur_(context, scene, "denoise/reblur_blur", gpu::REBLUR_BLUR_BINDING_COUNT,
-            sizeof(gpu::ReblurConstants), 2),
-      stabilize_(context, scene, "denoise/reblur_stabilize", gpu::REBLUR_STABILIZE_BINDING_COUNT,
-                 sizeof(gpu::ReblurConstants)) {
+            sizeof(gpu::ReblurConstants), 2, {},
+            bindingMask({gpu::REBLUR_BLUR_BINDING_INPUT, gpu::REBLUR_BLUR_BINDING_SURFACE,
+                         gpu::REBLUR_BLUR_BINDING_TILES, gpu::REBLUR_BLUR_BINDING_SLOPE})),
+      stabilize_(
+          context, scene, "denoise/reblur_stabilize", gpu::REBLUR_STABILIZE_BINDING_COUNT,
+          sizeof(gpu::ReblurConstants), 1, {},
+          bindingMask(
+              {gpu::REBLUR_STABILIZE_BINDING_INPUT, gpu::REBLUR_STABILIZE_BINDING_FAST_MOMENTS,
+               gpu::REBLUR_STABILIZE_BINDING_MOTION, gpu::REBLUR_STABILIZE_BINDING_FOOTPRINT,
+               gpu::REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE,
+               gpu::REBLUR_STABILIZE_BINDING_ALBEDO})) {
   validate(settings_);
 }
 
@@ -128,16 +150,16 @@ Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D re
   const bool valid = !in.dropHistory;
 
   graph::PassBuilder pre = graph.addPass(name_ + "-pre-blur", graph::QueueKind::Compute);
-  pre.read(in.noisy, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_NOISY)
-      .read(in.depth, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_DEPTH)
-      .read(in.normals, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_NORMALS)
+  pre.read(in.noisy, Access::SampledRead, gpu::REBLUR_PRE_BLUR_BINDING_NOISY)
+      .read(in.depth, Access::SampledRead, gpu::REBLUR_PRE_BLUR_BINDING_DEPTH)
+      .read(in.normals, Access::SampledRead, gpu::REBLUR_PRE_BLUR_BINDING_NORMALS)
       .write(surface.current, Access::StorageWrite, gpu::REBLUR_PRE_BLUR_BINDING_SURFACE)
       .write(preBlurred, Access::StorageWrite, gpu::REBLUR_PRE_BLUR_BINDING_OUTPUT)
       .write(slope, Access::StorageWrite, gpu::REBLUR_PRE_BLUR_BINDING_SLOPE);
   if (in.albedo)
-    pre.read(*in.albedo, Access::StorageRead, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO);
+    pre.read(*in.albedo, Access::SampledRead, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO);
   else
-    pre.readPlaceholder(in.noisy, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO);
+    pre.readPlaceholder(in.noisy, gpu::REBLUR_PRE_BLUR_BINDING_ALBEDO, Access::SampledRead);
   const float preBlurRadius =
       settings_.preBlurRadius > 0.0f
           ? scaled(settings_.preBlurRadius, resolution, settings_.minBlurRadius)
@@ -151,13 +173,13 @@ Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D re
   });
 
   graph.addPass(name_ + "-temporal", graph::QueueKind::Compute)
-      .read(preBlurred, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_INPUT)
-      .read(surface.current, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_SURFACE)
-      .read(slope, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_SLOPE)
-      .read(in.motion, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_MOTION)
-      .read(surface.previous, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_SURFACE)
-      .read(history.previous, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY)
-      .read(fast.previous, Access::StorageRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST)
+      .read(preBlurred, Access::SampledRead, gpu::REBLUR_TEMPORAL_BINDING_INPUT)
+      .read(surface.current, Access::SampledRead, gpu::REBLUR_TEMPORAL_BINDING_SURFACE)
+      .read(slope, Access::SampledRead, gpu::REBLUR_TEMPORAL_BINDING_SLOPE)
+      .read(in.motion, Access::SampledRead, gpu::REBLUR_TEMPORAL_BINDING_MOTION)
+      .read(surface.previous, Access::SampledRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_SURFACE)
+      .read(history.previous, Access::SampledRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_HISTORY)
+      .read(fast.previous, Access::SampledRead, gpu::REBLUR_TEMPORAL_BINDING_PREVIOUS_FAST)
       .write(fast.current, Access::StorageWrite, gpu::REBLUR_TEMPORAL_BINDING_FAST)
       .write(accumulated, Access::StorageWrite, gpu::REBLUR_TEMPORAL_BINDING_ACCUMULATED)
       .write(footprint, Access::StorageWrite, gpu::REBLUR_TEMPORAL_BINDING_FOOTPRINT)
@@ -172,10 +194,10 @@ Reblur::Temporal Reblur::declareTemporal(graph::FrameGraph& graph, VkExtent2D re
       });
 
   graph.addPass(name_ + "-history-fix", graph::QueueKind::Compute)
-      .read(accumulated, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_INPUT)
-      .read(fast.current, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_FAST)
-      .read(surface.current, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_SURFACE)
-      .read(slope, Access::StorageRead, gpu::REBLUR_HISTORY_FIX_BINDING_SLOPE)
+      .read(accumulated, Access::SampledRead, gpu::REBLUR_HISTORY_FIX_BINDING_INPUT)
+      .read(fast.current, Access::SampledRead, gpu::REBLUR_HISTORY_FIX_BINDING_FAST)
+      .read(surface.current, Access::SampledRead, gpu::REBLUR_HISTORY_FIX_BINDING_SURFACE)
+      .read(slope, Access::SampledRead, gpu::REBLUR_HISTORY_FIX_BINDING_SLOPE)
       .write(fixed, Access::StorageWrite, gpu::REBLUR_HISTORY_FIX_BINDING_OUTPUT)
       .write(fastMoments, Access::StorageWrite, gpu::REBLUR_HISTORY_FIX_BINDING_FAST_MOMENTS)
       .record([this, c](VkCommandBuffer cmd, const graph::PassResources& r) {
@@ -204,14 +226,14 @@ void Reblur::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution,
   for (uint32_t i = 0; i < 2; ++i) {
     graph::PassBuilder blur =
         graph.addPass(i == 0 ? name_ + "-blur" : name_ + "-post-blur", graph::QueueKind::Compute);
-    blur.read(blurIn[i], Access::StorageRead, gpu::REBLUR_BLUR_BINDING_INPUT)
-        .read(surface.current, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_SURFACE)
-        .read(temporal.slope, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_SLOPE)
+    blur.read(blurIn[i], Access::SampledRead, gpu::REBLUR_BLUR_BINDING_INPUT)
+        .read(surface.current, Access::SampledRead, gpu::REBLUR_BLUR_BINDING_SURFACE)
+        .read(temporal.slope, Access::SampledRead, gpu::REBLUR_BLUR_BINDING_SLOPE)
         .write(blurOut[i], Access::StorageWrite, gpu::REBLUR_BLUR_BINDING_OUTPUT);
     if (tiles)
-      blur.read(*tiles, Access::StorageRead, gpu::REBLUR_BLUR_BINDING_TILES);
+      blur.read(*tiles, Access::SampledRead, gpu::REBLUR_BLUR_BINDING_TILES);
     else
-      blur.readPlaceholder(blurIn[i], gpu::REBLUR_BLUR_BINDING_TILES);
+      blur.readPlaceholder(blurIn[i], gpu::REBLUR_BLUR_BINDING_TILES, Access::SampledRead);
     blur.record([this, c, i](VkCommandBuffer cmd, const graph::PassResources& r) {
       gpu::ReblurConstants k = c;
       k.flags |= i == 1 ? gpu::REBLUR_FLAG_POST_BLUR : 0u;
@@ -222,17 +244,17 @@ void Reblur::declareSpatial(graph::FrameGraph& graph, VkExtent2D resolution,
   }
 
   graph::PassBuilder st = graph.addPass(name_ + "-stabilize", graph::QueueKind::Compute);
-  st.read(postBlurred, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_INPUT)
-      .read(temporal.fastMoments, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FAST_MOMENTS)
-      .read(in.motion, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_MOTION)
-      .read(temporal.footprint, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_FOOTPRINT)
-      .read(stable.previous, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE)
+  st.read(postBlurred, Access::SampledRead, gpu::REBLUR_STABILIZE_BINDING_INPUT)
+      .read(temporal.fastMoments, Access::SampledRead, gpu::REBLUR_STABILIZE_BINDING_FAST_MOMENTS)
+      .read(in.motion, Access::SampledRead, gpu::REBLUR_STABILIZE_BINDING_MOTION)
+      .read(temporal.footprint, Access::SampledRead, gpu::REBLUR_STABILIZE_BINDING_FOOTPRINT)
+      .read(stable.previous, Access::SampledRead, gpu::REBLUR_STABILIZE_BINDING_PREVIOUS_STABLE)
       .write(stable.current, Access::StorageWrite, gpu::REBLUR_STABILIZE_BINDING_STABLE)
       .write(output, Access::StorageWrite, gpu::REBLUR_STABILIZE_BINDING_OUTPUT);
   if (in.albedo)
-    st.read(*in.albedo, Access::StorageRead, gpu::REBLUR_STABILIZE_BINDING_ALBEDO);
+    st.read(*in.albedo, Access::SampledRead, gpu::REBLUR_STABILIZE_BINDING_ALBEDO);
   else
-    st.readPlaceholder(in.noisy, gpu::REBLUR_STABILIZE_BINDING_ALBEDO);
+    st.readPlaceholder(in.noisy, gpu::REBLUR_STABILIZE_BINDING_ALBEDO, Access::SampledRead);
   st.record([this, c, valid, surface, stable](VkCommandBuffer cmd, const graph::PassResources& r) {
     gpu::ReblurConstants k = c;
     k.historyValid = valid && r.historyValid(surface) && r.historyValid(stable);

@@ -216,9 +216,12 @@ PassBuilder& PassBuilder::write(ImageHandle image, Access access, uint32_t bindi
   return use(image.index, access, true, binding);
 }
 
-PassBuilder& PassBuilder::readPlaceholder(ImageHandle image, uint32_t binding) {
+PassBuilder& PassBuilder::readPlaceholder(ImageHandle image, uint32_t binding, Access access) {
   graph_.resourceDecl(image.index, "image");
-  use(image.index, Access::StorageRead, false);
+  if (access != Access::StorageRead && access != Access::SampledRead)
+    fail("pass '{}': placeholder '{}' at binding {} must be a StorageRead or SampledRead",
+         graph_.passes_[pass_].name, graph_.resources_[image.index].name, binding);
+  use(image.index, access, false);
   FrameGraph::PassDecl& pass = graph_.passes_[pass_];
   for (const FrameGraph::ResourceUse& other : pass.uses)
     if (other.binding == binding)

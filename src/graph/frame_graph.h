@@ -102,9 +102,11 @@ class PassBuilder {
   PassBuilder& read(ImageHandle image, Access access, uint32_t binding);
   PassBuilder& write(ImageHandle image, Access access, uint32_t binding);
   // Fills `binding` with `image` where the shader ignores that binding in this configuration
-  // (its producer pass is off): a StorageRead of `image`, merged with the pass's other read of
-  // it if any. The one way an image sits at two bindings; declare a real access with read().
-  PassBuilder& readPlaceholder(ImageHandle image, uint32_t binding);
+  // (its producer pass is off): a read of `image` (StorageRead, or SampledRead for a sampled
+  // binding), merged with the pass's other read of it if any. The one way an image sits at two
+  // bindings; declare a real access with read().
+  PassBuilder& readPlaceholder(ImageHandle image, uint32_t binding,
+                               Access access = Access::StorageRead);
   // Keeps the pass even when nothing reads what it writes (it talks to the host, say).
   PassBuilder& sideEffects();
   PassBuilder& record(RecordFn callback);

@@ -6,9 +6,15 @@ namespace bounce {
 
 namespace {
 
-std::vector<vk::Binding> storageImageBindings(uint32_t count) {
+VkDescriptorType imageDescriptorType(uint64_t sampledBindings, uint32_t binding) {
+  return (sampledBindings >> binding) & 1u ? VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE
+                                           : VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+}
+
+std::vector<vk::Binding> imageBindings(uint32_t count, uint64_t sampledBindings) {
   std::vector<vk::Binding> bindings;
-  for (uint32_t i = 0; i < count; ++i) bindings.push_back({i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE});
+  for (uint32_t i = 0; i < count; ++i)
+    bindings.push_back({i, imageDescriptorType(sampledBindings, i)});
   return bindings;
 }
 
@@ -23,13 +29,15 @@ std::vector<const vk::DescriptorSetLayout*> setLayouts(
 
 ComputePass::ComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
                          uint32_t imageCount, uint32_t pushConstantBytes, uint32_t dispatches,
-                         std::span<const uint32_t> specialization)
-    : context_(context), scene_(scene), imageCount_(imageCount) {
-  if (imageCount > 64) fail("pass '{}': {} storage images, at most 64", shader, imageCount);
+                         std::span<const uint32_t> specialization, uint64_t sampledBindings)
+    : context_(context), scene_(scene), imageCount_(imageCount), sampledBindings_(sampledBindings) {
+  if (imageCount > 64) fail("pass '{}': {} images, at most 64", shader, imageCount);
+  if (imageCount < 64 && (sampledBindings >> imageCount) != 0)
+    fail("pass '{}': a sampled binding at or above its {} images", shader, imageCount);
   if (dispatches < 1 || dispatches > 8)
     fail("pass '{}': {} dispatches per frame, expected 1 to 8", shader, dispatches);
   if (imageCount > 0) {
-    layout_.emplace(context, storageImageBindings(imageCount));
+    layout_.emplace(context, imageBindings(imageCount, sampledBindings));
     pool_.emplace(context, dispatches, imageCount * dispatches);
     for (uint32_t i = 0; i < dispatches; ++i) sets_.push_back(pool_->allocate(*layout_));
   }
@@ -69,13 +77,20 @@ void ComputePass::writeImage(VkDescriptorSet set, size_t slot, uint32_t binding,
     fail("pass '{}': binding {} out of range (the shader has {}) or bound twice", pipeline_.name(),
          binding, imageCount_);
   seen |= uint64_t(1) << binding;
+  const VkDescriptorType type = imageDescriptorType(sampledBindings_, binding);
+  const bool sampledLayout = image.layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  if ((type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE) != sampledLayout)
+    fail("pass '{}': binding {} is a {} image in the shader but declared with {} in the graph",
+         pipeline_.name(), binding,
+         type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE ? "sampled" : "storage",
+         sampledLayout ? "Access::SampledRead" : "a storage access");
   infos_[slot] = {VK_NULL_HANDLE, image.view, image.layout};
   VkWriteDescriptorSet& w = writes_[slot];
   w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   w.dstSet = set;
   w.dstBinding = binding;
   w.descriptorCount = 1;
-  w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  w.descriptorType = type;
   w.pImageInfo = &infos_[slot];
 }
 

@@ -5,6 +5,7 @@
 // history images swap every frame (the frame waits for the previous one, so the set is never in
 // flight then).
 #pragma once
+#include <initializer_list>
 #include <optional>
 #include <span>
 #include <string>
@@ -17,6 +18,13 @@
 
 namespace bounce {
 
+// The mask of ComputePass's `sampledBindings` with these bindings set.
+constexpr uint64_t bindingMask(std::initializer_list<uint32_t> bindings) {
+  uint64_t mask = 0;
+  for (uint32_t b : bindings) mask |= uint64_t(1) << b;
+  return mask;
+}
+
 class ComputePass {
  public:
   // `shader`: embedded name, e.g. "gi/evolve/cache/cache_build_sh"; bindings 0 .. imageCount - 1 of
@@ -25,9 +33,11 @@ class ComputePass {
   // of an à-trous filter), at most 8.
   // `specialization`: the pass's own specialization constants, ids PASS_SPEC_FIRST on
   // (shared/scene_layout.h; the scene's come first).
+  // `sampledBindings`: bit b set makes binding b a sampled image (`texture2D`, read with
+  // texelFetch; declared with Access::SampledRead) instead of a storage image.
   ComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
               uint32_t imageCount, uint32_t pushConstantBytes, uint32_t dispatches = 1,
-              std::span<const uint32_t> specialization = {});
+              std::span<const uint32_t> specialization = {}, uint64_t sampledBindings = 0);
 
   // Binds the pipeline, the scene and the images the pass declared with bindings
   // (graph::PassBuilder::read/write with a binding: every binding of set 1 exactly once) and
@@ -56,6 +66,7 @@ class ComputePass {
   vk::Context& context_;
   const GpuScene& scene_;
   uint32_t imageCount_;
+  uint64_t sampledBindings_;
   std::optional<vk::DescriptorSetLayout> layout_;
   std::optional<vk::DescriptorPool> pool_;
   vk::ComputePipeline pipeline_;
@@ -68,8 +79,9 @@ class ComputePass {
 class ImageComputePass : public ComputePass {
  public:
   ImageComputePass(vk::Context& context, const GpuScene& scene, const std::string& shader,
-                   uint32_t imageCount)
-      : ComputePass(context, scene, shader, imageCount, sizeof(gpu::HybridPassConstants)) {}
+                   uint32_t imageCount, uint64_t sampledBindings = 0)
+      : ComputePass(context, scene, shader, imageCount, sizeof(gpu::HybridPassConstants), 1, {},
+                    sampledBindings) {}
 
   // bind() with the pass's declared bindings, then covers `extent` with HYBRID_GROUP_SIZE^2
   // groups.

@@ -55,12 +55,28 @@ void validate(const ReflectionDenoiseSettings& s) {
     fail("reflection denoise spatial footprint scale {}: expected 0 to 4", s.spatialFootprintScale);
 }
 
+// reflections-denoise-temporal's inputs are sampled images (texelFetch: faster than a storage
+// image's imageLoad on an H100; docs/architecture.md, "Sampled inputs").
+constexpr uint64_t kTemporalSampled =
+    bindingMask({gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_TRACED,
+                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_NORMALS,
+                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_DEPTH,
+                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_EMISSIVE,
+                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_FLAGS,
+                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_VELOCITY,
+                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS,
+                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_MOMENTS,
+                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_SURFACE,
+                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_FAST,
+                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_SAMPLE,
+                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_ORIGIN});
+
 ReflectionsDenoisePass::ReflectionsDenoisePass(vk::Context& context, const GpuScene& gpuScene,
                                                const ReflectionDenoiseSettings& settings)
     : settings_(settings),
       temporal_(context, gpuScene, "passes/reflections_denoise_temporal",
                 gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_COUNT,
-                sizeof(gpu::ReflectionDenoiseConstants)),
+                sizeof(gpu::ReflectionDenoiseConstants), 1, {}, kTemporalSampled),
       spatial_(context, gpuScene, "passes/reflections_denoise_spatial",
                gpu::REFLECTIONS_DENOISE_SPATIAL_BINDING_COUNT,
                sizeof(gpu::ReflectionDenoiseConstants)) {}
@@ -123,26 +139,26 @@ TracedReflections ReflectionsDenoisePass::declare(graph::FrameGraph& graph,
              gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_SURFACE)
       .write(fast.current, Access::StorageWrite,
              gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_CURRENT_FAST)
-      .read(traced.traced, Access::StorageRead, gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_TRACED)
-      .read(gbuffer.normals, Access::StorageRead, gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_NORMALS)
-      .read(gbuffer.depth.current, Access::StorageRead,
+      .read(traced.traced, Access::SampledRead, gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_TRACED)
+      .read(gbuffer.normals, Access::SampledRead, gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_NORMALS)
+      .read(gbuffer.depth.current, Access::SampledRead,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_DEPTH)
-      .read(gbuffer.emissive, Access::StorageRead,
+      .read(gbuffer.emissive, Access::SampledRead,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_EMISSIVE)
-      .read(gbuffer.flags, Access::StorageRead, gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_FLAGS)
-      .read(gbuffer.velocity, Access::StorageRead,
+      .read(gbuffer.flags, Access::SampledRead, gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_FLAGS)
+      .read(gbuffer.velocity, Access::SampledRead,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_VELOCITY)
-      .read(temporal.previous, Access::StorageRead,
+      .read(temporal.previous, Access::SampledRead,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS)
-      .read(moments.previous, Access::StorageRead,
+      .read(moments.previous, Access::SampledRead,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_MOMENTS)
-      .read(surface.previous, Access::StorageRead,
+      .read(surface.previous, Access::SampledRead,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_SURFACE)
-      .read(fast.previous, Access::StorageRead,
+      .read(fast.previous, Access::SampledRead,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_PREVIOUS_FAST)
-      .read(traced.candidate[gpu::GI_RESERVOIR_SAMPLE], Access::StorageRead,
+      .read(traced.candidate[gpu::GI_RESERVOIR_SAMPLE], Access::SampledRead,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_SAMPLE)
-      .read(traced.candidate[gpu::GI_RESERVOIR_ORIGIN], Access::StorageRead,
+      .read(traced.candidate[gpu::GI_RESERVOIR_ORIGIN], Access::SampledRead,
             gpu::REFLECTIONS_DENOISE_TEMPORAL_BINDING_CANDIDATE_ORIGIN)
       .record([this, push, frame, temporal, moments, surface, fast, dispatch](
                   VkCommandBuffer cmd, const graph::PassResources& r) {

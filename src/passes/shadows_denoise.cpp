@@ -4,8 +4,14 @@ namespace bounce {
 
 using graph::Access;
 
+// The read-only inputs are sampled images (docs/architecture.md, "Sampled inputs").
 ShadowsDenoisePass::ShadowsDenoisePass(vk::Context& context, const GpuScene& scene)
-    : pass_(context, scene, "passes/shadows_denoise", gpu::SHADOWS_DENOISE_BINDING_COUNT) {}
+    : pass_(context, scene, "passes/shadows_denoise", gpu::SHADOWS_DENOISE_BINDING_COUNT,
+            bindingMask({gpu::SHADOWS_DENOISE_BINDING_RAW, gpu::SHADOWS_DENOISE_BINDING_NORMALS,
+                         gpu::SHADOWS_DENOISE_BINDING_DEPTH,
+                         gpu::SHADOWS_DENOISE_BINDING_PREVIOUS_DEPTH,
+                         gpu::SHADOWS_DENOISE_BINDING_FLAGS, gpu::SHADOWS_DENOISE_BINDING_VELOCITY,
+                         gpu::SHADOWS_DENOISE_BINDING_PREVIOUS})) {}
 
 Shadows ShadowsDenoisePass::declare(graph::FrameGraph& graph, const FrameContext& frame,
                                     const GBuffer& gbuffer, const RawShadows& raw) {
@@ -14,13 +20,13 @@ Shadows ShadowsDenoisePass::declare(graph::FrameGraph& graph, const FrameContext
   const graph::HistoryImage depth = gbuffer.depth;
   graph.addPass("shadows-denoise", graph::QueueKind::Compute)
       .read(frame.constants, Access::StorageRead)
-      .read(raw.visibility, Access::StorageRead, gpu::SHADOWS_DENOISE_BINDING_RAW)
-      .read(gbuffer.normals, Access::StorageRead, gpu::SHADOWS_DENOISE_BINDING_NORMALS)
-      .read(depth.current, Access::StorageRead, gpu::SHADOWS_DENOISE_BINDING_DEPTH)
-      .read(depth.previous, Access::StorageRead, gpu::SHADOWS_DENOISE_BINDING_PREVIOUS_DEPTH)
-      .read(gbuffer.flags, Access::StorageRead, gpu::SHADOWS_DENOISE_BINDING_FLAGS)
-      .read(gbuffer.velocity, Access::StorageRead, gpu::SHADOWS_DENOISE_BINDING_VELOCITY)
-      .read(history.previous, Access::StorageRead, gpu::SHADOWS_DENOISE_BINDING_PREVIOUS)
+      .read(raw.visibility, Access::SampledRead, gpu::SHADOWS_DENOISE_BINDING_RAW)
+      .read(gbuffer.normals, Access::SampledRead, gpu::SHADOWS_DENOISE_BINDING_NORMALS)
+      .read(depth.current, Access::SampledRead, gpu::SHADOWS_DENOISE_BINDING_DEPTH)
+      .read(depth.previous, Access::SampledRead, gpu::SHADOWS_DENOISE_BINDING_PREVIOUS_DEPTH)
+      .read(gbuffer.flags, Access::SampledRead, gpu::SHADOWS_DENOISE_BINDING_FLAGS)
+      .read(gbuffer.velocity, Access::SampledRead, gpu::SHADOWS_DENOISE_BINDING_VELOCITY)
+      .read(history.previous, Access::SampledRead, gpu::SHADOWS_DENOISE_BINDING_PREVIOUS)
       .write(history.current, Access::StorageWrite, gpu::SHADOWS_DENOISE_BINDING_CURRENT)
       .record([this, frame, history, depth](VkCommandBuffer cmd, const graph::PassResources& r) {
         // After a lighting cut the running mean would show the old shadows for up to

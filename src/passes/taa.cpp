@@ -50,9 +50,12 @@ glm::mat4 jitteredViewProjection(const glm::mat4& viewProjection, glm::vec2 jitt
   return m;
 }
 
+// The read-only inputs are sampled images (docs/architecture.md, "Sampled inputs").
 TaaPass::TaaPass(vk::Context& context, const GpuScene& scene, const TaaSettings& settings)
     : settings_(settings),
-      pass_(context, scene, "passes/taa", gpu::TAA_BINDING_COUNT, sizeof(gpu::TaaConstants)) {}
+      pass_(context, scene, "passes/taa", gpu::TAA_BINDING_COUNT, sizeof(gpu::TaaConstants), 1, {},
+            bindingMask({gpu::TAA_BINDING_HDR, gpu::TAA_BINDING_VELOCITY, gpu::TAA_BINDING_DEPTH,
+                         gpu::TAA_BINDING_PREVIOUS})) {}
 
 HdrImage TaaPass::declare(graph::FrameGraph& graph, const FrameContext& frame,
                           const GBuffer& gbuffer, const HdrImage& hdr,
@@ -62,10 +65,10 @@ HdrImage TaaPass::declare(graph::FrameGraph& graph, const FrameContext& frame,
   graph::PassBuilder pass = graph.addPass("taa", graph::QueueKind::Compute);
   pass.write(color.current, Access::StorageWrite, gpu::TAA_BINDING_CURRENT)
       .read(frame.constants, Access::StorageRead)
-      .read(hdr.radiance, Access::StorageRead, gpu::TAA_BINDING_HDR)
-      .read(gbuffer.velocity, Access::StorageRead, gpu::TAA_BINDING_VELOCITY)
-      .read(gbuffer.depth.current, Access::StorageRead, gpu::TAA_BINDING_DEPTH)
-      .read(color.previous, Access::StorageRead, gpu::TAA_BINDING_PREVIOUS);
+      .read(hdr.radiance, Access::SampledRead, gpu::TAA_BINDING_HDR)
+      .read(gbuffer.velocity, Access::SampledRead, gpu::TAA_BINDING_VELOCITY)
+      .read(gbuffer.depth.current, Access::SampledRead, gpu::TAA_BINDING_DEPTH)
+      .read(color.previous, Access::SampledRead, gpu::TAA_BINDING_PREVIOUS);
   if (exposure) pass.read(exposure->state, Access::StorageRead);
   pass.record([this, frame, exposure, color](VkCommandBuffer cmd, const graph::PassResources& r) {
     gpu::TaaConstants constants{};

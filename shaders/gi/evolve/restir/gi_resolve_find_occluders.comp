@@ -10,15 +10,16 @@
 // gi.resolve-occlusion (0, or RESOLVE_BESIDE_OCCLUDER: gi-spatial-denoise does not blur it)
 // after eight GBuffer reads and lists the pixels beside an occluder (GI_RAY_LIST_RESOLVE).
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "gi/evolve/restir/restir_gi_common.glsl"
 #include "gi/evolve/restir/ray_list.glsl"
 
 layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
 
-layout(set = 1, binding = GI_RESOLVE_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
-layout(set = 1, binding = GI_RESOLVE_BINDING_DEPTH, r32f) uniform readonly image2D depths;
-layout(set = 1, binding = GI_RESOLVE_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
+layout(set = 1, binding = GI_RESOLVE_BINDING_NORMALS) uniform texture2D normals;
+layout(set = 1, binding = GI_RESOLVE_BINDING_DEPTH) uniform texture2D depths;
+layout(set = 1, binding = GI_RESOLVE_BINDING_FLAGS) uniform utexture2D flags;
 layout(set = 1, binding = GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, r32ui) uniform writeonly uimage2D occlusionOut;
 
 // Whether a GBuffer point one GI pixel away (8 directions) lies in front of x's tangent plane by
@@ -34,7 +35,7 @@ bool besideOccluder(FrameConstants f, RestirGiConstants gi, ivec2 pixel, Primary
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) {
       ivec2 q = clamp(pixel + ivec2(dx, dy) * step, ivec2(0), ivec2(f.resolution) - 1);
-      float depth = imageLoad(depths, q).x;
+      float depth = texelFetch(depths, q, 0).x;
       if ((dx == 0 && dy == 0) || !(depth > 0.0)) continue;  // sky: view depth 0
       vec3 p = positionFromDepth(f, vec2(q) + 0.5, depth);
       if (dot(x.geometricNormal, p - x.position) > gi.planeTolerance * x.depth) return true;
@@ -48,8 +49,8 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
   bool beside = false;
-  if ((imageLoad(flags, pixel).x & GBUFFER_FLAG_SURFACE) != 0u) {
-    PrimaryVertex x = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
+  if ((texelFetch(flags, pixel, 0).x & GBUFFER_FLAG_SURFACE) != 0u) {
+    PrimaryVertex x = makePrimaryVertex(f, pixel, texelFetch(normals, pixel, 0), texelFetch(depths, pixel, 0).x);
     beside = besideOccluder(f, gi, pixel, x);
   }
   imageStore(occlusionOut, pixel, uvec4(beside ? RESOLVE_BESIDE_OCCLUDER : 0u));

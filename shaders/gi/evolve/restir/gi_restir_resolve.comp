@@ -28,6 +28,7 @@
 // shift counted as zero until session 27, which darkened by the share of refused shifts (Lux's
 // cap of 2: 17 %; docs/gi/lux.md, "Measurements").
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "gi/evolve/restir/restir_gi_common.glsl"
 #include "common/random.glsl"
 #include "common/sh.glsl"
@@ -35,15 +36,15 @@
 layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
 
-layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_SAMPLE, rgba32f) uniform readonly image2D reservoirSample;
-layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_RADIANCE, rgba32f) uniform readonly image2D reservoirRadiance;
-layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_ORIGIN, rgba32f) uniform readonly image2D reservoirOrigin;
-layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_NORMALS, rgba16f) uniform readonly image2D reservoirNormals;
-layout(set = 1, binding = GI_RESOLVE_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
-layout(set = 1, binding = GI_RESOLVE_BINDING_DEPTH, r32f) uniform readonly image2D depths;
-layout(set = 1, binding = GI_RESOLVE_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
+layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_SAMPLE) uniform texture2D reservoirSample;
+layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_RADIANCE) uniform texture2D reservoirRadiance;
+layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_ORIGIN) uniform texture2D reservoirOrigin;
+layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_NORMALS) uniform texture2D reservoirNormals;
+layout(set = 1, binding = GI_RESOLVE_BINDING_NORMALS) uniform texture2D normals;
+layout(set = 1, binding = GI_RESOLVE_BINDING_DEPTH) uniform texture2D depths;
+layout(set = 1, binding = GI_RESOLVE_BINDING_FLAGS) uniform utexture2D flags;
 layout(set = 1, binding = GI_RESOLVE_BINDING_OUTPUT, rgba16f) uniform writeonly image2D outputImage;
-layout(set = 1, binding = GI_RESOLVE_BINDING_OCCLUSION, r32ui) uniform readonly uimage2D resolveOcclusion;
+layout(set = 1, binding = GI_RESOLVE_BINDING_OCCLUSION) uniform utexture2D resolveOcclusion;
 #include "gi/evolve/restir/resolve_samples.glsl"
 
 // L1 spherical harmonics of incoming radiance (common/sh.glsl), one vec4 per colour channel.
@@ -108,17 +109,17 @@ void main() {
   RestirGiConstants gi = RestirGiBlock(pc.gi).v;
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
-  if ((imageLoad(flags, pixel).x & GBUFFER_FLAG_SURFACE) == 0u) {
+  if ((texelFetch(flags, pixel, 0).x & GBUFFER_FLAG_SURFACE) == 0u) {
     imageStore(outputImage, pixel, vec4(0.0));
     return;
   }
-  PrimaryVertex x = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
+  PrimaryVertex x = makePrimaryVertex(f, pixel, texelFetch(normals, pixel, 0), texelFetch(depths, pixel, 0).x);
   ivec2 homePixel = homeGiPixel(f, gi, pixel, x);
   bool reuse = (gi.flags & RESTIR_GI_FLAG_RESOLVE_REUSE) != 0u;
   uint samples = resolveSampleCount(gi);
   float rotation = resolveRotation(f, pixel);
   bool occlusionKnown = (gi.flags & RESTIR_GI_FLAG_OCCLUDER_VISIBILITY) != 0u;
-  uint hidden = occlusionKnown ? imageLoad(resolveOcclusion, pixel).x : 0u;
+  uint hidden = occlusionKnown ? texelFetch(resolveOcclusion, pixel, 0).x : 0u;
   bool canonical = (gi.flags & RESTIR_GI_FLAG_CANONICAL_RESOLVE) != 0u;
   vec4 shLuminance = vec4(0.0);  // L1 SH of the samples' luminance (normalVariation)
   vec3 exact = vec3(0.0);           // the direct estimate L cos / pi W at the shading normal
@@ -135,8 +136,8 @@ void main() {
   float fallbackDistance = 3.0e38;
   for (uint i = 0u; i < samples; ++i) {
     ivec2 q = resolveSampleGiPixel(gi, homePixel, i, samples, rotation);
-    Reservoir r = unpackReservoir(imageLoad(reservoirSample, q), imageLoad(reservoirRadiance, q),
-                                  imageLoad(reservoirOrigin, q), imageLoad(reservoirNormals, q));
+    Reservoir r = unpackReservoir(texelFetch(reservoirSample, q, 0), texelFetch(reservoirRadiance, q, 0),
+                                  texelFetch(reservoirOrigin, q, 0), texelFetch(reservoirNormals, q, 0));
     if (r.M <= 0.0) continue;
     bool same = sameSurface(gi, x, r.origin, r.originNormal);
     vec3 direction, lw;

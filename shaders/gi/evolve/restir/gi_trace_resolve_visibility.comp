@@ -6,18 +6,19 @@
 // (registers), even where it never ran; walking a list because one thread per pixel left most
 // lanes idle while a few traced (shared/restir_gi_io.h, "Ray lists").
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "gi/evolve/restir/restir_gi_visibility.glsl"
 #include "gi/evolve/restir/ray_list.glsl"
 
 layout(local_size_x = GI_RAY_LIST_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
 
-layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_SAMPLE, rgba32f) uniform readonly image2D reservoirSample;
-layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_RADIANCE, rgba32f) uniform readonly image2D reservoirRadiance;
-layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_ORIGIN, rgba32f) uniform readonly image2D reservoirOrigin;
-layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_NORMALS, rgba16f) uniform readonly image2D reservoirNormals;
-layout(set = 1, binding = GI_RESOLVE_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
-layout(set = 1, binding = GI_RESOLVE_BINDING_DEPTH, r32f) uniform readonly image2D depths;
+layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_SAMPLE) uniform texture2D reservoirSample;
+layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_RADIANCE) uniform texture2D reservoirRadiance;
+layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_ORIGIN) uniform texture2D reservoirOrigin;
+layout(set = 1, binding = GI_RESOLVE_BINDING_RESERVOIR + GI_RESERVOIR_NORMALS) uniform texture2D reservoirNormals;
+layout(set = 1, binding = GI_RESOLVE_BINDING_NORMALS) uniform texture2D normals;
+layout(set = 1, binding = GI_RESOLVE_BINDING_DEPTH) uniform texture2D depths;
 layout(set = 1, binding = GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, r32ui) uniform uimage2D occlusion;
 #include "gi/evolve/restir/resolve_samples.glsl"
 
@@ -26,10 +27,10 @@ layout(set = 1, binding = GI_RESOLVE_VISIBILITY_BINDING_OUTPUT, r32ui) uniform u
 bool sampleHidden(FrameConstants f, RestirGiConstants gi, ivec2 pixel, uint i) {
   uint samples = resolveSampleCount(gi);
   if (i >= samples) return false;
-  PrimaryVertex x = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
+  PrimaryVertex x = makePrimaryVertex(f, pixel, texelFetch(normals, pixel, 0), texelFetch(depths, pixel, 0).x);
   ivec2 q = resolveSampleGiPixel(gi, homeGiPixel(f, gi, pixel, x), i, samples, resolveRotation(f, pixel));
-  Reservoir r = unpackReservoir(imageLoad(reservoirSample, q), imageLoad(reservoirRadiance, q),
-                                imageLoad(reservoirOrigin, q), imageLoad(reservoirNormals, q));
+  Reservoir r = unpackReservoir(texelFetch(reservoirSample, q, 0), texelFetch(reservoirRadiance, q, 0),
+                                texelFetch(reservoirOrigin, q, 0), texelFetch(reservoirNormals, q, 0));
   vec3 direction;
   if (r.M <= 0.0 || !(r.W > 0.0) || !sameSurface(gi, x, r.origin, r.originNormal) ||
       sampleCosine(x, r.samplePosition, direction) <= 0.0)

@@ -10,8 +10,8 @@
 const uint RANDOM_GI_RESOLVE = 0x47490004u;
 
 bool reservoirOnSurface(RestirGiConstants gi, PrimaryVertex x, ivec2 q) {
-  vec4 origin = imageLoad(reservoirOrigin, q);
-  vec3 originNormal = decodeOctahedral(imageLoad(reservoirNormals, q).xy);
+  vec4 origin = texelFetch(reservoirOrigin, q, 0);
+  vec3 originNormal = decodeOctahedral(texelFetch(reservoirNormals, q, 0).xy);
   return uint(origin.w + 0.5) != RESTIR_GI_KIND_NONE && sameSurface(gi, x, origin.xyz, originNormal);
 }
 

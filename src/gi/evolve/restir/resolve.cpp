@@ -4,15 +4,26 @@ namespace bounce {
 
 using graph::Access;
 
+namespace {
+
+// The reservoirs and the GBuffer, which the three passes read, are sampled images (texelFetch:
+// faster than a storage image's imageLoad on an H100; docs/architecture.md, "Sampled inputs").
+constexpr uint64_t kSharedSampled = bindingMask(
+    {gpu::GI_RESOLVE_BINDING_NORMALS, gpu::GI_RESOLVE_BINDING_DEPTH, gpu::GI_RESOLVE_BINDING_FLAGS,
+     gpu::GI_RESOLVE_BINDING_RESERVOIR + 0, gpu::GI_RESOLVE_BINDING_RESERVOIR + 1,
+     gpu::GI_RESOLVE_BINDING_RESERVOIR + 2, gpu::GI_RESOLVE_BINDING_RESERVOIR + 3});
+
+}  // namespace
+
 ResolveStage::ResolveStage(vk::Context& context, const GpuScene& scene,
                            const RestirGiSettings& settings)
     : settings_(settings),
       findOccluders_(context, scene, "gi/evolve/restir/gi_resolve_find_occluders",
-                     gpu::GI_RESOLVE_VISIBILITY_BINDING_COUNT),
+                     gpu::GI_RESOLVE_VISIBILITY_BINDING_COUNT, {}, kSharedSampled),
       visibility_(context, scene, "gi/evolve/restir/gi_trace_resolve_visibility",
-                  gpu::GI_RESOLVE_VISIBILITY_BINDING_COUNT),
-      resolve_(context, scene, "gi/evolve/restir/gi_restir_resolve",
-               gpu::GI_RESOLVE_BINDING_COUNT) {}
+                  gpu::GI_RESOLVE_VISIBILITY_BINDING_COUNT, {}, kSharedSampled),
+      resolve_(context, scene, "gi/evolve/restir/gi_restir_resolve", gpu::GI_RESOLVE_BINDING_COUNT,
+               {}, kSharedSampled | bindingMask({gpu::GI_RESOLVE_BINDING_OCCLUSION})) {}
 
 ResolvedGi ResolveStage::declare(graph::FrameGraph& graph, const RestirFrame& f,
                                  const Reservoirs& reservoirs, graph::ImageHandle target) {
@@ -28,9 +39,10 @@ ResolvedGi ResolveStage::declare(graph::FrameGraph& graph, const RestirFrame& f,
       declarePass(graph, f, "gi-restir-resolve", resolve_, reservoirs,
                   gpu::GI_RESOLVE_BINDING_OUTPUT, target, RayListUse::None);
   if (out.occlusion)
-    resolve.read(*out.occlusion, Access::StorageRead, gpu::GI_RESOLVE_BINDING_OCCLUSION);
+    resolve.read(*out.occlusion, Access::SampledRead, gpu::GI_RESOLVE_BINDING_OCCLUSION);
   else  // the shader ignores the binding without gi-trace-resolve-visibility
-    resolve.readPlaceholder(f.in.gbuffer.flags, gpu::GI_RESOLVE_BINDING_OCCLUSION);
+    resolve.readPlaceholder(f.in.gbuffer.flags, gpu::GI_RESOLVE_BINDING_OCCLUSION,
+                            Access::SampledRead);
   return out;
 }
 
@@ -48,11 +60,11 @@ graph::PassBuilder ResolveStage::declarePass(graph::FrameGraph& graph, const Res
       rayList == RayListUse::Walks ? Access::StorageReadWrite : Access::StorageWrite;
   b.read(f.in.frame.constants, Access::StorageRead)
       .write(output, outputAccess, outputBinding)
-      .read(g.normals, Access::StorageRead, gpu::GI_RESOLVE_BINDING_NORMALS)
-      .read(g.depth.current, Access::StorageRead, gpu::GI_RESOLVE_BINDING_DEPTH)
-      .read(g.flags, Access::StorageRead, gpu::GI_RESOLVE_BINDING_FLAGS);
+      .read(g.normals, Access::SampledRead, gpu::GI_RESOLVE_BINDING_NORMALS)
+      .read(g.depth.current, Access::SampledRead, gpu::GI_RESOLVE_BINDING_DEPTH)
+      .read(g.flags, Access::SampledRead, gpu::GI_RESOLVE_BINDING_FLAGS);
   for (uint32_t i = 0; i < 4; ++i)
-    b.read(reservoirs.reservoir[i], Access::StorageRead, gpu::GI_RESOLVE_BINDING_RESERVOIR + i);
+    b.read(reservoirs.reservoir[i], Access::SampledRead, gpu::GI_RESOLVE_BINDING_RESERVOIR + i);
   if (rayList == RayListUse::Fills) b.write(f.rayLists, Access::StorageReadWrite);
   if (rayList == RayListUse::Walks)
     b.read(f.in.frame.instances, Access::StorageRead)

@@ -16,9 +16,10 @@ namespace bounce {
 class RestirGiPass : public ComputePass {
  public:
   RestirGiPass(vk::Context& context, const GpuScene& scene, const std::string& shader,
-               uint32_t imageCount, std::span<const uint32_t> specialization = {})
+               uint32_t imageCount, std::span<const uint32_t> specialization = {},
+               uint64_t sampledBindings = 0)
       : ComputePass(context, scene, shader, imageCount, sizeof(gpu::RestirGiPassConstants), 1,
-                    specialization) {}
+                    specialization, sampledBindings) {}
 
   // Binds the images the pass declared with bindings, pushes the constants, covers `extent`
   // with groups of groupSide^2 threads (the shader's local size).
