@@ -15,6 +15,7 @@
 // Under uniform incident light both weights are exact, so a white furnace shows the BRDF's
 // directional albedo at every roughness and metalness.
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "common/brdf.glsl"
 #include "lighting/regularize.glsl"
 #include "lighting/specular_albedo.glsl"
@@ -25,16 +26,16 @@
 layout(local_size_x = HYBRID_GROUP_SIZE, local_size_y = HYBRID_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { CompositeConstants pc; };
 
-layout(set = 1, binding = COMPOSITE_BINDING_BASE_COLOR, rgba16f) uniform readonly image2D baseColors;
-layout(set = 1, binding = COMPOSITE_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
-layout(set = 1, binding = COMPOSITE_BINDING_DEPTH, r32f) uniform readonly image2D depths;
-layout(set = 1, binding = COMPOSITE_BINDING_EMISSIVE, rgba16f) uniform readonly image2D emissives;
-layout(set = 1, binding = COMPOSITE_BINDING_FLAGS, r32ui) uniform readonly uimage2D flags;
-layout(set = 1, binding = COMPOSITE_BINDING_SHADOWS, rg16f) uniform readonly image2D shadows;
-layout(set = 1, binding = COMPOSITE_BINDING_SKY, rgba16f) uniform readonly image2D sky;
-layout(set = 1, binding = COMPOSITE_BINDING_GI_DIFFUSE, rgba16f) uniform readonly image2D giDiffuse;
-layout(set = 1, binding = COMPOSITE_BINDING_REFLECTIONS, rgba16f) uniform readonly image2D reflections;
-layout(set = 1, binding = COMPOSITE_BINDING_DIRECT, rgba16f) uniform readonly image2D directLight;
+layout(set = 1, binding = COMPOSITE_BINDING_BASE_COLOR) uniform texture2D baseColors;
+layout(set = 1, binding = COMPOSITE_BINDING_NORMALS) uniform texture2D normals;
+layout(set = 1, binding = COMPOSITE_BINDING_DEPTH) uniform texture2D depths;
+layout(set = 1, binding = COMPOSITE_BINDING_EMISSIVE) uniform texture2D emissives;
+layout(set = 1, binding = COMPOSITE_BINDING_FLAGS) uniform utexture2D flags;
+layout(set = 1, binding = COMPOSITE_BINDING_SHADOWS) uniform texture2D shadows;
+layout(set = 1, binding = COMPOSITE_BINDING_SKY) uniform texture2D sky;
+layout(set = 1, binding = COMPOSITE_BINDING_GI_DIFFUSE) uniform texture2D giDiffuse;
+layout(set = 1, binding = COMPOSITE_BINDING_REFLECTIONS) uniform texture2D reflections;
+layout(set = 1, binding = COMPOSITE_BINDING_DIRECT) uniform texture2D directLight;
 layout(set = 1, binding = COMPOSITE_BINDING_OUTPUT, rgba16f) uniform writeonly image2D hdrOut;
 
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer PunctualLights {
@@ -91,33 +92,33 @@ vec3 skyAmbient(FrameConstants f, vec3 n) {
 
 // Light that arrives from all around, reflected by both lobes (see the top of the file).
 vec3 indirectLight(FrameConstants f, ivec2 pixel, BrdfMaterial m, vec3 n, vec3 wo, float roughness) {
-  vec3 diffuseLight = imageLoad(giDiffuse, pixel).rgb + f.skyAmbientStrength * skyAmbient(f, n);
+  vec3 diffuseLight = texelFetch(giDiffuse, pixel, 0).rgb + f.skyAmbientStrength * skyAmbient(f, n);
   // reflections.w = 0: no traced sample reached this pixel (reflections-upsample).
-  vec4 reflection = roughness <= pc.reflectionMaxRoughness ? imageLoad(reflections, pixel) : vec4(0.0);
+  vec4 reflection = roughness <= pc.reflectionMaxRoughness ? texelFetch(reflections, pixel, 0) : vec4(0.0);
   vec3 specularLight = reflection.w > 0.0 ? reflection.rgb : diffuseLight;
   SpecularAlbedo albedo = specularAlbedo(pc.specularAlbedo, max(dot(n, wo), 0.0), m.alpha);
   return diffuseReflectance(albedo, m) * diffuseLight + specularReflectance(albedo, m) * specularLight;
 }
 
 vec3 surfaceRadiance(FrameConstants f, ivec2 pixel) {
-  vec4 baseMetallic = imageLoad(baseColors, pixel);
-  vec4 emissiveRoughness = imageLoad(emissives, pixel);
-  vec3 n = decodeOctahedral(imageLoad(normals, pixel).xy);
+  vec4 baseMetallic = texelFetch(baseColors, pixel, 0);
+  vec4 emissiveRoughness = texelFetch(emissives, pixel, 0);
+  vec3 n = decodeOctahedral(texelFetch(normals, pixel, 0).xy);
   vec3 dir = pixelRayDirection(f, vec2(pixel) + 0.5);
   vec3 wo = -dir;
-  vec3 position = positionFromDepth(f, vec2(pixel) + 0.5, imageLoad(depths, pixel).x);
+  vec3 position = positionFromDepth(f, vec2(pixel) + 0.5, texelFetch(depths, pixel, 0).x);
   bool lambert = (f.flags & FRAME_FLAG_LAMBERT) != 0u;
   BrdfMaterial m = makeBrdfMaterial(baseMetallic.rgb, lambert ? 0.0 : baseMetallic.w,
                                     emissiveRoughness.w, lambert);
 
-  float sunVisibility = imageLoad(shadows, pixel).x;
+  float sunVisibility = texelFetch(shadows, pixel, 0).x;
   // The sun at its centre direction, its disc folded into the lobe (lighting/regularize.glsl):
   // a near-mirror then shows the disc's radiance, not a point glint of D(0) x E.
   BrdfMaterial sunLobe = m;
   sunLobe.alpha = sunDiscAlpha(m.alpha, f.sunCosHalfAngle);
   vec3 sun = brdfEvaluate(sunLobe, n, wo, f.towardSun) * max(dot(n, f.towardSun), 0.0) * f.sunIrradiance;
   bool restirDi = (f.flags & FRAME_FLAG_DI_LIGHTS) != 0u;
-  vec3 lights = restirDi ? imageLoad(directLight, pixel).rgb : localLights(f, m, position, n, wo);
+  vec3 lights = restirDi ? texelFetch(directLight, pixel, 0).rgb : localLights(f, m, position, n, wo);
   return sun * sunVisibility + lights +
          indirectLight(f, pixel, m, n, wo, emissiveRoughness.w) + emissiveRoughness.rgb;
 }
@@ -126,8 +127,8 @@ void main() {
   FrameConstants f = FrameBlock(pc.frame).v;
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(pixel), f.resolution))) return;
-  bool surface = (imageLoad(flags, pixel).x & GBUFFER_FLAG_SURFACE) != 0u;
-  vec3 radiance = surface ? surfaceRadiance(f, pixel) : imageLoad(sky, pixel).rgb;
+  bool surface = (texelFetch(flags, pixel, 0).x & GBUFFER_FLAG_SURFACE) != 0u;
+  vec3 radiance = surface ? surfaceRadiance(f, pixel) : texelFetch(sky, pixel, 0).rgb;
   // A non-finite value would poison every later temporal pass that reads the frame.
   if (any(isnan(radiance)) || any(isinf(radiance))) radiance = vec3(0.0);
   imageStore(hdrOut, pixel, vec4(min(radiance, vec3(65000.0)), 1.0));

@@ -7,9 +7,6 @@
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer InstanceArray {
   GpuInstance v[];
 };
-layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer GeometryArray {
-  GpuGeometry v[];
-};
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer UintArray {
   uint v[];
 };
@@ -137,8 +134,19 @@ vec4 fetchSceneTexelNearest(uint ref, vec2 uv) {
   }
 }
 
-GpuInstance sceneInstance(uint i) { return InstanceArray(scene.instances).v[i]; }
-GpuGeometry sceneGeometry(uint i) { return GeometryArray(scene.geometries).v[i]; }
+// 128-bit loads (QuadArray above): an instance is seven quarters (objectToWorld, worldToObject,
+// its indices and flags), a geometry one.
+GpuInstance sceneInstance(uint i) {
+  QuadArray quads = QuadArray(scene.instances);
+  uvec4 ids = floatBitsToUint(quads.v[7u * i + 6u]);
+  return GpuInstance(vec4[3](quads.v[7u * i], quads.v[7u * i + 1u], quads.v[7u * i + 2u]),
+                     vec4[3](quads.v[7u * i + 3u], quads.v[7u * i + 4u], quads.v[7u * i + 5u]),
+                     ids.x, ids.y, ids.z, ids.w);
+}
+GpuGeometry sceneGeometry(uint i) {
+  uvec4 g = floatBitsToUint(QuadArray(scene.geometries).v[i]);
+  return GpuGeometry(g.x, g.y, g.z, g.w);
+}
 // Four 128-bit loads (QuadArray above): baseColor; emissive, metallic; roughness, alphaCutoff,
 // normalScale, flags; the four texture references.
 GpuMaterial sceneMaterial(uint i) {

@@ -80,7 +80,8 @@ void ComputePass::writeImage(VkDescriptorSet set, size_t slot, uint32_t binding,
   const VkDescriptorType type = imageDescriptorType(sampledBindings_, binding);
   const bool sampledLayout = image.layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   if ((type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE) != sampledLayout)
-    fail("pass '{}': binding {} is a {} image in the shader but declared with {} in the graph",
+    fail("pass '{}': binding {} is a {} image of the pass (its sampledBindings) but declared "
+         "with {} in the frame graph",
          pipeline_.name(), binding,
          type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE ? "sampled" : "storage",
          sampledLayout ? "Access::SampledRead" : "a storage access");

@@ -6,26 +6,27 @@
 // maxJacobian). Biased, not fed back. Shares gi-restir-spatial's bindings: the input is the
 // validated sample with gi-restir-spatial-1's other parts.
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "gi/evolve/restir/restir_gi_common.glsl"
 
 layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
 
-layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_SAMPLE, rgba32f) uniform readonly image2D inSample;
-layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_RADIANCE, rgba32f) uniform readonly image2D inRadiance;
-layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_ORIGIN, rgba32f) uniform readonly image2D inOrigin;
-layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_NORMALS, rgba16f) uniform readonly image2D inNormals;
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_SAMPLE) uniform texture2D inSample;
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_RADIANCE) uniform texture2D inRadiance;
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_ORIGIN) uniform texture2D inOrigin;
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_NORMALS) uniform texture2D inNormals;
 layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_SAMPLE, rgba32f) uniform writeonly image2D outSample;
 layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_RADIANCE, rgba32f) uniform writeonly image2D outRadiance;
 layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_ORIGIN, rgba32f) uniform writeonly image2D outOrigin;
 layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_NORMALS, rgba16f) uniform writeonly image2D outNormals;
-layout(set = 1, binding = GI_SPATIAL_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
-layout(set = 1, binding = GI_SPATIAL_BINDING_DEPTH, r32f) uniform readonly image2D depths;
+layout(set = 1, binding = GI_SPATIAL_BINDING_NORMALS) uniform texture2D normals;
+layout(set = 1, binding = GI_SPATIAL_BINDING_DEPTH) uniform texture2D depths;
 layout(set = 1, binding = GI_SPATIAL_BINDING_ESTIMATE, rgba16f) uniform writeonly image2D estimateOut;
 
 Reservoir loadReservoir(ivec2 q) {
-  return unpackReservoir(imageLoad(inSample, q), imageLoad(inRadiance, q), imageLoad(inOrigin, q),
-                         imageLoad(inNormals, q));
+  return unpackReservoir(texelFetch(inSample, q, 0), texelFetch(inRadiance, q, 0), texelFetch(inOrigin, q, 0),
+                         texelFetch(inNormals, q, 0));
 }
 
 // The first valid reservoir of g's 2x2 patch, shifted to x1; `r` unchanged when none is.
@@ -52,7 +53,7 @@ void main() {
   ivec2 g = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(g), gi.giResolution))) return;
   ivec2 pixel = giRepresentativePixel(f, gi, g);
-  PrimaryVertex x1 = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
+  PrimaryVertex x1 = makePrimaryVertex(f, pixel, texelFetch(normals, pixel, 0), texelFetch(depths, pixel, 0).x);
   Reservoir r = loadReservoir(g);
   if (r.M > 0.0 && !(r.W > 0.0)) r = patchedReservoir(gi, g, x1, r);
   vec4 a, b, c, d;

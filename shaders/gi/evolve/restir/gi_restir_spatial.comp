@@ -11,29 +11,30 @@
 // reuse is for young histories (disocclusions, the frames after a cut); on converged ones its
 // far neighbours' unoccluded samples brightened occluded corners (docs/decisions.md).
 #version 460
+#extension GL_EXT_samplerless_texture_functions : require
 #include "gi/evolve/restir/restir_gi_common.glsl"
 #include "common/random.glsl"
 
 layout(local_size_x = RESTIR_GI_GROUP_SIZE, local_size_y = RESTIR_GI_GROUP_SIZE) in;
 layout(push_constant, scalar) uniform Push { RestirGiPassConstants pc; };
 
-layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_SAMPLE, rgba32f) uniform readonly image2D inSample;
-layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_RADIANCE, rgba32f) uniform readonly image2D inRadiance;
-layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_ORIGIN, rgba32f) uniform readonly image2D inOrigin;
-layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_NORMALS, rgba16f) uniform readonly image2D inNormals;
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_SAMPLE) uniform texture2D inSample;
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_RADIANCE) uniform texture2D inRadiance;
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_ORIGIN) uniform texture2D inOrigin;
+layout(set = 1, binding = GI_SPATIAL_BINDING_INPUT + GI_RESERVOIR_NORMALS) uniform texture2D inNormals;
 layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_SAMPLE, rgba32f) uniform writeonly image2D outSample;
 layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_RADIANCE, rgba32f) uniform writeonly image2D outRadiance;
 layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_ORIGIN, rgba32f) uniform writeonly image2D outOrigin;
 layout(set = 1, binding = GI_SPATIAL_BINDING_OUTPUT + GI_RESERVOIR_NORMALS, rgba16f) uniform writeonly image2D outNormals;
-layout(set = 1, binding = GI_SPATIAL_BINDING_NORMALS, rgba16f) uniform readonly image2D normals;
-layout(set = 1, binding = GI_SPATIAL_BINDING_DEPTH, r32f) uniform readonly image2D depths;
+layout(set = 1, binding = GI_SPATIAL_BINDING_NORMALS) uniform texture2D normals;
+layout(set = 1, binding = GI_SPATIAL_BINDING_DEPTH) uniform texture2D depths;
 layout(set = 1, binding = GI_SPATIAL_BINDING_ESTIMATE, rgba16f) uniform writeonly image2D estimateOut;
 
 const uint RANDOM_GI_SPATIAL = 0x47490010u;
 
 Reservoir loadReservoir(ivec2 q) {
-  return unpackReservoir(imageLoad(inSample, q), imageLoad(inRadiance, q), imageLoad(inOrigin, q),
-                         imageLoad(inNormals, q));
+  return unpackReservoir(texelFetch(inSample, q, 0), texelFetch(inRadiance, q, 0), texelFetch(inOrigin, q, 0),
+                         texelFetch(inNormals, q, 0));
 }
 
 // The neighbour of spatial sample i (of n): a golden-angle spiral with exponential radius around
@@ -57,9 +58,9 @@ float confidenceOfProducers(RestirGiConstants gi, PrimaryVertex x1, float ownM, 
   for (uint i = 0u; i < n; ++i) {
     if ((merged & (1u << i)) == 0u) continue;
     ivec2 q = spatialNeighbour(gi, g, i, n, rotation, variant);
-    vec3 origin = imageLoad(inOrigin, q).xyz;
-    vec3 originNormal = decodeOctahedral(imageLoad(inNormals, q).xy);
-    if (couldProduce(origin, originNormal, x1, chosen, gi.maxJacobian)) z += imageLoad(inRadiance, q).w;
+    vec3 origin = texelFetch(inOrigin, q, 0).xyz;
+    vec3 originNormal = decodeOctahedral(texelFetch(inNormals, q, 0).xy);
+    if (couldProduce(origin, originNormal, x1, chosen, gi.maxJacobian)) z += texelFetch(inRadiance, q, 0).w;
   }
   return z;
 }
@@ -70,7 +71,7 @@ void main() {
   ivec2 g = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(uvec2(g), gi.giResolution))) return;
   ivec2 pixel = giRepresentativePixel(f, gi, g);
-  PrimaryVertex x1 = makePrimaryVertex(f, pixel, imageLoad(normals, pixel), imageLoad(depths, pixel).x);
+  PrimaryVertex x1 = makePrimaryVertex(f, pixel, texelFetch(normals, pixel, 0), texelFetch(depths, pixel, 0).x);
   Reservoir own = loadReservoir(g);
   Reservoir result = own;
   uint variant = min(pc.variant, 1u);

@@ -8,6 +8,12 @@ using graph::QueueKind;
 namespace {
 
 constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
+// The reservoir-to-reservoir passes read their input reservoirs and the GBuffer as sampled
+// images (docs/architecture.md, "Sampled inputs").
+constexpr uint64_t kReservoirPassSampled = bindingMask(
+    {gpu::GI_SPATIAL_BINDING_INPUT + 0, gpu::GI_SPATIAL_BINDING_INPUT + 1,
+     gpu::GI_SPATIAL_BINDING_INPUT + 2, gpu::GI_SPATIAL_BINDING_INPUT + 3,
+     gpu::GI_SPATIAL_BINDING_NORMALS, gpu::GI_SPATIAL_BINDING_DEPTH});
 
 }  // namespace
 
@@ -15,13 +21,13 @@ SpatialStage::SpatialStage(vk::Context& context, const GpuScene& scene,
                            const RestirGiSettings& settings)
     : settings_(settings),
       spatial0_(context, scene, "gi/evolve/restir/gi_restir_spatial",
-                gpu::GI_SPATIAL_BINDING_COUNT),
+                gpu::GI_SPATIAL_BINDING_COUNT, {}, kReservoirPassSampled),
       spatial1_(context, scene, "gi/evolve/restir/gi_restir_spatial",
-                gpu::GI_SPATIAL_BINDING_COUNT),
+                gpu::GI_SPATIAL_BINDING_COUNT, {}, kReservoirPassSampled),
       validation_(context, scene, "gi/evolve/restir/gi_trace_spatial_validation_rays",
                   gpu::GI_VALIDATION_BINDING_COUNT),
       patch_(context, scene, "gi/evolve/restir/gi_restir_patch_reservoir",
-             gpu::GI_SPATIAL_BINDING_COUNT) {}
+             gpu::GI_SPATIAL_BINDING_COUNT, {}, kReservoirPassSampled) {}
 
 Reservoirs SpatialStage::declare(graph::FrameGraph& graph, const RestirFrame& f,
                                  const Reservoirs& temporal,
@@ -56,10 +62,10 @@ Reservoirs SpatialStage::declareReservoirPass(graph::FrameGraph& graph, const Re
   graph::PassBuilder b = graph.addPass(name, QueueKind::Compute);
   b.write(output.estimate, Access::StorageWrite, gpu::GI_SPATIAL_BINDING_ESTIMATE)
       .read(f.in.frame.constants, Access::StorageRead)
-      .read(f.in.gbuffer.normals, Access::StorageRead, gpu::GI_SPATIAL_BINDING_NORMALS)
-      .read(f.in.gbuffer.depth.current, Access::StorageRead, gpu::GI_SPATIAL_BINDING_DEPTH);
+      .read(f.in.gbuffer.normals, Access::SampledRead, gpu::GI_SPATIAL_BINDING_NORMALS)
+      .read(f.in.gbuffer.depth.current, Access::SampledRead, gpu::GI_SPATIAL_BINDING_DEPTH);
   for (uint32_t i = 0; i < 4; ++i)
-    b.read(input[i], Access::StorageRead, gpu::GI_SPATIAL_BINDING_INPUT + i)
+    b.read(input[i], Access::SampledRead, gpu::GI_SPATIAL_BINDING_INPUT + i)
         .write(output.reservoir[i], Access::StorageWrite, gpu::GI_SPATIAL_BINDING_OUTPUT + i);
   b.record([f, variant, &pass](VkCommandBuffer cmd, const graph::PassResources& r) {
     pass.record(cmd, r, f.passConstants(false, variant), f.giResolution);
