@@ -12,8 +12,11 @@ CompositePass::CompositePass(vk::Context& context, const GpuScene& scene,
     : specularAlbedo_(specularAlbedo),
       pass_(context, scene, "passes/composite", gpu::COMPOSITE_BINDING_COUNT,
             sizeof(gpu::CompositeConstants), 1, {},
-            bindingMask({gpu::COMPOSITE_BINDING_BASE_COLOR, gpu::COMPOSITE_BINDING_NORMALS, gpu::COMPOSITE_BINDING_DEPTH, gpu::COMPOSITE_BINDING_EMISSIVE, gpu::COMPOSITE_BINDING_FLAGS, gpu::COMPOSITE_BINDING_SHADOWS, gpu::COMPOSITE_BINDING_SKY,
-                         gpu::COMPOSITE_BINDING_GI_DIFFUSE, gpu::COMPOSITE_BINDING_REFLECTIONS, gpu::COMPOSITE_BINDING_DIRECT})) {}
+            bindingMask({gpu::COMPOSITE_BINDING_BASE_COLOR, gpu::COMPOSITE_BINDING_NORMALS,
+                         gpu::COMPOSITE_BINDING_DEPTH, gpu::COMPOSITE_BINDING_EMISSIVE,
+                         gpu::COMPOSITE_BINDING_FLAGS, gpu::COMPOSITE_BINDING_SHADOWS,
+                         gpu::COMPOSITE_BINDING_SKY, gpu::COMPOSITE_BINDING_GI_DIFFUSE,
+                         gpu::COMPOSITE_BINDING_REFLECTIONS, gpu::COMPOSITE_BINDING_DIRECT})) {}
 
 HdrImage CompositePass::declare(graph::FrameGraph& graph, const FrameContext& frame,
                                 const GBuffer& gbuffer, const Shadows& shadows,

@@ -80,11 +80,11 @@ void ComputePass::writeImage(VkDescriptorSet set, size_t slot, uint32_t binding,
   const VkDescriptorType type = imageDescriptorType(sampledBindings_, binding);
   const bool sampledLayout = image.layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   if ((type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE) != sampledLayout)
-    fail("pass '{}': binding {} is a {} image of the pass (its sampledBindings) but declared "
-         "with {} in the frame graph",
-         pipeline_.name(), binding,
-         type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE ? "sampled" : "storage",
-         sampledLayout ? "Access::SampledRead" : "a storage access");
+    fail(
+        "pass '{}': binding {} is a {} image of the pass (its sampledBindings) but declared "
+        "with {} in the frame graph",
+        pipeline_.name(), binding, type == VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE ? "sampled" : "storage",
+        sampledLayout ? "Access::SampledRead" : "a storage access");
   infos_[slot] = {VK_NULL_HANDLE, image.view, image.layout};
   VkWriteDescriptorSet& w = writes_[slot];
   w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};

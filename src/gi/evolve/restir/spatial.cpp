@@ -10,20 +10,20 @@ namespace {
 constexpr VkFormat kRgba16f = VK_FORMAT_R16G16B16A16_SFLOAT;
 // The reservoir-to-reservoir passes read their input reservoirs and the GBuffer as sampled
 // images (docs/architecture.md, "Sampled inputs").
-constexpr uint64_t kReservoirPassSampled = bindingMask(
-    {gpu::GI_SPATIAL_BINDING_INPUT + 0, gpu::GI_SPATIAL_BINDING_INPUT + 1,
-     gpu::GI_SPATIAL_BINDING_INPUT + 2, gpu::GI_SPATIAL_BINDING_INPUT + 3,
-     gpu::GI_SPATIAL_BINDING_NORMALS, gpu::GI_SPATIAL_BINDING_DEPTH});
+constexpr uint64_t kReservoirPassSampled =
+    bindingMask({gpu::GI_SPATIAL_BINDING_INPUT + 0, gpu::GI_SPATIAL_BINDING_INPUT + 1,
+                 gpu::GI_SPATIAL_BINDING_INPUT + 2, gpu::GI_SPATIAL_BINDING_INPUT + 3,
+                 gpu::GI_SPATIAL_BINDING_NORMALS, gpu::GI_SPATIAL_BINDING_DEPTH});
 
 }  // namespace
 
 SpatialStage::SpatialStage(vk::Context& context, const GpuScene& scene,
                            const RestirGiSettings& settings)
     : settings_(settings),
-      spatial0_(context, scene, "gi/evolve/restir/gi_restir_spatial",
-                gpu::GI_SPATIAL_BINDING_COUNT, {}, kReservoirPassSampled),
-      spatial1_(context, scene, "gi/evolve/restir/gi_restir_spatial",
-                gpu::GI_SPATIAL_BINDING_COUNT, {}, kReservoirPassSampled),
+      spatial0_(context, scene, "gi/evolve/restir/gi_restir_spatial", gpu::GI_SPATIAL_BINDING_COUNT,
+                {}, kReservoirPassSampled),
+      spatial1_(context, scene, "gi/evolve/restir/gi_restir_spatial", gpu::GI_SPATIAL_BINDING_COUNT,
+                {}, kReservoirPassSampled),
       validation_(context, scene, "gi/evolve/restir/gi_trace_spatial_validation_rays",
                   gpu::GI_VALIDATION_BINDING_COUNT),
       patch_(context, scene, "gi/evolve/restir/gi_restir_patch_reservoir",
