@@ -20,12 +20,12 @@ layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer Vec
   vec4 v[];
 };
 
-// The traversal's view of nodes, triangles and instances, and the view materials are read
-// through: 16-byte quarters. A view of GpuBvhNode[] with the scalar layout promises only 4-byte
-// alignment, so a GPU compiler fetches a 64-byte node through it as sixteen 32-bit loads; every
-// element of these arrays starts on a 16-byte boundary (each array is its own allocation and
-// its element a multiple of 16 bytes), and through this view it takes four 128-bit loads.
-// docs/ray-tracing.md, "128-bit loads".
+// Nodes, triangles, instances, geometries and materials as 16-byte quarters, the view the
+// traversal and the shading of its hits read them through. A view of GpuBvhNode[] with the
+// scalar layout promises only 4-byte alignment, so a GPU compiler fetches a 64-byte node through
+// it as sixteen 32-bit loads; every element of these arrays starts on a 16-byte boundary (each
+// array is its own allocation and its element a multiple of 16 bytes), and through this view it
+// takes four 128-bit loads. docs/ray-tracing.md, "128-bit loads".
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer QuadArray {
   vec4 v[];
 };
